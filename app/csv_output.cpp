@@ -1,0 +1,37 @@
+#include "app/csv_output.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "dynamics/sensors.hpp"
+
+namespace mbsopt {
+
+void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory) {
+  const Eigen::MatrixXd sensors = sensorHistory(model, trajectory);
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial);
+    if (!out) throw std::runtime_error("cannot write '" + path + "'");
+    out.precision(17);
+    out << 't';
+    for (const Sensor& s : model.sensors()) out << ',' << s.name;
+    for (const Coordinate& c : model.coordinates()) out << ',' << c.name;
+    out << '\n';
+    for (Eigen::Index k = 0; k < trajectory.time.size(); ++k) {
+      out << trajectory.time[k];
+      for (Eigen::Index s = 0; s < sensors.cols(); ++s) out << ',' << sensors(k, s);
+      for (Eigen::Index i = 0; i < trajectory.q.rows(); ++i) out << ',' << trajectory.q(i, k);
+      out << '\n';
+    }
+    if (!out.flush()) {
+      std::remove(partial.c_str());
+      throw std::runtime_error("writing '" + path + "' failed");
+    }
+  }
+  std::filesystem::rename(partial, path);
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,13 @@
+// Writes a simulation to CSV: one row per time point, `t`, every sensor, then every coordinate.
+// The file appears only when complete (written to a temporary name, then renamed).
+#pragma once
+
+#include <string>
+
+#include "dynamics/newmark.hpp"
+
+namespace mbsopt {
+
+void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory);
+
+}  // namespace mbsopt

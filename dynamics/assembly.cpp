@@ -1,0 +1,71 @@
+#include "dynamics/assembly.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "dynamics/closure.hpp"
+#include "dynamics/svd_partition.hpp"
+#include "dynamics/tangent.hpp"
+
+namespace mbsopt {
+
+AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd& v, double t, double tolerance,
+                        double svd_threshold) {
+  AssemblyReport report;
+  for (int i : model.drivenCoordinates()) {
+    q[i] = model.coordinates()[static_cast<std::size_t>(i)].motion.value(t);
+    v[i] = model.coordinates()[static_cast<std::size_t>(i)].motion.rate(t);
+  }
+  if (model.constraintCount() == 0) return report;
+  const std::vector<int>& free = model.freeCoordinates();
+  const auto nf = static_cast<Eigen::Index>(free.size());
+  Workspace<AdScalar> ad_ws(model);
+  Workspace<double> ws(model);
+  SvdPartition partition(svd_threshold);
+  Eigen::VectorXd b, correction;
+  Eigen::MatrixXd B, B_free(model.constraintCount(), nf);
+  const Eigen::VectorXd q_start = q;
+  auto factor = [&] {
+    constraintJacobian(model, ad_ws, q, b, B);
+    for (Eigen::Index k = 0; k < nf; ++k) B_free.col(k) = B.col(free[static_cast<std::size_t>(k)]);
+    partition.setConstraintJacobian(B_free);
+  };
+  constexpr int kMaxIterations = 50;
+  factor();
+  double best = b.cwiseAbs().maxCoeff();
+  while (best > tolerance && report.iterations < kMaxIterations) {
+    partition.pseudoInverse(b, correction);
+    for (Eigen::Index k = 0; k < nf; ++k) q[free[static_cast<std::size_t>(k)]] -= correction[k];
+    ++report.iterations;
+    factor();
+    const double now = b.cwiseAbs().maxCoeff();
+    if (!std::isfinite(now)) break;
+    if (now > 0.999 * best && report.iterations > 10) break;  // stagnates: not closable
+    best = std::min(best, now);
+  }
+  report.closure_error = b.cwiseAbs().maxCoeff();
+  if (!(report.closure_error <= std::max(tolerance, 1e-9))) {
+    std::string names;
+    Eigen::Index row = 0;
+    for (const CutJoint& cut : model.cuts()) {
+      const int rows = equationCount(cut.kind);
+      if (b.segment(row, rows).cwiseAbs().maxCoeff() > 1e-9) names += (names.empty() ? "" : ", ") + cut.name;
+      row += rows;
+    }
+    throw std::runtime_error("the loop(s) closed by " + names + " cannot be assembled: closure error " +
+                             std::to_string(report.closure_error) + " m after " +
+                             std::to_string(report.iterations) + " least-squares corrections");
+  }
+  report.position_correction = (q - q_start).cwiseAbs().maxCoeff();
+  // Velocities: remove the part violating ḃ = 0 (minimum-norm correction).
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(q.size());
+  forwardKinematics(model, ws, q, v, zero, KinematicsLevel::Velocity);
+  closureEquations(model, ws, Derivative::Velocity, b);
+  partition.pseudoInverse(b, correction);
+  for (Eigen::Index k = 0; k < nf; ++k) v[free[static_cast<std::size_t>(k)]] -= correction[k];
+  report.velocity_correction = correction.size() ? correction.cwiseAbs().maxCoeff() : 0.0;
+  return report;
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,115 @@
+#include "dynamics/closure.hpp"
+
+#include <array>
+
+#include "dynamics/overloaded.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// Two unit vectors that complete `axis` to an orthonormal basis (deterministic choice).
+std::array<Eigen::Vector3d, 2> perpendicularPair(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d helper = std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = axis.cross(helper).normalized();
+  return {e1, axis.cross(e1)};
+}
+
+/// Unit vector u fixed in frame a paired with unit vector w fixed in frame b: equation u·w = 0.
+struct Orthogonality {
+  FrameIndex frame_a;
+  Eigen::Vector3d u_local;
+  FrameIndex frame_b;
+  Eigen::Vector3d w_local;
+};
+
+/// Visits the equations of one cut: a point coincidence (3 rows) then its orthogonalities (1 row each).
+template <class OnCoincidence, class OnOrthogonality>
+void forEachEquation(const CutKind& cut, OnCoincidence&& coincidence, OnOrthogonality&& orthogonality) {
+  std::visit(Overloaded{[&](const SphericalCut& c) { coincidence(c.frame_a, c.frame_b); },
+                        [&](const RevoluteCut& c) {
+                          coincidence(c.frame_a, c.frame_b);
+                          for (const Eigen::Vector3d& w : perpendicularPair(c.axis_in_b))
+                            orthogonality(Orthogonality{c.frame_a, c.axis_in_a, c.frame_b, w});
+                        },
+                        [&](const WeldCut& c) {
+                          coincidence(c.frame_a, c.frame_b);
+                          const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+                          orthogonality(Orthogonality{c.frame_a, I.col(0), c.frame_b, I.col(1)});
+                          orthogonality(Orthogonality{c.frame_a, I.col(1), c.frame_b, I.col(2)});
+                          orthogonality(Orthogonality{c.frame_a, I.col(2), c.frame_b, I.col(0)});
+                        }},
+             cut);
+}
+
+}  // namespace
+
+template <class Scalar>
+void closureEquations(const Model& model, const Workspace<Scalar>& ws, Derivative level, VectorX<Scalar>& out) {
+  out.resize(model.constraintCount());
+  Eigen::Index row = 0;
+  for (const CutJoint& cut : model.cuts()) {
+    forEachEquation(
+        cut.kind,
+        [&](FrameIndex a, FrameIndex b) {
+          const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+          switch (level) {
+            case Derivative::Position: out.template segment<3>(row) = ws.position[ia] - ws.position[ib]; break;
+            case Derivative::Velocity: out.template segment<3>(row) = ws.velocity[ia] - ws.velocity[ib]; break;
+            case Derivative::Acceleration:
+              out.template segment<3>(row) = ws.acceleration[ia] - ws.acceleration[ib];
+              break;
+          }
+          row += 3;
+        },
+        [&](const Orthogonality& o) {
+          const auto ia = static_cast<std::size_t>(o.frame_a), ib = static_cast<std::size_t>(o.frame_b);
+          const Vector3<Scalar> u = ws.rotation[ia] * o.u_local.template cast<Scalar>();
+          const Vector3<Scalar> w = ws.rotation[ib] * o.w_local.template cast<Scalar>();
+          if (level == Derivative::Position) {
+            out[row++] = u.dot(w);
+            return;
+          }
+          const Vector3<Scalar>& wa = ws.angular_velocity[ia];
+          const Vector3<Scalar>& wb = ws.angular_velocity[ib];
+          const Vector3<Scalar> du = wa.cross(u), dw = wb.cross(w);
+          if (level == Derivative::Velocity) {
+            out[row++] = du.dot(w) + u.dot(dw);
+            return;
+          }
+          const Vector3<Scalar> ddu = ws.angular_acceleration[ia].cross(u) + wa.cross(du);
+          const Vector3<Scalar> ddw = ws.angular_acceleration[ib].cross(w) + wb.cross(dw);
+          out[row++] = ddu.dot(w) + Scalar(2) * du.dot(dw) + u.dot(ddw);
+        });
+  }
+}
+
+template <class Scalar>
+void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda) {
+  Eigen::Index row = 0;
+  for (const CutJoint& cut : model.cuts()) {
+    forEachEquation(
+        cut.kind,
+        [&](FrameIndex a, FrameIndex b) {
+          const Vector3<Scalar> f = lambda.template segment<3>(row);
+          ws.force[static_cast<std::size_t>(a)] += f;  // δ(p_a − p_b) = δp_a − δp_b
+          ws.force[static_cast<std::size_t>(b)] -= f;
+          row += 3;
+        },
+        [&](const Orthogonality& o) {
+          const auto ia = static_cast<std::size_t>(o.frame_a), ib = static_cast<std::size_t>(o.frame_b);
+          const Vector3<Scalar> u = ws.rotation[ia] * o.u_local.template cast<Scalar>();
+          const Vector3<Scalar> w = ws.rotation[ib] * o.w_local.template cast<Scalar>();
+          const Vector3<Scalar> torque = lambda[row++] * u.cross(w);  // δ(u·w) = δθ_a·(u×w) − δθ_b·(u×w)
+          ws.moment[ia] += torque;
+          ws.moment[ib] -= torque;
+        });
+  }
+}
+
+template void closureEquations<double>(const Model&, const Workspace<double>&, Derivative, VectorX<double>&);
+template void closureEquations<AdScalar>(const Model&, const Workspace<AdScalar>&, Derivative, VectorX<AdScalar>&);
+template void addConstraintWrenches<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+template void addConstraintWrenches<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
+
+}  // namespace mbsopt

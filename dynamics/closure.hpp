@@ -1,0 +1,28 @@
+// Loop-closure equations of the cut joints (34): b(q, t) = 0, with their exact first and second
+// time derivatives, computed from the frame kinematics of the forward recursion. Each cut joint is
+// a set of point coincidences (p_a − p_b = 0) and of orthogonalities between unit vectors fixed in
+// the two frames (u_a·w_b = 0).
+#pragma once
+
+#include "dynamics/kinematics.hpp"
+
+namespace mbsopt {
+
+/// b (level Position), ḃ = B q̇ + ∂b/∂t (Velocity) or b̈ (Acceleration), for every cut joint in
+/// model order. Needs forwardKinematics at least at that level. `out` has constraintCount() rows.
+template <class Scalar>
+void closureEquations(const Model& model, const Workspace<Scalar>& ws, Derivative level, VectorX<Scalar>& out);
+
+/// Adds the generalised constraint forces Bᵀλ (36) as wrenches on the cut frames, so the backward
+/// recursion maps them to joint space (∂(λᵀb)/∂q = Bᵀλ by virtual work). Needs Position level.
+template <class Scalar>
+void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda);
+
+extern template void closureEquations<double>(const Model&, const Workspace<double>&, Derivative,
+                                              VectorX<double>&);
+extern template void closureEquations<AdScalar>(const Model&, const Workspace<AdScalar>&, Derivative,
+                                                VectorX<AdScalar>&);
+extern template void addConstraintWrenches<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+extern template void addConstraintWrenches<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
+
+}  // namespace mbsopt

@@ -1,0 +1,25 @@
+// Forward recursion (paper §4.2): absolute position, velocity and acceleration of every frame from
+// the joint coordinates, by the movement transformations (20)-(21) of each kinetostatic element.
+#pragma once
+
+#include "dynamics/model.hpp"
+#include "dynamics/scalar.hpp"
+#include "dynamics/workspace.hpp"
+
+namespace mbsopt {
+
+enum class KinematicsLevel { Position, Velocity, Acceleration };
+
+/// Fills ws.rotation/position (and velocities, accelerations up to `level`) for all frames.
+/// q, v, a hold every coordinate, driven ones included; v and a are read only when needed.
+template <class Scalar>
+void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                       const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level);
+
+extern template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
+                                               const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
+extern template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                                 const VectorX<AdScalar>&, const VectorX<AdScalar>&,
+                                                 KinematicsLevel);
+
+}  // namespace mbsopt

@@ -1,0 +1,279 @@
+#include "dynamics/model.hpp"
+#include "dynamics/overloaded.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mbsopt {
+
+namespace {
+
+Eigen::Vector3d unitAxis(const Eigen::Vector3d& axis, const std::string& who) {
+  const double norm = axis.norm();
+  if (!std::isfinite(norm) || norm < 1e-12) throw std::invalid_argument(who + ": the axis must be a non-zero vector");
+  return axis / norm;
+}
+
+void checkFinite(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw std::invalid_argument(what + " must be finite");
+}
+
+}  // namespace
+
+int equationCount(const CutKind& cut) {
+  return std::visit(Overloaded{[](const SphericalCut&) { return 3; }, [](const RevoluteCut&) { return 5; },
+                               [](const WeldCut&) { return 6; }},
+                    cut);
+}
+
+Model::Model() { frames_.push_back({"ground", -1}); }
+
+void Model::checkFrame(FrameIndex frame, const std::string& who) const {
+  if (frame < 0 || frame >= frameCount())
+    throw std::invalid_argument(who + ": frame index " + std::to_string(frame) + " does not exist");
+}
+
+void Model::checkNewName(const std::string& name) const {
+  if (name.empty()) throw std::invalid_argument("every element needs a name");
+  if (name.find('.') != std::string::npos)
+    throw std::invalid_argument("'" + name + "': names may not contain '.' (it separates parameter names)");
+  if (std::find(names_.begin(), names_.end(), name) != names_.end())
+    throw std::invalid_argument("the name '" + name + "' is used twice");
+}
+
+FrameIndex Model::addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active) {
+  checkNewName(name);
+  checkFrame(parent, name);
+  names_.push_back(name);
+  const int element = static_cast<int>(elements_.size());
+  const FrameIndex exit = frameCount();
+  int coordinate = -1;
+  if (active) {
+    coordinate = coordinateCount();
+    coordinates_.push_back({name, element, false, {}});
+    free_.push_back(coordinate);
+  }
+  elements_.push_back({name, parent, exit, coordinate, std::move(kind)});
+  frames_.push_back({name, element});
+  return exit;
+}
+
+FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,
+                            const Eigen::Matrix3d& rotation) {
+  if (!translation.allFinite() || !rotation.allFinite()) throw std::invalid_argument(name + ": offset must be finite");
+  if ((rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm() > 1e-9 || rotation.determinant() < 0.0)
+    throw std::invalid_argument(name + ": offset rotation is not a proper rotation matrix");
+  return addElement(name, parent, Offset{rotation, translation}, false);
+}
+
+FrameIndex Model::addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis) {
+  return addElement(name, parent, RevoluteJoint{unitAxis(axis, name)}, true);
+}
+
+FrameIndex Model::addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis) {
+  return addElement(name, parent, PrismaticJoint{unitAxis(axis, name)}, true);
+}
+
+FrameIndex Model::addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track) {
+  if (!track || track->segments().empty()) throw std::invalid_argument(name + ": curve slider needs a non-empty track");
+  return addElement(name, parent, CurveSliderJoint{std::move(track)}, true);
+}
+
+void Model::addBody(const std::string& name, FrameIndex frame, double mass, const Eigen::Vector3d& centre_of_mass,
+                    const Eigen::Matrix3d& inertia) {
+  checkNewName(name);
+  checkFrame(frame, name);
+  if (!(mass > 0.0) || !std::isfinite(mass)) throw std::invalid_argument(name + ": mass must be positive and finite");
+  if (!centre_of_mass.allFinite() || !inertia.allFinite())
+    throw std::invalid_argument(name + ": centre of mass and inertia must be finite");
+  if ((inertia - inertia.transpose()).norm() > 1e-9 * std::max(1.0, inertia.norm()))
+    throw std::invalid_argument(name + ": inertia tensor must be symmetric");
+  const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+  if (!(principal.minCoeff() > 0.0))
+    throw std::invalid_argument(name + ": inertia tensor must be positive definite");
+  names_.push_back(name);
+  bodies_.push_back({name, frame, mass, centre_of_mass, inertia});
+}
+
+void Model::addJointSpringDamper(const std::string& name, const std::string& joint, double stiffness,
+                                 double damping, double rest) {
+  addGuidanceSpring(name, joint, stiffness, damping, TimeFunction::constant(rest));
+}
+
+void Model::addGuidanceSpring(const std::string& name, const std::string& joint, double stiffness, double damping,
+                              TimeFunction target) {
+  checkNewName(name);
+  checkFinite(stiffness, name + ": stiffness");
+  checkFinite(damping, name + ": damping");
+  const int i = coordinate(joint);
+  names_.push_back(name);
+  forces_.push_back(JointSpringDamper{name, i, stiffness, damping, std::move(target)});
+}
+
+void Model::addPointSpringDamper(const std::string& name, FrameIndex frame_a, const Eigen::Vector3d& point_a,
+                                 FrameIndex frame_b, const Eigen::Vector3d& point_b, double stiffness,
+                                 double damping, double rest_length) {
+  checkNewName(name);
+  checkFrame(frame_a, name);
+  checkFrame(frame_b, name);
+  checkFinite(stiffness, name + ": stiffness");
+  checkFinite(damping, name + ": damping");
+  checkFinite(rest_length, name + ": rest length");
+  if (!point_a.allFinite() || !point_b.allFinite()) throw std::invalid_argument(name + ": points must be finite");
+  names_.push_back(name);
+  forces_.push_back(PointSpringDamper{name, frame_a, point_a, frame_b, point_b, stiffness, damping, rest_length});
+}
+
+void Model::addJointActuation(const std::string& name, const std::string& joint, TimeFunction force) {
+  checkNewName(name);
+  const int i = coordinate(joint);
+  names_.push_back(name);
+  forces_.push_back(JointActuation{name, i, std::move(force)});
+}
+
+void Model::setGravity(const Eigen::Vector3d& gravity) {
+  if (!gravity.allFinite()) throw std::invalid_argument("gravity must be finite");
+  gravity_ = gravity;
+}
+
+void Model::drive(const std::string& joint, TimeFunction motion) {
+  const int i = coordinate(joint);
+  if (coordinates_[static_cast<std::size_t>(i)].driven) throw std::invalid_argument(joint + " is driven twice");
+  coordinates_[static_cast<std::size_t>(i)].driven = true;
+  coordinates_[static_cast<std::size_t>(i)].motion = std::move(motion);
+  free_.erase(std::find(free_.begin(), free_.end(), i));
+  driven_.push_back(i);
+}
+
+void Model::addSphericalCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b) {
+  checkNewName(name);
+  checkFrame(frame_a, name);
+  checkFrame(frame_b, name);
+  if (frame_a == frame_b) throw std::invalid_argument(name + ": a cut joint needs two different frames");
+  names_.push_back(name);
+  cuts_.push_back({name, SphericalCut{frame_a, frame_b}});
+  constraint_count_ += 3;
+}
+
+void Model::addRevoluteCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b,
+                           const Eigen::Vector3d& axis_in_a, const Eigen::Vector3d& axis_in_b) {
+  checkNewName(name);
+  checkFrame(frame_a, name);
+  checkFrame(frame_b, name);
+  if (frame_a == frame_b) throw std::invalid_argument(name + ": a cut joint needs two different frames");
+  names_.push_back(name);
+  cuts_.push_back({name, RevoluteCut{frame_a, frame_b, unitAxis(axis_in_a, name), unitAxis(axis_in_b, name)}});
+  constraint_count_ += 5;
+}
+
+void Model::addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b) {
+  checkNewName(name);
+  checkFrame(frame_a, name);
+  checkFrame(frame_b, name);
+  if (frame_a == frame_b) throw std::invalid_argument(name + ": a cut joint needs two different frames");
+  names_.push_back(name);
+  cuts_.push_back({name, WeldCut{frame_a, frame_b}});
+  constraint_count_ += 6;
+}
+
+void Model::addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
+                              std::shared_ptr<const Track> track) {
+  checkFrame(frame_a, name);
+  const FrameIndex track_point = addCurveSlider(name, base, std::move(track));
+  addWeldCut(name + "_closure", frame_a, track_point);
+}
+
+void Model::addSensor(const std::string& name, SensorKind kind) {
+  if (name.empty()) throw std::invalid_argument("every sensor needs a name");
+  if (sensor(name) >= 0) throw std::invalid_argument("the sensor name '" + name + "' is used twice");
+  std::visit(Overloaded{[&](const PointSensor& s) {
+                          checkFrame(s.frame, name);
+                          checkFrame(s.axes, name);
+                          if (s.component < 0 || s.component > 2)
+                            throw std::invalid_argument(name + ": component must be 0, 1 or 2");
+                        },
+                        [&](const JointSensor& s) {
+                          if (s.coordinate < 0 || s.coordinate >= coordinateCount())
+                            throw std::invalid_argument(name + ": no such coordinate");
+                        },
+                        [&](RelativeAngleSensor& s) {
+                          checkFrame(s.frame_a, name);
+                          checkFrame(s.frame_b, name);
+                          s.axis = unitAxis(s.axis, name);
+                        }},
+             kind);
+  sensors_.push_back({name, std::move(kind)});
+}
+
+FrameIndex Model::frame(std::string_view name) const {
+  for (std::size_t i = 0; i < frames_.size(); ++i)
+    if (frames_[i].name == name) return static_cast<FrameIndex>(i);
+  throw std::invalid_argument("no frame named '" + std::string(name) + "'");
+}
+
+int Model::coordinate(std::string_view name) const {
+  for (std::size_t i = 0; i < coordinates_.size(); ++i)
+    if (coordinates_[i].name == name) return static_cast<int>(i);
+  throw std::invalid_argument("no joint coordinate named '" + std::string(name) + "'");
+}
+
+int Model::sensor(std::string_view name) const {
+  for (std::size_t i = 0; i < sensors_.size(); ++i)
+    if (sensors_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+const std::string& Model::coordinateOwner(int i) const {
+  return elements_[static_cast<std::size_t>(coordinates_[static_cast<std::size_t>(i)].element)].name;
+}
+
+void Model::forEachParameter(const std::function<void(const std::string&, double&)>& visit) {
+  visit("gravity.x", gravity_.x());
+  visit("gravity.y", gravity_.y());
+  visit("gravity.z", gravity_.z());
+  for (Body& body : bodies_) {
+    visit(body.name + ".mass", body.mass);
+    const char* axes = "xyz";
+    for (int i = 0; i < 3; ++i) visit(body.name + ".com_" + axes[i], body.centre_of_mass[i]);
+    for (int i = 0; i < 3; ++i) visit(body.name + ".I" + axes[i] + axes[i], body.inertia(i, i));
+  }
+  for (ForceElement& force : forces_) {
+    std::visit(Overloaded{[&](JointSpringDamper& f) {
+                            visit(f.name + ".k", f.stiffness);
+                            visit(f.name + ".c", f.damping);
+                            if (f.rest.isConstant()) visit(f.name + ".rest", f.rest.constantTerm());
+                          },
+                          [&](PointSpringDamper& f) {
+                            visit(f.name + ".k", f.stiffness);
+                            visit(f.name + ".c", f.damping);
+                            visit(f.name + ".rest_length", f.rest_length);
+                          },
+                          [&](JointActuation& f) {
+                            if (f.force.isConstant()) visit(f.name + ".value", f.force.constantTerm());
+                          }},
+               force);
+  }
+}
+
+double& Model::parameter(std::string_view dotted_name) {
+  double* found = nullptr;
+  forEachParameter([&](const std::string& name, double& value) {
+    if (name == dotted_name) found = &value;
+  });
+  if (!found) throw std::invalid_argument("no parameter named '" + std::string(dotted_name) + "'");
+  return *found;
+}
+
+double Model::parameter(std::string_view dotted_name) const {
+  return const_cast<Model*>(this)->parameter(dotted_name);
+}
+
+std::vector<std::string> Model::parameterNames() const {
+  std::vector<std::string> names;
+  const_cast<Model*>(this)->forEachParameter([&](const std::string& name, double&) { names.push_back(name); });
+  return names;
+}
+
+}  // namespace mbsopt

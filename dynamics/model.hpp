@@ -1,0 +1,225 @@
+// The immutable description of a mechanism (the "model" of the model/workspace split, DESIGN.md §2):
+// frames linked by kinetostatic elements in chains from the ground (paper §4.1), bodies, force
+// elements with named parameters, drivers, cut joints closing loops (§4.4) and sensors.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "dynamics/time_function.hpp"
+#include "dynamics/track.hpp"
+
+namespace mbsopt {
+
+using FrameIndex = int;
+
+// ---- kinetostatic elements: each maps an entry frame to an exit frame (20)-(23) ----
+struct Offset {  ///< passive: constant rotation and translation, both in the entry frame
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+struct RevoluteJoint {  ///< active: rotation q about a unit axis of the entry frame
+  Eigen::Vector3d axis;
+};
+struct PrismaticJoint {  ///< active: translation q along a unit axis of the entry frame
+  Eigen::Vector3d axis;
+};
+struct CurveSliderJoint {  ///< active: the exit frame rides a track of the entry frame at arc length q
+  std::shared_ptr<const Track> track;
+};
+using ElementKind = std::variant<Offset, RevoluteJoint, PrismaticJoint, CurveSliderJoint>;
+
+struct KinematicElement {
+  std::string name;
+  FrameIndex entry;
+  FrameIndex exit;
+  int coordinate;  ///< index into q, or -1 for a passive element
+  ElementKind kind;
+};
+
+struct Body {
+  std::string name;
+  FrameIndex frame;
+  double mass;
+  Eigen::Vector3d centre_of_mass;  ///< in the frame's axes, from its origin
+  Eigen::Matrix3d inertia;         ///< about the centre of mass, in the frame's axes
+};
+
+// ---- force elements ----
+/// Q = −k (q − r(t)) − c (q̇ − ṙ(t)): a joint spring-damper (constant rest value r) or a guidance
+/// spring pulling the joint towards a moving target r(t).
+struct JointSpringDamper {
+  std::string name;
+  int coordinate;
+  double stiffness;
+  double damping;
+  TimeFunction rest;
+};
+/// Spring-damper along the line between a point of frame a and a point of frame b.
+struct PointSpringDamper {
+  std::string name;
+  FrameIndex frame_a;
+  Eigen::Vector3d point_a;
+  FrameIndex frame_b;
+  Eigen::Vector3d point_b;
+  double stiffness;
+  double damping;
+  double rest_length;
+};
+/// Generalised force (torque or force) on a joint coordinate, given as a function of time.
+struct JointActuation {
+  std::string name;
+  int coordinate;
+  TimeFunction force;
+};
+using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation>;
+
+// ---- cut joints closing loops (34): b(q, t) = 0 ----
+struct SphericalCut {  ///< 3 equations: origins of a and b coincide
+  FrameIndex frame_a, frame_b;
+};
+struct RevoluteCut {  ///< 5 equations: origins coincide, axis of a stays normal to two directions ⟂ axis of b
+  FrameIndex frame_a, frame_b;
+  Eigen::Vector3d axis_in_a, axis_in_b;
+};
+struct WeldCut {  ///< 6 equations: frames a and b coincide
+  FrameIndex frame_a, frame_b;
+};
+using CutKind = std::variant<SphericalCut, RevoluteCut, WeldCut>;
+struct CutJoint {
+  std::string name;
+  CutKind kind;
+};
+
+// ---- sensors (outputs) ----
+enum class Derivative { Position, Velocity, Acceleration };
+/// Component `component` (0 = x, 1 = y, 2 = z) of the position (relative to the origin of `axes`),
+/// absolute velocity or absolute acceleration of a point fixed in `frame`, in the axes of `axes`.
+struct PointSensor {
+  FrameIndex frame;
+  Eigen::Vector3d point;
+  Derivative quantity;
+  FrameIndex axes;
+  int component;
+};
+struct JointSensor {  ///< a joint coordinate, its rate or its acceleration
+  int coordinate;
+  Derivative quantity;
+};
+/// Angle of frame b relative to frame a about a unit axis of a (the twist of R_aᵀR_b about it).
+struct RelativeAngleSensor {
+  FrameIndex frame_a, frame_b;
+  Eigen::Vector3d axis;
+};
+using SensorKind = std::variant<PointSensor, JointSensor, RelativeAngleSensor>;
+struct Sensor {
+  std::string name;
+  SensorKind kind;
+};
+
+struct Frame {
+  std::string name;
+  int element;  ///< the element whose exit this frame is; -1 for the ground
+};
+
+struct Coordinate {
+  std::string name;
+  int element;       ///< the active element that owns it
+  bool driven;       ///< prescribed as a function of time, removed from the unknowns
+  TimeFunction motion;
+};
+
+class Model {
+ public:
+  static constexpr FrameIndex ground = 0;
+
+  Model();
+
+  // Chains: each call adds an element after frame `parent` and returns its exit frame.
+  FrameIndex addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,
+                       const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity());
+  FrameIndex addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
+  FrameIndex addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
+  FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track);
+  /// A body attached to `frame` (it adds inertia to that frame; it does not create a frame).
+  void addBody(const std::string& name, FrameIndex frame, double mass, const Eigen::Vector3d& centre_of_mass,
+               const Eigen::Matrix3d& inertia);
+
+  void addJointSpringDamper(const std::string& name, const std::string& joint, double stiffness, double damping,
+                            double rest = 0.0);
+  void addGuidanceSpring(const std::string& name, const std::string& joint, double stiffness, double damping,
+                         TimeFunction target);
+  void addPointSpringDamper(const std::string& name, FrameIndex frame_a, const Eigen::Vector3d& point_a,
+                            FrameIndex frame_b, const Eigen::Vector3d& point_b, double stiffness, double damping,
+                            double rest_length);
+  void addJointActuation(const std::string& name, const std::string& joint, TimeFunction force);
+  void setGravity(const Eigen::Vector3d& gravity);
+
+  /// Prescribe a joint coordinate as a function of time (exact up to its second derivative).
+  void drive(const std::string& joint, TimeFunction motion);
+
+  void addSphericalCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b);
+  void addRevoluteCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b,
+                      const Eigen::Vector3d& axis_in_a, const Eigen::Vector3d& axis_in_b);
+  void addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b);
+  /// Cut curve-sliding joint: frame_a must ride `track` (fixed in frame `base`). Adds the arc length
+  /// as a coordinate named `name`, carried by a massless slider from `base`, welded to frame_a.
+  void addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
+                         std::shared_ptr<const Track> track);
+
+  void addSensor(const std::string& name, SensorKind kind);
+
+  // ---- queries ----
+  int frameCount() const { return static_cast<int>(frames_.size()); }
+  int coordinateCount() const { return static_cast<int>(coordinates_.size()); }
+  int constraintCount() const { return constraint_count_; }
+  const std::vector<Frame>& frames() const { return frames_; }
+  const std::vector<KinematicElement>& elements() const { return elements_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const std::vector<ForceElement>& forces() const { return forces_; }
+  const std::vector<CutJoint>& cuts() const { return cuts_; }
+  const std::vector<Sensor>& sensors() const { return sensors_; }
+  const std::vector<Coordinate>& coordinates() const { return coordinates_; }
+  const std::vector<int>& freeCoordinates() const { return free_; }
+  const std::vector<int>& drivenCoordinates() const { return driven_; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+
+  FrameIndex frame(std::string_view name) const;
+  int coordinate(std::string_view name) const;
+  int sensor(std::string_view name) const;
+  /// The element that owns coordinate i, for error messages.
+  const std::string& coordinateOwner(int i) const;
+
+  /// Named numeric parameters ("front_secondary.k", "carbody1.mass", "gravity.z", ...).
+  double& parameter(std::string_view dotted_name);
+  double parameter(std::string_view dotted_name) const;
+  std::vector<std::string> parameterNames() const;
+
+ private:
+  FrameIndex addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active);
+  void checkFrame(FrameIndex frame, const std::string& who) const;
+  void checkNewName(const std::string& name) const;
+  void forEachParameter(const std::function<void(const std::string&, double&)>& visit);
+
+  std::vector<Frame> frames_;
+  std::vector<KinematicElement> elements_;
+  std::vector<Body> bodies_;
+  std::vector<ForceElement> forces_;
+  std::vector<CutJoint> cuts_;
+  std::vector<Sensor> sensors_;
+  std::vector<Coordinate> coordinates_;
+  std::vector<int> free_, driven_;
+  std::vector<std::string> names_;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  int constraint_count_ = 0;
+};
+
+/// Number of closure equations of a cut joint.
+int equationCount(const CutKind& cut);
+
+}  // namespace mbsopt

@@ -1,0 +1,277 @@
+#include "dynamics/newmark.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "dynamics/closure.hpp"
+#include "dynamics/residual.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+std::string describe(const std::string& what, double time, long step, double residual_norm,
+                     const std::string& element) {
+  std::ostringstream out;
+  out << what << " at t = " << time << " s (step " << step << "), residual norm " << residual_norm;
+  if (!element.empty()) out << ", largest at '" << element << "'";
+  return out.str();
+}
+
+Eigen::VectorXd gather(const Eigen::VectorXd& full, const std::vector<int>& index) {
+  Eigen::VectorXd part(static_cast<Eigen::Index>(index.size()));
+  for (std::size_t k = 0; k < index.size(); ++k) part[static_cast<Eigen::Index>(k)] = full[index[k]];
+  return part;
+}
+
+}  // namespace
+
+SimulationError::SimulationError(const std::string& what, double t, long s, double norm, std::string where)
+    : std::runtime_error(describe(what, t, s, norm, where)),
+      time(t),
+      step(s),
+      residual_norm(norm),
+      element(std::move(where)) {}
+
+NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings settings)
+    : model_(model),
+      settings_(settings),
+      ws_(model),
+      ad_ws_(model),
+      partition_(settings.svd_threshold),
+      free_(model.freeCoordinates()) {
+  if (!(settings_.step > 0.0) || !std::isfinite(settings_.step))
+    throw std::invalid_argument("Newmark: the time step must be positive and finite");
+  if (!(settings_.end_time > 0.0) || !std::isfinite(settings_.end_time))
+    throw std::invalid_argument("Newmark: the end time must be positive and finite");
+  if (!(settings_.beta > 0.0 && settings_.beta <= 0.5))
+    throw std::invalid_argument("Newmark: beta must lie in (0, 1/2]");
+  if (!(settings_.gamma > 0.0 && settings_.gamma < 1.0))
+    throw std::invalid_argument("Newmark: gamma must lie in (0, 1)");
+  const Eigen::Index n = model.coordinateCount();
+  q_ = v_ = a_ = Eigen::VectorXd::Zero(n);
+  lambda_ = Eigen::VectorXd::Zero(model.constraintCount());
+}
+
+void NewmarkIntegrator::fail(const std::string& reason, const Eigen::VectorXd& residual) const {
+  Eigen::Index worst = 0;
+  const double norm = residual.size() ? residual.cwiseAbs().maxCoeff(&worst) : 0.0;
+  std::string element;
+  if (residual.size() && worst < static_cast<Eigen::Index>(free_.size()))
+    element = model_.coordinateOwner(free_[static_cast<std::size_t>(worst)]);
+  for (Eigen::Index i = 0; i < residual.size(); ++i)
+    if (!std::isfinite(residual[i]) && i < static_cast<Eigen::Index>(free_.size()))
+      element = model_.coordinateOwner(free_[static_cast<std::size_t>(i)]);
+  throw SimulationError(reason, t_, step_count_, norm, element);
+}
+
+void NewmarkIntegrator::setDriven(double t) {
+  for (int i : model_.drivenCoordinates()) {
+    const TimeFunction& motion = model_.coordinates()[static_cast<std::size_t>(i)].motion;
+    q_[i] = motion.value(t);
+    v_[i] = motion.rate(t);
+    a_[i] = motion.acceleration(t);
+  }
+}
+
+void NewmarkIntegrator::updateConstraintPartition() {
+  if (model_.constraintCount() == 0) {
+    B_free_.resize(0, static_cast<Eigen::Index>(free_.size()));
+  } else {
+    constraintJacobian(model_, ad_ws_, q_, closure_, B_full_);
+    B_free_.resize(B_full_.rows(), static_cast<Eigen::Index>(free_.size()));
+    for (std::size_t k = 0; k < free_.size(); ++k) B_free_.col(static_cast<Eigen::Index>(k)) = B_full_.col(free_[k]);
+  }
+  partition_.setConstraintJacobian(B_free_);
+  reduced_dirty_ = true;
+}
+
+void NewmarkIntegrator::updateIterationMatrix() {
+  const double h = settings_.step;
+  tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, t_, tangents_);
+  const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
+  J_.resize(nf, nf);
+  for (Eigen::Index r = 0; r < nf; ++r)
+    for (Eigen::Index c = 0; c < nf; ++c) {
+      const int i = free_[static_cast<std::size_t>(r)], j = free_[static_cast<std::size_t>(c)];
+      J_(r, c) = tangents_.mass(i, j) + settings_.gamma * h * tangents_.damping(i, j) +
+                 settings_.beta * h * h * tangents_.stiffness(i, j);  // (33)
+    }
+  ++stats_.jacobian_updates;
+  jacobian_stale_ = false;
+  reduced_dirty_ = true;
+}
+
+void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, double t0) {
+  const Eigen::Index n = model_.coordinateCount();
+  if (q0.size() != n || v0.size() != n)
+    throw std::invalid_argument("Newmark: initial state has " + std::to_string(q0.size()) + " coordinates, the model " +
+                                std::to_string(n));
+  if (!q0.allFinite() || !v0.allFinite()) throw std::invalid_argument("Newmark: initial state is not finite");
+  t_ = t0;
+  t0_ = t0;
+  step_count_ = 0;
+  stats_ = {};
+  q_ = q0;
+  v_ = v0;
+  a_.setZero(n);
+  lambda_.setZero(model_.constraintCount());
+  setDriven(t0);
+  updateConstraintPartition();
+  // Consistent accelerations: [M Bᵀ; B 0][q̈; λ] = −[f(0, q̇, q); b̈(0)], exact in one solve since
+  // f is linear in q̈ and λ, and b̈ in q̈.
+  residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
+  if (!f_.allFinite()) fail("the initial residual is not finite", f_);
+  tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, t_, tangents_);
+  const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
+  Eigen::MatrixXd mass(nf, nf);
+  for (Eigen::Index r = 0; r < nf; ++r)
+    for (Eigen::Index c = 0; c < nf; ++c)
+      mass(r, c) = tangents_.mass(free_[static_cast<std::size_t>(r)], free_[static_cast<std::size_t>(c)]);
+  if (!partition_.setIterationMatrix(mass)) fail("the mass matrix is singular on the free directions", f_);
+  reduced_dirty_ = true;  // the partition now holds M, not J
+  projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
+  residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
+  closureEquations(model_, ws_, Derivative::Acceleration, closure_);
+  partition_.solve(gather(f_, free_), closure_, da_, dlambda_);
+  for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += da_[static_cast<Eigen::Index>(k)];
+  lambda_ += dlambda_;
+  jacobian_stale_ = true;
+  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
+  closureEquations(model_, ws_, Derivative::Position, closure_);
+  closure_error_ = closure_.size() ? closure_.cwiseAbs().maxCoeff() : 0.0;
+  stats_.max_closure_error = closure_error_;
+}
+
+bool NewmarkIntegrator::newton(bool fresh_jacobian) {
+  const double h = settings_.step;
+  const double beta_h2 = settings_.beta * h * h;
+  const double gamma_h = settings_.gamma * h;
+  const bool position_closure = settings_.closure == ClosureLevel::Position;
+  if (fresh_jacobian) jacobian_stale_ = true;
+  double previous = 0.0;
+  for (int k = 0; k < settings_.max_newton_iterations; ++k) {
+    for (int i : free_) {
+      q_[i] = q_pred_[i] + beta_h2 * a_[i];
+      v_[i] = v_pred_[i] + gamma_h * a_[i];
+    }
+    residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
+    r_free_ = gather(f_, free_);
+    if (!r_free_.allFinite()) fail("the residual is not finite (NaN or infinity)", r_free_);
+    if (model_.constraintCount() > 0) {
+      closureEquations(model_, ws_, position_closure ? Derivative::Position : Derivative::Acceleration, closure_);
+      if (position_closure) closure_ /= beta_h2;
+    } else {
+      closure_.resize(0);
+    }
+    if (jacobian_stale_) {
+      updateIterationMatrix();
+      updateConstraintPartition();
+    }
+    if (reduced_dirty_) {
+      if (!partition_.setIterationMatrix(J_)) fail("the iteration matrix is singular on the free directions", r_free_);
+      reduced_dirty_ = false;
+    }
+    partition_.solve(r_free_, closure_, da_, dlambda_);
+    for (std::size_t j = 0; j < free_.size(); ++j) a_[free_[j]] += da_[static_cast<Eigen::Index>(j)];
+    lambda_ += dlambda_;
+    ++stats_.newton_iterations;
+    last_iterations_ = k + 1;
+
+    double largest = 0.0;
+    for (int i : free_) largest = std::max(largest, std::abs(a_[i]));
+    const double increment = da_.size() ? da_.cwiseAbs().maxCoeff() : 0.0;
+    if (!std::isfinite(increment)) fail("the Newton increment is not finite", r_free_);
+    if (increment <= settings_.newton_tolerance * (1.0 + largest)) {
+      for (int i : free_) {
+        q_[i] = q_pred_[i] + beta_h2 * a_[i];
+        v_[i] = v_pred_[i] + gamma_h * a_[i];
+      }
+      return true;
+    }
+    // A slow contraction means the reused iteration matrix has gone stale: refresh it.
+    if (k > 0 && increment > 0.2 * previous) jacobian_stale_ = true;
+    previous = increment;
+  }
+  return false;
+}
+
+void NewmarkIntegrator::projectOntoConstraints() {
+  if (model_.constraintCount() == 0) return;
+  // Velocities: minimum-norm correction so that ḃ = B q̇ + ∂b/∂t = 0.
+  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Velocity);
+  closureEquations(model_, ws_, Derivative::Velocity, closure_);
+  partition_.pseudoInverse(closure_, correction_);
+  for (std::size_t k = 0; k < free_.size(); ++k) v_[free_[k]] -= correction_[static_cast<Eigen::Index>(k)];
+  // Accelerations: the same correction so that b̈ = 0.
+  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Acceleration);
+  closureEquations(model_, ws_, Derivative::Acceleration, closure_);
+  partition_.pseudoInverse(closure_, correction_);
+  for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] -= correction_[static_cast<Eigen::Index>(k)];
+}
+
+void NewmarkIntegrator::step() {
+  const double h = settings_.step;
+  const double beta = settings_.beta, gamma = settings_.gamma;
+  q_pred_ = q_ + h * v_ + (0.5 - beta) * h * h * a_;  // (32), the parts known at tₙ
+  v_pred_ = v_ + (1.0 - gamma) * h * a_;
+  a_start_ = a_;
+  lambda_start_ = lambda_;
+  ++step_count_;
+  t_ = t0_ + static_cast<double>(step_count_) * h;  // no round-off drift of the time grid
+  setDriven(t_);
+  if (!newton(false)) {
+    // Retry once from the same guess with a Jacobian evaluated at every iteration's start.
+    a_ = a_start_;
+    lambda_ = lambda_start_;
+    setDriven(t_);
+    if (!newton(true)) fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
+                                " iterations",
+                            r_free_);
+  }
+  if (settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0) {
+    updateConstraintPartition();  // B at qₙ₊₁: exact projections, and a fresh B for the next step
+    projectOntoConstraints();
+  }
+  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
+  if (model_.constraintCount() > 0) {
+    closureEquations(model_, ws_, Derivative::Position, closure_);
+    closure_error_ = closure_.cwiseAbs().maxCoeff();
+  }
+  stats_.max_closure_error = std::max(stats_.max_closure_error, closure_error_);
+  ++stats_.steps;
+}
+
+Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                                       const std::function<void(double)>& progress) {
+  initialize(q0, v0, 0.0);
+  const long steps = std::lround(settings_.end_time / settings_.step);
+  const Eigen::Index n = model_.coordinateCount();
+  Trajectory out;
+  out.time.resize(steps + 1);
+  out.q.resize(n, steps + 1);
+  out.v.resize(n, steps + 1);
+  out.a.resize(n, steps + 1);
+  out.lambda.resize(model_.constraintCount(), steps + 1);
+  out.closure_error.resize(steps + 1);
+  out.newton_iterations.resize(steps + 1);
+  auto store = [&](long k, int iterations) {
+    out.time[k] = t_;
+    out.q.col(k) = q_;
+    out.v.col(k) = v_;
+    out.a.col(k) = a_;
+    out.lambda.col(k) = lambda_;
+    out.closure_error[k] = closure_error_;
+    out.newton_iterations[k] = iterations;
+  };
+  store(0, 0);
+  for (long k = 1; k <= steps; ++k) {
+    step();
+    store(k, last_iterations_);
+    if (progress) progress(t_);
+  }
+  out.statistics = stats_;
+  return out;
+}
+
+}  // namespace mbsopt

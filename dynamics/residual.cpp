@@ -1,0 +1,91 @@
+#include "dynamics/residual.hpp"
+
+#include "dynamics/closure.hpp"
+#include "dynamics/overloaded.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// Inertia and gravity of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
+template <class Scalar>
+void addBodyWrenches(const Model& model, Workspace<Scalar>& ws) {
+  const Vector3<Scalar> g = model.gravity().template cast<Scalar>();
+  for (const Body& body : model.bodies()) {
+    const auto k = static_cast<std::size_t>(body.frame);
+    const Matrix3<Scalar>& R = ws.rotation[k];
+    const Vector3<Scalar>& w = ws.angular_velocity[k];
+    const Vector3<Scalar>& alpha = ws.angular_acceleration[k];
+    const Vector3<Scalar> c = R * body.centre_of_mass.template cast<Scalar>();
+    const Matrix3<Scalar> inertia = R * body.inertia.template cast<Scalar>() * R.transpose();
+    const Vector3<Scalar> a_c = ws.acceleration[k] + alpha.cross(c) + w.cross(w.cross(c));
+    const Vector3<Scalar> force = Scalar(body.mass) * (a_c - g);
+    ws.force[k] += force;
+    ws.moment[k] += inertia * alpha + w.cross(inertia * w) + c.cross(force);
+  }
+}
+
+/// Point-to-point spring-dampers act as applied (so subtracted) forces on their two frames.
+template <class Scalar>
+void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
+  using std::sqrt;
+  const auto a = static_cast<std::size_t>(s.frame_a), b = static_cast<std::size_t>(s.frame_b);
+  const Vector3<Scalar> ra = ws.rotation[a] * s.point_a.template cast<Scalar>();
+  const Vector3<Scalar> rb = ws.rotation[b] * s.point_b.template cast<Scalar>();
+  const Vector3<Scalar> d = (ws.position[b] + rb) - (ws.position[a] + ra);
+  const Vector3<Scalar> d_rate =
+      (ws.velocity[b] + ws.angular_velocity[b].cross(rb)) - (ws.velocity[a] + ws.angular_velocity[a].cross(ra));
+  const Scalar length = sqrt(d.squaredNorm());
+  const Vector3<Scalar> u = d / length;
+  const Scalar tension = Scalar(s.stiffness) * (length - Scalar(s.rest_length)) + Scalar(s.damping) * u.dot(d_rate);
+  const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched
+  ws.force[a] -= on_a;
+  ws.moment[a] -= ra.cross(on_a);
+  ws.force[b] += on_a;
+  ws.moment[b] += rb.cross(on_a);
+}
+
+}  // namespace
+
+template <class Scalar>
+void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, const VectorX<Scalar>& v,
+              const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
+  forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
+  for (std::size_t k = 0; k < ws.force.size(); ++k) {
+    ws.force[k].setZero();
+    ws.moment[k].setZero();
+  }
+  addBodyWrenches(model, ws);
+  f.setZero(model.coordinateCount());
+  for (const ForceElement& element : model.forces()) {
+    std::visit(Overloaded{[&](const JointSpringDamper& s) {
+                            const auto i = static_cast<Eigen::Index>(s.coordinate);
+                            f[i] += Scalar(s.stiffness) * (q[i] - Scalar(s.rest.value(t))) +
+                                    Scalar(s.damping) * (v[i] - Scalar(s.rest.rate(t)));
+                          },
+                          [&](const PointSpringDamper& s) { addPointSpringWrenches(s, ws); },
+                          [&](const JointActuation& s) { f[static_cast<Eigen::Index>(s.coordinate)] -= Scalar(s.force.value(t)); }},
+               element);
+  }
+  if (model.constraintCount() > 0 && lambda.size() > 0) addConstraintWrenches(model, ws, lambda);
+
+  // Backward recursion (22)-(23) and the residual of each active element (24).
+  const auto& elements = model.elements();
+  for (std::size_t k = elements.size(); k-- > 0;) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    if (element.coordinate >= 0)
+      f[element.coordinate] += ws.motion_linear[k].dot(ws.force[s]) + ws.motion_angular[k].dot(ws.moment[s]);
+    ws.force[e] += ws.force[s];
+    ws.moment[e] += ws.moment[s] + (ws.position[s] - ws.position[e]).cross(ws.force[s]);
+  }
+}
+
+template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,
+                               const VectorX<double>&, const VectorX<double>&, double, VectorX<double>&);
+template void residual<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                 const VectorX<AdScalar>&, const VectorX<AdScalar>&, const VectorX<AdScalar>&,
+                                 double, VectorX<AdScalar>&);
+
+}  // namespace mbsopt

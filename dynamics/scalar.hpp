@@ -1,0 +1,37 @@
+// Scalar types the recursions are instantiated for (DESIGN.md §2: templated on the scalar).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <unsupported/Eigen/AutoDiff>
+
+namespace mbsopt {
+
+template <class Scalar> using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+template <class Scalar> using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
+template <class Scalar> using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+/// Forward-mode automatic differentiation with a derivative vector that lives on the stack:
+/// up to kMaxAdDirections seeded directions per pass, no heap allocation per operation.
+inline constexpr int kMaxAdDirections = 32;
+using AdDerivatives = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAdDirections, 1>;
+using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;
+
+inline double valueOf(double x) { return x; }
+inline double valueOf(const AdScalar& x) { return x.value(); }
+
+/// Rotation by `angle` about the unit vector `axis` (Rodrigues).
+template <class Scalar>
+Matrix3<Scalar> axisRotation(const Eigen::Vector3d& axis, const Scalar& angle) {
+  using std::cos;
+  using std::sin;
+  const Scalar c = cos(angle);
+  const Scalar s = sin(angle);
+  Matrix3<Scalar> skew;
+  skew << Scalar(0), Scalar(-axis.z()), Scalar(axis.y()), Scalar(axis.z()), Scalar(0), Scalar(-axis.x()),
+      Scalar(-axis.y()), Scalar(axis.x()), Scalar(0);
+  const Matrix3<Scalar> outer = (axis * axis.transpose()).template cast<Scalar>();
+  return c * Matrix3<Scalar>::Identity() + (Scalar(1) - c) * outer + s * skew;
+}
+
+}  // namespace mbsopt

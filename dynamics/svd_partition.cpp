@@ -1,0 +1,54 @@
+#include "dynamics/svd_partition.hpp"
+#include <cmath>
+
+namespace mbsopt {
+
+void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
+  const Eigen::Index n = B.cols();
+  if (B.rows() == 0) {
+    rank_ = 0;
+    singular_values_.resize(0);
+    u1_.resize(0, 0);
+    v1_.resize(n, 0);
+    v2_ = Eigen::MatrixXd::Identity(n, n);
+    inverse_s1_.resize(0);
+    return;
+  }
+  svd_.compute(B, Eigen::ComputeFullU | Eigen::ComputeFullV);  // (43)
+  singular_values_ = svd_.singularValues();
+  const double largest = singular_values_.size() > 0 ? singular_values_[0] : 0.0;
+  rank_ = 0;
+  while (rank_ < singular_values_.size() && singular_values_[rank_] > threshold_ * largest && largest > 0.0) ++rank_;
+  u1_ = svd_.matrixU().leftCols(rank_);
+  v1_ = svd_.matrixV().leftCols(rank_);
+  v2_ = svd_.matrixV().rightCols(n - rank_);
+  inverse_s1_ = singular_values_.head(rank_).cwiseInverse();
+}
+
+bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
+  J_ = J;
+  if (v2_.cols() == 0) {
+    rcond_ = 1.0;
+    return true;
+  }
+  reduced_.compute(v2_.transpose() * J * v2_);
+  rcond_ = reduced_.rcond();
+  return rcond_ > 1e-13 && std::isfinite(rcond_);
+}
+
+void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
+                         Eigen::VectorXd& dmu) const {
+  const Eigen::VectorXd x_r = -(inverse_s1_.asDiagonal() * (u1_.transpose() * g));
+  dx = v1_ * x_r;
+  if (v2_.cols() > 0) {
+    const Eigen::VectorXd x_n = reduced_.solve(-(v2_.transpose() * (r + J_ * dx)));
+    dx += v2_ * x_n;
+  }
+  dmu = -(u1_ * (inverse_s1_.asDiagonal() * (v1_.transpose() * (r + J_ * dx))));
+}
+
+void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
+  dx = v1_ * (inverse_s1_.asDiagonal() * (u1_.transpose() * c));
+}
+
+}  // namespace mbsopt

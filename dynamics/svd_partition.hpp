@@ -1,0 +1,51 @@
+// Solution of the augmented Newton system (41)
+//     [ J  Bᵀ ] [ Δx ]     [ r ]
+//     [ B  0  ] [ Δμ ] = − [ g ]
+// through the singular value decomposition of the constraint Jacobian (43)-(48):
+// B = U₁ S₁ V₁ᵀ keeping the singular values above a relative threshold, so redundant constraints
+// and singular configurations drop out; Δx = V₁ x_r + V₂ x_n with
+//     x_r = −S₁⁻¹ U₁ᵀ g                         (third row of (48))
+//     (V₂ᵀ J V₂) x_n = −V₂ᵀ (r + J V₁ x_r)       (second row)
+//     Δμ = −U₁ S₁⁻¹ V₁ᵀ (r + J Δx)               (first row; minimum-norm multipliers)
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+namespace mbsopt {
+
+class SvdPartition {
+ public:
+  explicit SvdPartition(double relative_threshold = 1e-10) : threshold_(relative_threshold) {}
+
+  /// SVD of B (m × n, m may be 0). Call again whenever B changes.
+  void setConstraintJacobian(const Eigen::MatrixXd& B);
+  /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular (reciprocal condition
+  /// number below 1e-13). Needs setConstraintJacobian first.
+  bool setIterationMatrix(const Eigen::MatrixXd& J);
+
+  void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
+  /// Minimum-norm least-squares solution of B Δx = c: Δx = V₁ S₁⁻¹ U₁ᵀ c (= B⁺c).
+  void pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const;
+
+  int rank() const { return rank_; }
+  int constraintRows() const { return static_cast<int>(u1_.rows()); }
+  const Eigen::VectorXd& singularValues() const { return singular_values_; }
+  /// V₂: an orthonormal basis of the directions the constraints leave free (the degrees of freedom).
+  const Eigen::MatrixXd& freeDirections() const { return v2_; }
+  double reducedConditionEstimate() const { return rcond_; }
+
+ private:
+  double threshold_;
+  int rank_ = 0;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd_;
+  Eigen::VectorXd singular_values_;
+  Eigen::MatrixXd u1_, v1_, v2_;
+  Eigen::VectorXd inverse_s1_;
+  Eigen::MatrixXd J_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
+  double rcond_ = 0.0;
+};
+
+}  // namespace mbsopt

@@ -1,0 +1,78 @@
+#include "dynamics/tangent.hpp"
+
+#include <algorithm>
+
+#include "dynamics/closure.hpp"
+#include "dynamics/residual.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// Copies `values` into AD scalars; input j (global index offset + j) is seeded when it falls in
+/// [first, first + count), i.e. this pass differentiates with respect to those inputs.
+VectorX<AdScalar> seeded(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first, Eigen::Index count) {
+  VectorX<AdScalar> x(values.size());
+  for (Eigen::Index j = 0; j < values.size(); ++j) {
+    x[j].value() = values[j];
+    x[j].derivatives() = AdDerivatives::Zero(count);
+    const Eigen::Index global = offset + j;
+    if (global >= first && global < first + count) x[j].derivatives()[global - first] = 1.0;
+  }
+  return x;
+}
+
+}  // namespace
+
+void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, TangentMatrices& out) {
+  const Eigen::Index n = model.coordinateCount();
+  out.mass.resize(n, n);
+  out.damping.resize(n, n);
+  out.stiffness.resize(n, n);
+  out.residual.resize(n);
+  // Inputs ordered (q̈, q̇, q); passes of at most kMaxAdDirections seeded directions each.
+  VectorX<AdScalar> f;
+  for (Eigen::Index first = 0; first < 3 * n; first += kMaxAdDirections) {
+    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, 3 * n - first);
+    const VectorX<AdScalar> a_ad = seeded(a, 0, first, count);
+    const VectorX<AdScalar> v_ad = seeded(v, n, first, count);
+    const VectorX<AdScalar> q_ad = seeded(q, 2 * n, first, count);
+    const VectorX<AdScalar> lambda_ad = seeded(lambda, 3 * n, first, count);  // never seeded: constant
+    residual(model, ws, q_ad, v_ad, a_ad, lambda_ad, t, f);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      out.residual[i] = f[i].value();
+      const AdDerivatives& d = f[i].derivatives();
+      for (Eigen::Index j = 0; j < count; ++j) {
+        const Eigen::Index input = first + j;
+        const double value = d.size() > j ? d[j] : 0.0;  // a row with no dependence has no derivatives
+        if (input < n) out.mass(i, input) = value;
+        else if (input < 2 * n) out.damping(i, input - n) = value;
+        else out.stiffness(i, input - 2 * n) = value;
+      }
+    }
+  }
+}
+
+void constraintJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
+                        Eigen::MatrixXd& B) {
+  const Eigen::Index n = model.coordinateCount();
+  const Eigen::Index m = model.constraintCount();
+  b.resize(m);
+  B.resize(m, n);
+  VectorX<AdScalar> closure;
+  const VectorX<AdScalar> none;
+  for (Eigen::Index first = 0; first < n; first += kMaxAdDirections) {
+    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, n - first);
+    const VectorX<AdScalar> q_ad = seeded(q, 0, first, count);
+    forwardKinematics(model, ws, q_ad, none, none, KinematicsLevel::Position);
+    closureEquations(model, ws, Derivative::Position, closure);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      b[i] = closure[i].value();
+      const AdDerivatives& d = closure[i].derivatives();
+      for (Eigen::Index j = 0; j < count; ++j) B(i, first + j) = d.size() > j ? d[j] : 0.0;
+    }
+  }
+}
+
+}  // namespace mbsopt

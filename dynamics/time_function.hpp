@@ -1,0 +1,38 @@
+// A scalar function of time with exact first and second derivatives: drivers, actuation,
+// moving targets of guidance springs.
+#pragma once
+
+#include <vector>
+
+namespace mbsopt {
+
+/// f(t) = Σ_k c_k t^k + Σ_j A_j sin(ω_j t + φ_j).
+class TimeFunction {
+ public:
+  struct Harmonic {
+    double amplitude = 0.0;
+    double angular_frequency = 0.0;
+    double phase = 0.0;
+  };
+
+  TimeFunction() = default;
+  static TimeFunction constant(double value) { return polynomial({value}); }
+  static TimeFunction polynomial(std::vector<double> coefficients);
+  static TimeFunction harmonic(double amplitude, double angular_frequency, double phase = 0.0, double offset = 0.0);
+
+  double value(double t) const { return derivative(t, 0); }
+  double rate(double t) const { return derivative(t, 1); }
+  double acceleration(double t) const { return derivative(t, 2); }
+  /// order-th derivative, order in {0, 1, 2}.
+  double derivative(double t, int order) const;
+
+  bool isConstant() const;
+  /// The constant term c_0 (a spring's rest value, a driver's initial offset).
+  double& constantTerm();
+
+ private:
+  std::vector<double> coefficients_;
+  std::vector<Harmonic> harmonics_;
+};
+
+}  // namespace mbsopt

@@ -1,0 +1,35 @@
+// Mutable per-evaluation buffers (the "data" of the model/workspace split, DESIGN.md §2). One
+// workspace per thread: evaluations on separate workspaces may run in parallel.
+#pragma once
+
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "dynamics/scalar.hpp"
+
+namespace mbsopt {
+
+template <class Scalar>
+struct Workspace {
+  explicit Workspace(const Model& model)
+      : rotation(static_cast<std::size_t>(model.frameCount()), Matrix3<Scalar>::Identity()),
+        position(rotation.size(), Vector3<Scalar>::Zero()),
+        angular_velocity(rotation.size(), Vector3<Scalar>::Zero()),
+        velocity(rotation.size(), Vector3<Scalar>::Zero()),
+        angular_acceleration(rotation.size(), Vector3<Scalar>::Zero()),
+        acceleration(rotation.size(), Vector3<Scalar>::Zero()),
+        force(rotation.size(), Vector3<Scalar>::Zero()),
+        moment(rotation.size(), Vector3<Scalar>::Zero()),
+        motion_angular(model.elements().size(), Vector3<Scalar>::Zero()),
+        motion_linear(model.elements().size(), Vector3<Scalar>::Zero()) {}
+
+  // Absolute kinematics of every frame, in ground axes (forward recursion).
+  std::vector<Matrix3<Scalar>> rotation;
+  std::vector<Vector3<Scalar>> position, angular_velocity, velocity, angular_acceleration, acceleration;
+  // Wrench each frame must transmit to what lies beyond it, about its origin (backward recursion).
+  std::vector<Vector3<Scalar>> force, moment;
+  // Per active element: ∂ω_s/e/∂q̇ and ∂v_s/e/∂q̇ in ground axes.
+  std::vector<Vector3<Scalar>> motion_angular, motion_linear;
+};
+
+}  // namespace mbsopt

@@ -1,0 +1,18 @@
+// A runnable scene: a model, its initial state and its integration settings.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "dynamics/model.hpp"
+#include "dynamics/newmark.hpp"
+
+namespace mbsopt {
+
+struct Scene {
+  Model model;
+  Eigen::VectorXd q0;  ///< initial coordinates (all, driven ones included)
+  Eigen::VectorXd v0;  ///< initial rates
+  NewmarkSettings settings;
+};
+
+}  // namespace mbsopt

@@ -1,0 +1,41 @@
+// The paper's example (§6) as fixed by shared/specs/tramway.md: a two-carbody tram on two bogies,
+// yaw plane, through a 14 m curve at 3.7 m/s.
+#pragma once
+
+#include <memory>
+
+#include "dynamics/track.hpp"
+#include "problems/scene.hpp"
+
+namespace mbsopt {
+
+/// The design variables b = (k_f, k_r, c_f, c_r) of the spec, SI units.
+struct TramwayDesign {
+  double front_stiffness = 246e3;  ///< k_f [N·m/rad]
+  double rear_stiffness = 246e3;   ///< k_r [N·m/rad]
+  double front_damping = 15e3;     ///< c_f [N·m·s/rad]
+  double rear_damping = 15e3;      ///< c_r [N·m·s/rad]
+};
+
+struct TramwayOptions {
+  double transition_length = 0.0;  ///< L_t [m]: clothoids at both ends of the arc (0 = the spec's track)
+};
+
+namespace tramway {
+inline constexpr double kRadius = 14.0;         ///< R [m]
+inline constexpr double kSpeed = 3.7;           ///< [m/s]
+inline constexpr double kFirstStraight = 12.0;  ///< [m]
+inline constexpr double kLastStraight = 30.0;   ///< [m]
+inline constexpr double kStartArcLength = 10.0; ///< s₁(0) [m]
+inline constexpr double kEndTime = 12.0;        ///< [s]
+inline constexpr double kBogieSpacing = 9.0;    ///< pivot to articulation 4.5 m on each carbody [m]
+}  // namespace tramway
+
+/// Straight 12 m, optional clothoid, left arc R = 14 m (90° in all), optional clothoid, straight 30 m.
+std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options = {});
+
+/// The scene: coordinates s₁ (driven), bogie-1 yaw, front pivot, articulation, rear pivot, bogie-2 yaw,
+/// s₂ (cut curve slider); sensors a_lat, yaw_front, yaw_rear. Settings: h = 1 ms, 12 s.
+Scene tramwayScene(const TramwayDesign& design = {}, const TramwayOptions& options = {});
+
+}  // namespace mbsopt
