@@ -53,7 +53,7 @@ void run(const SimulateOptions& options) {
   const IntegratorStatistics& stats = trajectory.statistics;
   std::cout << "simulated " << options.scene << ": " << stats.steps << " steps of " << scene.settings.step
             << " s, " << stats.newton_iterations << " Newton iterations, " << stats.jacobian_updates
-            << " Jacobian updates, max closure error " << stats.max_closure_error << " m, wall time " << wall
+            << " tangent and " << stats.mass_updates << " mass-matrix updates, max closure error " << stats.max_closure_error << " m, wall time " << wall
             << " s" << (options.out.empty() ? "" : ", wrote " + options.out) << '\n';
 }
 

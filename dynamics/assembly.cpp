@@ -20,14 +20,13 @@ AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd&
   if (model.constraintCount() == 0) return report;
   const std::vector<int>& free = model.freeCoordinates();
   const auto nf = static_cast<Eigen::Index>(free.size());
-  Workspace<AdScalar> ad_ws(model);
   Workspace<double> ws(model);
   SvdPartition partition(svd_threshold);
   Eigen::VectorXd b, correction;
   Eigen::MatrixXd B, B_free(model.constraintCount(), nf);
   const Eigen::VectorXd q_start = q;
   auto factor = [&] {
-    constraintJacobian(model, ad_ws, q, b, B);
+    constraintJacobian(model, ws, q, b, B);
     for (Eigen::Index k = 0; k < nf; ++k) B_free.col(k) = B.col(free[static_cast<std::size_t>(k)]);
     partition.setConstraintJacobian(B_free);
   };

@@ -45,14 +45,15 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Scalar& q, 
                    const Scalar curvature = Scalar(point.curvature) + Scalar(point.curvature_derivative) * ds;
                    const Vector3<Scalar> tangent(cos(heading), sin(heading), Scalar(0));
                    const Vector3<Scalar> normal(-sin(heading), cos(heading), Scalar(0));
-                   m.rotation = axisRotation(Eigen::Vector3d::UnitZ(), heading);
+                   const bool rotates = e.orientation == SliderOrientation::FollowTrack;
                    m.translation = point.position.template cast<Scalar>() + point.tangent().template cast<Scalar>() * ds;
                    m.linear_axis = tangent;
+                   if (rates) m.linear_bias = curvature * qd * qd * normal;  // a = t s̈ + κ ṡ² n
+                   if (!rotates) return;
+                   m.rotation = axisRotation(Eigen::Vector3d::UnitZ(), heading);
                    m.angular_axis = Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
-                   if (rates) {  // a = t s̈ + κ ṡ² n,  α = (κ s̈ + κ' ṡ²) z
-                     m.linear_bias = curvature * qd * qd * normal;
+                   if (rates)  // α = (κ s̈ + κ' ṡ²) z
                      m.angular_bias = Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative) * qd * qd);
-                   }
                  }},
              kind);
   return m;
@@ -97,6 +98,19 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
     ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + Re * rel.angular_bias;
     ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
                          Scalar(2) * we.cross(v_rel) + Sv * ai + Re * rel.linear_bias;
+  }
+}
+
+void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& v) {
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    const double vi = element.coordinate >= 0 ? v[element.coordinate] : 0.0;
+    const Eigen::Vector3d& we = ws.angular_velocity[e];
+    ws.angular_velocity[s] = we + ws.motion_angular[k] * vi;
+    ws.velocity[s] = ws.velocity[e] + we.cross(ws.position[s] - ws.position[e]) + ws.motion_linear[k] * vi;
   }
 }
 

@@ -16,6 +16,11 @@ template <class Scalar>
 void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                        const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level);
 
+/// Frame velocities for joint rates v, reusing the rotations, positions and joint axes already in ws
+/// (forwardKinematics at Velocity level or above): ω_s = ω_e + S_ω v_i, v_s = v_e + ω_e × r + S_v v_i.
+/// Linear in v: with v = e_j it gives the j-th column of every frame's velocity Jacobian.
+void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& v);
+
 extern template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                                const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 extern template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -76,9 +76,10 @@ FrameIndex Model::addPrismatic(const std::string& name, FrameIndex parent, const
   return addElement(name, parent, PrismaticJoint{unitAxis(axis, name)}, true);
 }
 
-FrameIndex Model::addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track) {
+FrameIndex Model::addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track,
+                                 SliderOrientation orientation) {
   if (!track || track->segments().empty()) throw std::invalid_argument(name + ": curve slider needs a non-empty track");
-  return addElement(name, parent, CurveSliderJoint{std::move(track)}, true);
+  return addElement(name, parent, CurveSliderJoint{std::move(track), orientation}, true);
 }
 
 void Model::addBody(const std::string& name, FrameIndex frame, double mass, const Eigen::Vector3d& centre_of_mass,
@@ -133,6 +134,20 @@ void Model::addJointActuation(const std::string& name, const std::string& joint,
   forces_.push_back(JointActuation{name, i, std::move(force)});
 }
 
+void Model::addTrackGuidance(const std::string& name, FrameIndex frame, const std::string& slider_joint,
+                             double stiffness, double damping) {
+  checkNewName(name);
+  checkFrame(frame, name);
+  checkFinite(stiffness, name + ": stiffness");
+  checkFinite(damping, name + ": damping");
+  const int s = coordinate(slider_joint);
+  const KinematicElement& slider = elements_[static_cast<std::size_t>(coordinates_[static_cast<std::size_t>(s)].element)];
+  if (!std::holds_alternative<CurveSliderJoint>(slider.kind))
+    throw std::invalid_argument(name + ": '" + slider_joint + "' is not a curve slider");
+  names_.push_back(name);
+  forces_.push_back(TrackGuidance{name, frame, s, stiffness, damping});
+}
+
 void Model::setGravity(const Eigen::Vector3d& gravity) {
   if (!gravity.allFinite()) throw std::invalid_argument("gravity must be finite");
   gravity_ = gravity;
@@ -179,10 +194,11 @@ void Model::addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex f
 }
 
 void Model::addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
-                              std::shared_ptr<const Track> track) {
+                              std::shared_ptr<const Track> track, SliderOrientation orientation) {
   checkFrame(frame_a, name);
-  const FrameIndex track_point = addCurveSlider(name, base, std::move(track));
-  addWeldCut(name + "_closure", frame_a, track_point);
+  const FrameIndex track_point = addCurveSlider(name, base, std::move(track), orientation);
+  if (orientation == SliderOrientation::FollowTrack) addWeldCut(name + "_closure", frame_a, track_point);
+  else addSphericalCut(name + "_closure", frame_a, track_point);
 }
 
 void Model::addSensor(const std::string& name, SensorKind kind) {
@@ -252,6 +268,10 @@ void Model::forEachParameter(const std::function<void(const std::string&, double
                           },
                           [&](JointActuation& f) {
                             if (f.force.isConstant()) visit(f.name + ".value", f.force.constantTerm());
+                          },
+                          [&](TrackGuidance& f) {
+                            visit(f.name + ".k", f.stiffness);
+                            visit(f.name + ".c", f.damping);
                           }},
                force);
   }

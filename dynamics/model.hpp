@@ -29,8 +29,14 @@ struct RevoluteJoint {  ///< active: rotation q about a unit axis of the entry f
 struct PrismaticJoint {  ///< active: translation q along a unit axis of the entry frame
   Eigen::Vector3d axis;
 };
+/// How the exit frame of a curve slider is oriented.
+enum class SliderOrientation {
+  FollowTrack,  ///< axes = tangent, normal, binormal of the track (ω_s/e = κ ṡ about the binormal)
+  Translate     ///< axes parallel to the entry frame's: the slider only translates
+};
 struct CurveSliderJoint {  ///< active: the exit frame rides a track of the entry frame at arc length q
   std::shared_ptr<const Track> track;
+  SliderOrientation orientation = SliderOrientation::FollowTrack;
 };
 using ElementKind = std::variant<Offset, RevoluteJoint, PrismaticJoint, CurveSliderJoint>;
 
@@ -77,7 +83,18 @@ struct JointActuation {
   int coordinate;
   TimeFunction force;
 };
-using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation>;
+/// Guidance of a frame by a track: a torsional spring-damper about the track's binormal between the
+/// frame's heading and the track heading ψ(s) at a curve slider's arc length s (a bogie held by its
+/// wheels): τ = −k Δ − c Δ̇, Δ = heading(frame) − ψ(s), Δ̇ = ω_z − κ(s) ṡ. The generalised force on s
+/// is −κ τ (virtual work of the same potential and dissipation).
+struct TrackGuidance {
+  std::string name;
+  FrameIndex frame;
+  int slider_coordinate;  ///< coordinate of a CurveSliderJoint; its entry frame carries the track
+  double stiffness;
+  double damping;
+};
+using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation, TrackGuidance>;
 
 // ---- cut joints closing loops (34): b(q, t) = 0 ----
 struct SphericalCut {  ///< 3 equations: origins of a and b coincide
@@ -145,7 +162,8 @@ class Model {
                        const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity());
   FrameIndex addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
   FrameIndex addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
-  FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track);
+  FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track,
+                            SliderOrientation orientation = SliderOrientation::FollowTrack);
   /// A body attached to `frame` (it adds inertia to that frame; it does not create a frame).
   void addBody(const std::string& name, FrameIndex frame, double mass, const Eigen::Vector3d& centre_of_mass,
                const Eigen::Matrix3d& inertia);
@@ -158,6 +176,9 @@ class Model {
                             FrameIndex frame_b, const Eigen::Vector3d& point_b, double stiffness, double damping,
                             double rest_length);
   void addJointActuation(const std::string& name, const std::string& joint, TimeFunction force);
+  /// Track guidance of `frame` by the track of the curve slider `slider_joint` (see TrackGuidance).
+  void addTrackGuidance(const std::string& name, FrameIndex frame, const std::string& slider_joint, double stiffness,
+                        double damping);
   void setGravity(const Eigen::Vector3d& gravity);
 
   /// Prescribe a joint coordinate as a function of time (exact up to its second derivative).
@@ -168,9 +189,11 @@ class Model {
                       const Eigen::Vector3d& axis_in_a, const Eigen::Vector3d& axis_in_b);
   void addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b);
   /// Cut curve-sliding joint: frame_a must ride `track` (fixed in frame `base`). Adds the arc length
-  /// as a coordinate named `name`, carried by a massless slider from `base`, welded to frame_a.
+  /// as a coordinate named `name`, carried by a massless slider from `base`; frame_a is welded to the
+  /// slider frame (FollowTrack: 6 equations) or only its origin is held on the curve (Translate: 3).
   void addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
-                         std::shared_ptr<const Track> track);
+                         std::shared_ptr<const Track> track,
+                         SliderOrientation orientation = SliderOrientation::FollowTrack);
 
   void addSensor(const std::string& name, SensorKind kind);
 

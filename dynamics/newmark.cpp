@@ -18,11 +18,9 @@ std::string describe(const std::string& what, double time, long step, double res
   return out.str();
 }
 
-Eigen::VectorXd gather(const Eigen::VectorXd& full, const std::vector<int>& index) {
-  Eigen::VectorXd part(static_cast<Eigen::Index>(index.size()));
-  for (std::size_t k = 0; k < index.size(); ++k) part[static_cast<Eigen::Index>(k)] = full[index[k]];
-  return part;
-}
+// Contraction rate of the modified Newton iteration above which the iteration matrix is refreshed.
+constexpr double kSlowContraction = 0.05;
+
 
 }  // namespace
 
@@ -50,6 +48,7 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
     throw std::invalid_argument("Newmark: gamma must lie in (0, 1)");
   const Eigen::Index n = model.coordinateCount();
   q_ = v_ = a_ = Eigen::VectorXd::Zero(n);
+  r_free_.resize(static_cast<Eigen::Index>(free_.size()));
   lambda_ = Eigen::VectorXd::Zero(model.constraintCount());
 }
 
@@ -78,7 +77,7 @@ void NewmarkIntegrator::updateConstraintPartition() {
   if (model_.constraintCount() == 0) {
     B_free_.resize(0, static_cast<Eigen::Index>(free_.size()));
   } else {
-    constraintJacobian(model_, ad_ws_, q_, closure_, B_full_);
+    constraintJacobian(model_, ws_, q_, b_at_jacobian_, B_full_);
     B_free_.resize(B_full_.rows(), static_cast<Eigen::Index>(free_.size()));
     for (std::size_t k = 0; k < free_.size(); ++k) B_free_.col(static_cast<Eigen::Index>(k)) = B_full_.col(free_[k]);
   }
@@ -90,15 +89,31 @@ void NewmarkIntegrator::updateIterationMatrix() {
   const double h = settings_.step;
   tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, t_, tangents_);
   const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
-  J_.resize(nf, nf);
+  mass_.resize(nf, nf);
+  tangent_part_.resize(nf, nf);
   for (Eigen::Index r = 0; r < nf; ++r)
     for (Eigen::Index c = 0; c < nf; ++c) {
       const int i = free_[static_cast<std::size_t>(r)], j = free_[static_cast<std::size_t>(c)];
-      J_(r, c) = tangents_.mass(i, j) + settings_.gamma * h * tangents_.damping(i, j) +
-                 settings_.beta * h * h * tangents_.stiffness(i, j);  // (33)
+      mass_(r, c) = tangents_.mass(i, j);
+      tangent_part_(r, c) = settings_.gamma * h * tangents_.damping(i, j) + settings_.beta * h * h * tangents_.stiffness(i, j);
     }
+  J_ = mass_ + tangent_part_;  // (33)
   ++stats_.jacobian_updates;
-  jacobian_stale_ = false;
+  reduced_dirty_ = true;
+}
+
+void NewmarkIntegrator::updateMassMatrix() {
+  // f is linear in q̈: M e_j = f(q̈ + e_j) − f(q̈), exact to round-off, n residual evaluations.
+  for (std::size_t c = 0; c < free_.size(); ++c) {
+    const int j = free_[c];
+    a_[j] += 1.0;
+    residual(model_, ws_, q_, v_, a_, lambda_, t_, f_shifted_);
+    a_[j] -= 1.0;
+    for (std::size_t r = 0; r < free_.size(); ++r)
+      mass_(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = f_shifted_[free_[r]] - f_[free_[r]];
+  }
+  J_ = mass_ + tangent_part_;
+  ++stats_.mass_updates;
   reduced_dirty_ = true;
 }
 
@@ -111,6 +126,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   t_ = t0;
   t0_ = t0;
   step_count_ = 0;
+  newton_history_ = 0;
   stats_ = {};
   q_ = q0;
   v_ = v0;
@@ -133,14 +149,12 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
   residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
   closureEquations(model_, ws_, Derivative::Acceleration, closure_);
-  partition_.solve(gather(f_, free_), closure_, da_, dlambda_);
+  for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
+  partition_.solve(r_free_, closure_, da_, dlambda_);
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += da_[static_cast<Eigen::Index>(k)];
   lambda_ += dlambda_;
-  jacobian_stale_ = true;
-  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
-  closureEquations(model_, ws_, Derivative::Position, closure_);
-  closure_error_ = closure_.size() ? closure_.cwiseAbs().maxCoeff() : 0.0;
-  stats_.max_closure_error = closure_error_;
+  J_.resize(0, 0);  // the first step evaluates the tangent matrices
+  measureClosure();
 }
 
 bool NewmarkIntegrator::newton(bool fresh_jacobian) {
@@ -148,7 +162,13 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
   const double beta_h2 = settings_.beta * h * h;
   const double gamma_h = settings_.gamma * h;
   const bool position_closure = settings_.closure == ClosureLevel::Position;
-  if (fresh_jacobian) jacobian_stale_ = true;
+  Refresh refresh = fresh_jacobian || J_.size() == 0 ? Refresh::Tangents : Refresh::None;
+  bool mass_refreshed = false;
+  // Round-off floor of the increments: ε‖q‖ in the closure, amplified by 1/(βh²).
+  double position_scale = 1.0;
+  for (int i : free_) position_scale = std::max(position_scale, std::abs(q_pred_[i]));
+  const double roundoff_floor =
+      model_.constraintCount() > 0 && position_closure ? 2.2e-16 * position_scale / beta_h2 : 0.0;
   double previous = 0.0;
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
     for (int i : free_) {
@@ -156,18 +176,22 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
       v_[i] = v_pred_[i] + gamma_h * a_[i];
     }
     residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
-    r_free_ = gather(f_, free_);
+    for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
     if (!r_free_.allFinite()) fail("the residual is not finite (NaN or infinity)", r_free_);
+    closure_.resize(model_.constraintCount());
     if (model_.constraintCount() > 0) {
       closureEquations(model_, ws_, position_closure ? Derivative::Position : Derivative::Acceleration, closure_);
       if (position_closure) closure_ /= beta_h2;
-    } else {
-      closure_.resize(0);
     }
-    if (jacobian_stale_) {
+    if (refresh == Refresh::Tangents) {
       updateIterationMatrix();
       updateConstraintPartition();
+      mass_refreshed = true;
+    } else if (refresh == Refresh::Mass) {
+      updateMassMatrix();
+      mass_refreshed = true;
     }
+    refresh = Refresh::None;
     if (reduced_dirty_) {
       if (!partition_.setIterationMatrix(J_)) fail("the iteration matrix is singular on the free directions", r_free_);
       reduced_dirty_ = false;
@@ -182,24 +206,31 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     for (int i : free_) largest = std::max(largest, std::abs(a_[i]));
     const double increment = da_.size() ? da_.cwiseAbs().maxCoeff() : 0.0;
     if (!std::isfinite(increment)) fail("the Newton increment is not finite", r_free_);
-    if (increment <= settings_.newton_tolerance * (1.0 + largest)) {
+    // Converged: the increment is below tolerance or the round-off floor, or it has stopped
+    // shrinking within a few digits of that floor.
+    const bool small = increment <= std::max(settings_.newton_tolerance * (1.0 + largest), roundoff_floor);
+    const bool stagnant = k > 0 && increment <= 64.0 * roundoff_floor && increment > 0.2 * previous;
+    if (small || stagnant) {
       for (int i : free_) {
         q_[i] = q_pred_[i] + beta_h2 * a_[i];
         v_[i] = v_pred_[i] + gamma_h * a_[i];
       }
       return true;
     }
-    // A slow contraction means the reused iteration matrix has gone stale: refresh it.
-    if (k > 0 && increment > 0.2 * previous) jacobian_stale_ = true;
+    // Slow contraction above round-off: the reused matrix is stale. Refresh M (cheap) first, and
+    // the whole tangent (AD) when that was not enough.
+    if (k > 0 && increment > kSlowContraction * previous)
+      refresh = mass_refreshed ? Refresh::Tangents : Refresh::Mass;
     previous = increment;
   }
   return false;
 }
 
 void NewmarkIntegrator::projectOntoConstraints() {
+  // Needs ws_ to hold the rotations, positions and joint axes at q (updateConstraintPartition does).
   if (model_.constraintCount() == 0) return;
   // Velocities: minimum-norm correction so that ḃ = B q̇ + ∂b/∂t = 0.
-  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Velocity);
+  velocityPass(model_, ws_, v_);
   closureEquations(model_, ws_, Derivative::Velocity, closure_);
   partition_.pseudoInverse(closure_, correction_);
   for (std::size_t k = 0; k < free_.size(); ++k) v_[free_[k]] -= correction_[static_cast<Eigen::Index>(k)];
@@ -210,13 +241,32 @@ void NewmarkIntegrator::projectOntoConstraints() {
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] -= correction_[static_cast<Eigen::Index>(k)];
 }
 
+void NewmarkIntegrator::measureClosure() {
+  // Needs ws_ to hold the positions at q.
+  closure_error_ = 0.0;
+  if (model_.constraintCount() == 0) return;
+  closureEquations(model_, ws_, Derivative::Position, closure_);
+  closure_error_ = closure_.cwiseAbs().maxCoeff();
+  stats_.max_closure_error = std::max(stats_.max_closure_error, closure_error_);
+}
+
 void NewmarkIntegrator::step() {
   const double h = settings_.step;
   const double beta = settings_.beta, gamma = settings_.gamma;
   q_pred_ = q_ + h * v_ + (0.5 - beta) * h * h * a_;  // (32), the parts known at tₙ
   v_pred_ = v_ + (1.0 - gamma) * h * a_;
-  a_start_ = a_;
-  lambda_start_ = lambda_;
+  // Newton starts from its own last two solutions (before projection) extrapolated linearly; the
+  // converged solution does not depend on the start, only the iteration count does.
+  if (newton_history_ >= 2) {
+    a_start_ = 2.0 * a_newton_ - a_newton_previous_;
+    lambda_start_ = 2.0 * lambda_ - lambda_previous_;
+  } else {
+    a_start_ = newton_history_ == 1 ? a_newton_ : a_;
+    lambda_start_ = lambda_;
+  }
+  lambda_previous_ = lambda_;
+  for (int i : free_) a_[i] = a_start_[i];
+  lambda_ = lambda_start_;
   ++step_count_;
   t_ = t0_ + static_cast<double>(step_count_) * h;  // no round-off drift of the time grid
   setDriven(t_);
@@ -229,16 +279,16 @@ void NewmarkIntegrator::step() {
                                 " iterations",
                             r_free_);
   }
+  a_newton_previous_ = a_newton_;
+  a_newton_ = a_;
+  ++newton_history_;
   if (settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0) {
     updateConstraintPartition();  // B at qₙ₊₁: exact projections, and a fresh B for the next step
     projectOntoConstraints();
+  } else {
+    forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
   }
-  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
-  if (model_.constraintCount() > 0) {
-    closureEquations(model_, ws_, Derivative::Position, closure_);
-    closure_error_ = closure_.cwiseAbs().maxCoeff();
-  }
-  stats_.max_closure_error = std::max(stats_.max_closure_error, closure_error_);
+  measureClosure();
   ++stats_.steps;
 }
 

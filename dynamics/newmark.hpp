@@ -54,7 +54,8 @@ class SimulationError : public std::runtime_error {
 struct IntegratorStatistics {
   long steps = 0;
   long newton_iterations = 0;
-  long jacobian_updates = 0;
+  long jacobian_updates = 0;  ///< full tangent matrices (AD)
+  long mass_updates = 0;      ///< mass-matrix-only refreshes of the iteration matrix
   double max_closure_error = 0.0;  ///< max over steps of ‖b(q)‖∞
 };
 
@@ -92,11 +93,14 @@ class NewmarkIntegrator {
   const NewmarkSettings& settings() const { return settings_; }
 
  private:
+  enum class Refresh { None, Mass, Tangents };
   bool newton(bool fresh_jacobian);
   void updateIterationMatrix();
+  void updateMassMatrix();
   void updateConstraintPartition();
   void setDriven(double t);
   void projectOntoConstraints();
+  void measureClosure();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
 
   const Model& model_;
@@ -106,16 +110,18 @@ class NewmarkIntegrator {
   SvdPartition partition_;
   TangentMatrices tangents_;
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale
+  Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
 
   std::vector<int> free_;
   double t_ = 0.0;
   long step_count_ = 0;
   Eigen::VectorXd q_, v_, a_, lambda_;
   Eigen::VectorXd q_pred_, v_pred_;  // full-size predictors q̃, ṽ
-  Eigen::VectorXd a_start_, lambda_start_;
-  Eigen::VectorXd f_, closure_, r_free_, da_, dlambda_, correction_;
+  Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
+  Eigen::VectorXd a_newton_, a_newton_previous_;  ///< converged Newton accelerations before projection
+  int newton_history_ = 0;
+  Eigen::VectorXd f_, f_shifted_, b_at_jacobian_, closure_, r_free_, da_, dlambda_, correction_;
   Eigen::MatrixXd B_full_, B_free_;
-  bool jacobian_stale_ = true;
   bool reduced_dirty_ = true;  ///< V₂ᵀJV₂ must be refactored (J or B changed)
   double t0_ = 0.0;
   double closure_error_ = 0.0;

@@ -1,5 +1,7 @@
 #include "dynamics/residual.hpp"
 
+#include <cmath>
+
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
 
@@ -45,6 +47,33 @@ void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
   ws.moment[b] += rb.cross(on_a);
 }
 
+/// Track guidance torque on its frame, reaction on the track's frame, and −κτ on the slider coordinate.
+template <class Scalar>
+void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                      const VectorX<Scalar>& v, VectorX<Scalar>& f) {
+  using std::atan2;
+  using std::cos;
+  using std::sin;
+  const KinematicElement& slider =
+      model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(g.slider_coordinate)].element)];
+  const Track& track = *std::get<CurveSliderJoint>(slider.kind).track;
+  const auto base = static_cast<std::size_t>(slider.entry), frame = static_cast<std::size_t>(g.frame);
+  const auto i = static_cast<Eigen::Index>(g.slider_coordinate);
+  const TrackPoint point = track.at(valueOf(q[i]));
+  const Scalar ds = q[i] - Scalar(valueOf(q[i]));  // carries derivatives with respect to s (see kinematics)
+  const Scalar heading = Scalar(point.heading) + Scalar(point.curvature) * ds;
+  const Scalar curvature = Scalar(point.curvature) + Scalar(point.curvature_derivative) * ds;
+  const Vector3<Scalar> x = ws.rotation[base].transpose() * ws.rotation[frame].col(0);  // frame heading in base axes
+  const Scalar c = cos(heading), s = sin(heading);
+  const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
+  const Vector3<Scalar> binormal = ws.rotation[base].col(2);
+  const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
+  const Scalar torque = -Scalar(g.stiffness) * deviation - Scalar(g.damping) * deviation_rate;
+  ws.moment[frame] -= torque * binormal;  // applied on the frame
+  ws.moment[base] += torque * binormal;   // reaction on the track
+  f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
+}
+
 }  // namespace
 
 template <class Scalar>
@@ -64,7 +93,8 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
                                     Scalar(s.damping) * (v[i] - Scalar(s.rest.rate(t)));
                           },
                           [&](const PointSpringDamper& s) { addPointSpringWrenches(s, ws); },
-                          [&](const JointActuation& s) { f[static_cast<Eigen::Index>(s.coordinate)] -= Scalar(s.force.value(t)); }},
+                          [&](const JointActuation& s) { f[static_cast<Eigen::Index>(s.coordinate)] -= Scalar(s.force.value(t)); },
+                          [&](const TrackGuidance& g) { addTrackGuidance(model, g, ws, q, v, f); }},
                element);
   }
   if (model.constraintCount() > 0 && lambda.size() > 0) addConstraintWrenches(model, ws, lambda);

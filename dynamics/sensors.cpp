@@ -17,13 +17,9 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
             const Vector3<Scalar> d = ws.rotation[k] * s.point.template cast<Scalar>();
             const Vector3<Scalar>& w = ws.angular_velocity[k];
             Vector3<Scalar> vector;
-            switch (s.quantity) {
-              case Derivative::Position: vector = ws.position[k] + d - ws.position[axes]; break;
-              case Derivative::Velocity: vector = ws.velocity[k] + w.cross(d); break;
-              case Derivative::Acceleration:
-                vector = ws.acceleration[k] + ws.angular_acceleration[k].cross(d) + w.cross(w.cross(d));
-                break;
-            }
+            if (s.quantity == Derivative::Position) vector = ws.position[k] + d - ws.position[axes];
+            else if (s.quantity == Derivative::Velocity) vector = ws.velocity[k] + w.cross(d);
+            else vector = ws.acceleration[k] + ws.angular_acceleration[k].cross(d) + w.cross(w.cross(d));
             return ws.rotation[axes].col(s.component).dot(vector);
           },
           [&](const JointSensor& s) -> Scalar {

@@ -54,24 +54,19 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
   }
 }
 
-void constraintJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
+void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
                         Eigen::MatrixXd& B) {
   const Eigen::Index n = model.coordinateCount();
-  const Eigen::Index m = model.constraintCount();
-  b.resize(m);
-  B.resize(m, n);
-  VectorX<AdScalar> closure;
-  const VectorX<AdScalar> none;
-  for (Eigen::Index first = 0; first < n; first += kMaxAdDirections) {
-    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, n - first);
-    const VectorX<AdScalar> q_ad = seeded(q, 0, first, count);
-    forwardKinematics(model, ws, q_ad, none, none, KinematicsLevel::Position);
-    closureEquations(model, ws, Derivative::Position, closure);
-    for (Eigen::Index i = 0; i < m; ++i) {
-      b[i] = closure[i].value();
-      const AdDerivatives& d = closure[i].derivatives();
-      for (Eigen::Index j = 0; j < count; ++j) B(i, first + j) = d.size() > j ? d[j] : 0.0;
-    }
+  B.resize(model.constraintCount(), n);
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(n), column;
+  forwardKinematics(model, ws, q, unit, unit, KinematicsLevel::Velocity);  // rotations, positions, joint axes
+  closureEquations(model, ws, Derivative::Position, b);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    unit[j] = 1.0;
+    velocityPass(model, ws, unit);
+    closureEquations(model, ws, Derivative::Velocity, column);
+    B.col(j) = column;
+    unit[j] = 0.0;
   }
 }
 

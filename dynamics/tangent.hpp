@@ -22,8 +22,9 @@ struct TangentMatrices {
 void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, TangentMatrices& out);
 
-/// b(q) and B = ∂b/∂q over all coordinates.
-void constraintJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
+/// b(q) and B = ∂b/∂q over all coordinates. Exact: ḃ is linear in q̇ and b has no explicit time
+/// dependence besides the coordinates, so column j of B is ḃ(q, q̇ = e_j) (one velocity pass each).
+void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
                         Eigen::MatrixXd& B);
 
 }  // namespace mbsopt

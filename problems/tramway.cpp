@@ -43,12 +43,16 @@ Scene tramwayScene(const TramwayDesign& design, const TramwayOptions& options) {
   const std::shared_ptr<Track> track = tramwayTrack(options);
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
 
+  const bool relative = options.chart == BogieYawChart::RelativeToTrack;
+  const SliderOrientation sliders = relative ? SliderOrientation::FollowTrack : SliderOrientation::Translate;
+
   // ground → curve slider (s₁, driven) → bogie-1 yaw → bogie 1
-  const FrameIndex track_point_1 = m.addCurveSlider("bogie1_track", Model::ground, track);
+  const FrameIndex track_point_1 = m.addCurveSlider("bogie1_track", Model::ground, track, sliders);
   const FrameIndex bogie1 = m.addRevolute("bogie1_yaw", track_point_1, kUp);
   m.addBody("bogie1", bogie1, kBogieMass, Eigen::Vector3d::Zero(), isotropic(kBogieYawInertia));
-  m.addJointSpringDamper("bogie1_guidance", "bogie1_yaw", kGuidanceStiffness, kGuidanceDamping);
-  m.drive("bogie1_track", TimeFunction::polynomial({tramway::kStartArcLength, tramway::kSpeed}));
+  if (relative) m.addJointSpringDamper("bogie1_guidance", "bogie1_yaw", kGuidanceStiffness, kGuidanceDamping);
+  else m.addTrackGuidance("bogie1_guidance", bogie1, "bogie1_track", kGuidanceStiffness, kGuidanceDamping);
+  m.drive("bogie1_track", TimeFunction::polynomial({tramway::kStartArcLength, options.speed}));
 
   // → front secondary (pivot at the bogie centre) → carbody 1
   const FrameIndex carbody1_pivot = m.addRevolute("front_pivot", bogie1, kUp);
@@ -62,14 +66,19 @@ Scene tramwayScene(const TramwayDesign& design, const TramwayOptions& options) {
   const FrameIndex carbody2 = m.addOffset("carbody2_centre", carbody2_joint, -kRearArticulation * x);
   m.addBody("carbody2", carbody2, kCarbodyMass, Eigen::Vector3d::Zero(), isotropic(kCarbodyYawInertia));
 
-  // → rear secondary → bogie 2 → bogie-2 yaw → cut curve slider (s₂) back to the track
+  // → rear secondary → bogie 2 → [bogie-2 yaw] → cut curve slider (s₂) back to the track
   const FrameIndex rear_pivot_point = m.addOffset("rear_pivot_point", carbody2, kRearPivot * x);
   const FrameIndex bogie2 = m.addRevolute("rear_pivot", rear_pivot_point, kUp);
   m.addBody("bogie2", bogie2, kBogieMass, Eigen::Vector3d::Zero(), isotropic(kBogieYawInertia));
   m.addJointSpringDamper("rear_secondary", "rear_pivot", design.rear_stiffness, design.rear_damping);
-  const FrameIndex bogie2_on_track = m.addRevolute("bogie2_yaw", bogie2, kUp);
-  m.addJointSpringDamper("bogie2_guidance", "bogie2_yaw", kGuidanceStiffness, kGuidanceDamping);
-  m.addCurveSliderCut("bogie2_track", bogie2_on_track, Model::ground, track);
+  if (relative) {
+    const FrameIndex bogie2_on_track = m.addRevolute("bogie2_yaw", bogie2, kUp);
+    m.addJointSpringDamper("bogie2_guidance", "bogie2_yaw", kGuidanceStiffness, kGuidanceDamping);
+    m.addCurveSliderCut("bogie2_track", bogie2_on_track, Model::ground, track, SliderOrientation::FollowTrack);
+  } else {
+    m.addCurveSliderCut("bogie2_track", bogie2, Model::ground, track, SliderOrientation::Translate);
+    m.addTrackGuidance("bogie2_guidance", bogie2, "bogie2_track", kGuidanceStiffness, kGuidanceDamping);
+  }
 
   // Responses of the spec.
   m.addSensor("a_lat", PointSensor{carbody1, kNose * x, Derivative::Acceleration, carbody1, 1});
@@ -82,8 +91,8 @@ Scene tramwayScene(const TramwayDesign& design, const TramwayOptions& options) {
   scene.v0 = Eigen::VectorXd::Zero(n);
   scene.q0[m.coordinate("bogie1_track")] = tramway::kStartArcLength;
   scene.q0[m.coordinate("bogie2_track")] = tramway::kStartArcLength - tramway::kBogieSpacing;
-  scene.v0[m.coordinate("bogie1_track")] = tramway::kSpeed;
-  scene.v0[m.coordinate("bogie2_track")] = tramway::kSpeed;
+  scene.v0[m.coordinate("bogie1_track")] = options.speed;
+  scene.v0[m.coordinate("bogie2_track")] = options.speed;
   scene.settings.step = 1e-3;
   scene.settings.end_time = tramway::kEndTime;
   return scene;

@@ -17,13 +17,28 @@ struct TramwayDesign {
   double rear_damping = 15e3;      ///< c_r [N·m·s/rad]
 };
 
+/// Which joint coordinates carry the bogies' yaw. Both describe the same mechanism (same
+/// configuration space, energy and dissipation); they differ as discrete systems.
+enum class BogieYawChart {
+  /// Absolute bogie yaw: translating curve sliders, guidance springs acting on yaw − ψ(s), the
+  /// loop closed by holding bogie 2's centre on the track (2 equations in the plane). Every
+  /// coordinate is C² in time even where the track curvature jumps. The default.
+  Absolute,
+  /// The spec's literal topology: bogie yaw relative to the track tangent (sliders that turn with
+  /// the track, joint springs), loop closed by a weld to the track frame at s₂ (3 equations in the
+  /// plane). ψ(s(t)) is only C¹ where κ jumps, so the relative yaw rate jumps there and Newmark
+  /// answers with a one-step acceleration spike of about 2 Δκ ṡ / h.
+  RelativeToTrack
+};
+
 struct TramwayOptions {
   double transition_length = 0.0;  ///< L_t [m]: clothoids at both ends of the arc (0 = the spec's track)
+  double speed = 3.7;              ///< [m/s]: bogie 1's constant speed
+  BogieYawChart chart = BogieYawChart::Absolute;
 };
 
 namespace tramway {
 inline constexpr double kRadius = 14.0;         ///< R [m]
-inline constexpr double kSpeed = 3.7;           ///< [m/s]
 inline constexpr double kFirstStraight = 12.0;  ///< [m]
 inline constexpr double kLastStraight = 30.0;   ///< [m]
 inline constexpr double kStartArcLength = 10.0; ///< s₁(0) [m]
@@ -34,8 +49,9 @@ inline constexpr double kBogieSpacing = 9.0;    ///< pivot to articulation 4.5 m
 /// Straight 12 m, optional clothoid, left arc R = 14 m (90° in all), optional clothoid, straight 30 m.
 std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options = {});
 
-/// The scene: coordinates s₁ (driven), bogie-1 yaw, front pivot, articulation, rear pivot, bogie-2 yaw,
-/// s₂ (cut curve slider); sensors a_lat, yaw_front, yaw_rear. Settings: h = 1 ms, 12 s.
+/// The scene: coordinates s₁ (driven), bogie-1 yaw, front pivot, articulation, rear pivot,
+/// [bogie-2 yaw, RelativeToTrack chart only], s₂ (cut curve slider); sensors a_lat, yaw_front,
+/// yaw_rear. Settings: h = 1 ms, 12 s.
 Scene tramwayScene(const TramwayDesign& design = {}, const TramwayOptions& options = {});
 
 }  // namespace mbsopt

@@ -1,0 +1,182 @@
+// Timings of the dynamics core: one residual, the AD tangent matrices, the constraint Jacobian, one
+// Newmark step and a whole simulation on the tramway scene; residual and tangents on a planar chain
+// of N links to show how the cost grows with the number of coordinates.
+//
+// Residual/tangent timings use a state from a short simulated run (moving, loaded, mid-curve), not
+// zeros, so no branch or AD derivative is trivially empty.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "dynamics/model.hpp"
+#include "dynamics/newmark.hpp"
+#include "dynamics/residual.hpp"
+#include "dynamics/tangent.hpp"
+#include "dynamics/workspace.hpp"
+#include "problems/scene.hpp"
+#include "problems/tramway.hpp"
+
+namespace mbsopt {
+namespace {
+
+/// A scene together with one state (q, v, a, λ at time t) reached by integrating it for a while.
+struct SceneState {
+  Scene scene;
+  Eigen::VectorXd q, v, a, lambda;
+  double t = 0.0;
+};
+
+SceneState runFor(Scene scene, double duration) {
+  SceneState state{std::move(scene), {}, {}, {}, {}, 0.0};
+  NewmarkIntegrator integrator(state.scene.model, state.scene.settings);
+  integrator.initialize(state.scene.q0, state.scene.v0);
+  const long steps = std::lround(duration / state.scene.settings.step);
+  for (long k = 0; k < steps; ++k) integrator.step();
+  state.q = integrator.q();
+  state.v = integrator.v();
+  state.a = integrator.a();
+  state.lambda = integrator.lambda();
+  state.t = integrator.time();
+  return state;
+}
+
+/// The tramway 3 s into the run: bogie 1 is in the curve (it enters at t ≈ 0.5 s).
+const SceneState& tramwayState() {
+  static const SceneState state = runFor(tramwayScene(), 3.0);
+  return state;
+}
+
+/// Planar pendulum chain of `links` revolute joints about z, gravity −y, a spring-damper at each
+/// joint; starts bent at 0.3 rad per joint, at rest.
+Scene chainScene(int links) {
+  constexpr double kLength = 0.5, kMass = 2.0, kInertia = kMass * kLength * kLength / 12.0;
+  Scene scene;
+  Model& m = scene.model;
+  m.setGravity(Eigen::Vector3d(0.0, -9.81, 0.0));
+  FrameIndex tip = Model::ground;
+  for (int i = 0; i < links; ++i) {
+    const std::string joint = "joint" + std::to_string(i);
+    const FrameIndex link = m.addRevolute(joint, tip, Eigen::Vector3d::UnitZ());
+    m.addBody("link" + std::to_string(i), link, kMass, Eigen::Vector3d(0.5 * kLength, 0.0, 0.0),
+              kInertia * Eigen::Matrix3d::Identity());
+    m.addJointSpringDamper(joint + "_spring", joint, 50.0, 0.5);
+    tip = m.addOffset("tip" + std::to_string(i), link, Eigen::Vector3d(kLength, 0.0, 0.0));
+  }
+  scene.q0 = Eigen::VectorXd::Constant(m.coordinateCount(), 0.3);
+  scene.v0 = Eigen::VectorXd::Zero(m.coordinateCount());
+  scene.settings.step = 1e-3;
+  scene.settings.end_time = 1.0;
+  return scene;
+}
+
+/// Chain state after 0.2 s of free swinging, one per size (built on first use, kept alive).
+const SceneState& chainState(int links) {
+  static std::map<int, SceneState> states;
+  auto it = states.find(links);
+  if (it == states.end()) it = states.emplace(links, runFor(chainScene(links), 0.2)).first;
+  return it->second;
+}
+
+// ---- generic kernels, timed on any scene state ----
+
+void timeResidual(benchmark::State& bench, const SceneState& s) {
+  Workspace<double> ws(s.scene.model);
+  Eigen::VectorXd f;
+  for (auto _ : bench) {
+    residual(s.scene.model, ws, s.q, s.v, s.a, s.lambda, s.t, f);
+    benchmark::DoNotOptimize(f.data());
+    benchmark::ClobberMemory();
+  }
+  bench.counters["coordinates"] = static_cast<double>(s.scene.model.coordinateCount());
+}
+
+void timeTangentMatrices(benchmark::State& bench, const SceneState& s) {
+  Workspace<AdScalar> ws(s.scene.model);
+  TangentMatrices out;
+  for (auto _ : bench) {
+    tangentMatrices(s.scene.model, ws, s.q, s.v, s.a, s.lambda, s.t, out);
+    benchmark::DoNotOptimize(out.stiffness.data());
+    benchmark::ClobberMemory();
+  }
+  bench.counters["coordinates"] = static_cast<double>(s.scene.model.coordinateCount());
+}
+
+// ---- tramway ----
+
+void BM_TramwayResidual(benchmark::State& bench) { timeResidual(bench, tramwayState()); }
+BENCHMARK(BM_TramwayResidual);
+
+void BM_TramwayTangentMatrices(benchmark::State& bench) { timeTangentMatrices(bench, tramwayState()); }
+BENCHMARK(BM_TramwayTangentMatrices);
+
+void BM_TramwayConstraintJacobian(benchmark::State& bench) {
+  const SceneState& s = tramwayState();
+  Workspace<AdScalar> ws(s.scene.model);
+  Eigen::VectorXd b;
+  Eigen::MatrixXd B;
+  for (auto _ : bench) {
+    constraintJacobian(s.scene.model, ws, s.q, b, B);
+    benchmark::DoNotOptimize(B.data());
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_TramwayConstraintJacobian);
+
+void BM_TramwayNewmarkStep(benchmark::State& bench) {
+  const Scene& scene = tramwayState().scene;
+  NewmarkIntegrator integrator(scene.model, scene.settings);
+  integrator.initialize(scene.q0, scene.v0);
+  const double last_start = scene.settings.end_time - scene.settings.step;
+  long newton_iterations = 0;
+  for (auto _ : bench) {
+    if (integrator.time() >= last_start) {  // the track ends: start the run over (not timed)
+      bench.PauseTiming();
+      integrator.initialize(scene.q0, scene.v0);
+      bench.ResumeTiming();
+    }
+    integrator.step();
+    newton_iterations += integrator.lastNewtonIterations();
+  }
+  bench.counters["newton/step"] =
+      benchmark::Counter(static_cast<double>(newton_iterations), benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_TramwayNewmarkStep);
+
+void BM_TramwaySimulation(benchmark::State& bench) {
+  const Scene& scene = tramwayState().scene;  // 12 s at h = 1 ms
+  IntegratorStatistics statistics;
+  for (auto _ : bench) {
+    NewmarkIntegrator integrator(scene.model, scene.settings);
+    const Trajectory trajectory = integrator.simulate(scene.q0, scene.v0);
+    benchmark::DoNotOptimize(trajectory.q.data());
+    statistics = trajectory.statistics;
+  }
+  bench.counters["steps"] = static_cast<double>(statistics.steps);
+  bench.counters["newton/step"] =
+      static_cast<double>(statistics.newton_iterations) / static_cast<double>(statistics.steps);
+  bench.counters["jacobians"] = static_cast<double>(statistics.jacobian_updates);
+}
+BENCHMARK(BM_TramwaySimulation)->Unit(benchmark::kMillisecond);
+
+// ---- planar chain of N links ----
+
+void BM_ChainResidual(benchmark::State& bench) {
+  const int links = static_cast<int>(bench.range(0));
+  timeResidual(bench, chainState(links));
+  bench.SetComplexityN(links);
+}
+BENCHMARK(BM_ChainResidual)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Complexity();
+
+void BM_ChainTangentMatrices(benchmark::State& bench) {
+  const int links = static_cast<int>(bench.range(0));
+  timeTangentMatrices(bench, chainState(links));
+  bench.SetComplexityN(links);
+}
+BENCHMARK(BM_ChainTangentMatrices)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Complexity();
+
+}  // namespace
+}  // namespace mbsopt
+
+BENCHMARK_MAIN();
