@@ -113,7 +113,7 @@ BENCHMARK(BM_TramwayTangentMatrices);
 
 void BM_TramwayConstraintJacobian(benchmark::State& bench) {
   const SceneState& s = tramwayState();
-  Workspace<AdScalar> ws(s.scene.model);
+  Workspace<double> ws(s.scene.model);
   Eigen::VectorXd b;
   Eigen::MatrixXd B;
   for (auto _ : bench) {

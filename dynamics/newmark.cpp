@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "dynamics/closure.hpp"
+#include "dynamics/mass_matrix.hpp"
 #include "dynamics/residual.hpp"
 
 namespace mbsopt {
@@ -103,15 +104,11 @@ void NewmarkIntegrator::updateIterationMatrix() {
 }
 
 void NewmarkIntegrator::updateMassMatrix() {
-  // f is linear in q̈: M e_j = f(q̈ + e_j) − f(q̈), exact to round-off, n residual evaluations.
-  for (std::size_t c = 0; c < free_.size(); ++c) {
-    const int j = free_[c];
-    a_[j] += 1.0;
-    residual(model_, ws_, q_, v_, a_, lambda_, t_, f_shifted_);
-    a_[j] -= 1.0;
+  // Needs ws_ to hold the rotations, positions and joint axes at q_; leaves them in place.
+  massMatrix(model_, ws_, mass_full_);
+  for (std::size_t c = 0; c < free_.size(); ++c)
     for (std::size_t r = 0; r < free_.size(); ++r)
-      mass_(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = f_shifted_[free_[r]] - f_[free_[r]];
-  }
+      mass_(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = mass_full_(free_[r], free_[c]);
   J_ = mass_ + tangent_part_;
   ++stats_.mass_updates;
   reduced_dirty_ = true;
@@ -227,18 +224,22 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
 }
 
 void NewmarkIntegrator::projectOntoConstraints() {
-  // Needs ws_ to hold the rotations, positions and joint axes at q (updateConstraintPartition does).
+  // Needs ws_ to hold the rotations, positions and joint axes at q (updateConstraintPartition does),
+  // and the partition to hold M(q) as its matrix. Each correction Δ is the M-orthogonal projection
+  // onto the constraint: min ½ΔᵀMΔ subject to B(x − Δ) + c₀ = 0, i.e. [M Bᵀ; B 0][−Δ; μ] = −[0; c];
+  // the kinetic energy removed is then ½ΔᵀMΔ ≥ 0, never more.
   if (model_.constraintCount() == 0) return;
-  // Velocities: minimum-norm correction so that ḃ = B q̇ + ∂b/∂t = 0.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free_.size()));
+  // Velocities: ḃ = B q̇ + ∂b/∂t = 0.
   velocityPass(model_, ws_, v_);
   closureEquations(model_, ws_, Derivative::Velocity, closure_);
-  partition_.pseudoInverse(closure_, correction_);
-  for (std::size_t k = 0; k < free_.size(); ++k) v_[free_[k]] -= correction_[static_cast<Eigen::Index>(k)];
-  // Accelerations: the same correction so that b̈ = 0.
+  partition_.solve(zero, closure_, correction_, dlambda_);
+  for (std::size_t k = 0; k < free_.size(); ++k) v_[free_[k]] += correction_[static_cast<Eigen::Index>(k)];
+  // Accelerations: b̈ = 0.
   forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Acceleration);
   closureEquations(model_, ws_, Derivative::Acceleration, closure_);
-  partition_.pseudoInverse(closure_, correction_);
-  for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] -= correction_[static_cast<Eigen::Index>(k)];
+  partition_.solve(zero, closure_, correction_, dlambda_);
+  for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += correction_[static_cast<Eigen::Index>(k)];
 }
 
 void NewmarkIntegrator::measureClosure() {
@@ -283,7 +284,10 @@ void NewmarkIntegrator::step() {
   a_newton_ = a_;
   ++newton_history_;
   if (settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0) {
-    updateConstraintPartition();  // B at qₙ₊₁: exact projections, and a fresh B for the next step
+    // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
+    updateConstraintPartition();
+    updateMassMatrix();
+    partition_.setIterationMatrix(mass_);
     projectOntoConstraints();
   } else {
     forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);

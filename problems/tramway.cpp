@@ -1,7 +1,6 @@
 #include "problems/tramway.hpp"
 
 #include <cmath>
-#include <numbers>
 
 namespace mbsopt {
 
@@ -23,15 +22,15 @@ Eigen::Matrix3d isotropic(double inertia) { return inertia * Eigen::Matrix3d::Id
 
 std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options) {
   using tramway::kRadius;
-  const double quarter_turn = std::numbers::pi / 2.0;
+  const double turn = options.arc_angle;
   auto track = std::make_shared<Track>();
   track->straight(tramway::kFirstStraight);
   const double Lt = options.transition_length;
   if (Lt > 0.0) {
-    // Each clothoid turns L_t / (2R); the arc keeps the rest of the 90°.
-    track->clothoid(Lt, 1.0 / kRadius).arc(kRadius, quarter_turn - Lt / kRadius).clothoid(Lt, 0.0);
+    // Each clothoid turns L_t / (2R); the arc keeps the rest of the turn.
+    track->clothoid(Lt, 1.0 / kRadius).arc(kRadius, turn - Lt / kRadius).clothoid(Lt, 0.0);
   } else {
-    track->arc(kRadius, quarter_turn);
+    track->arc(kRadius, turn);
   }
   track->straight(tramway::kLastStraight);
   return track;

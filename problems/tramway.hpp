@@ -26,13 +26,15 @@ enum class BogieYawChart {
   Absolute,
   /// The spec's literal topology: bogie yaw relative to the track tangent (sliders that turn with
   /// the track, joint springs), loop closed by a weld to the track frame at s₂ (3 equations in the
-  /// plane). ψ(s(t)) is only C¹ where κ jumps, so the relative yaw rate jumps there and Newmark
-  /// answers with a one-step acceleration spike of about 2 Δκ ṡ / h.
+  /// plane). Where κ jumps, the inertia term I(κ s̈ + κ' ṡ²) holds a Dirac in κ' that a piecewise
+  /// track cannot carry: the integrated relative yaw rate stays continuous, so the bogie's absolute
+  /// yaw rate jumps by Δκ·ṡ (a non-physical kick). Exact only on tracks with continuous curvature.
   RelativeToTrack
 };
 
 struct TramwayOptions {
   double transition_length = 0.0;  ///< L_t [m]: clothoids at both ends of the arc (0 = the spec's track)
+  double arc_angle = 1.5707963267948966;  ///< total turn of the curve [rad] (the spec: 90°)
   double speed = 3.7;              ///< [m/s]: bogie 1's constant speed
   BogieYawChart chart = BogieYawChart::Absolute;
 };
@@ -46,7 +48,8 @@ inline constexpr double kEndTime = 12.0;        ///< [s]
 inline constexpr double kBogieSpacing = 9.0;    ///< pivot to articulation 4.5 m on each carbody [m]
 }  // namespace tramway
 
-/// Straight 12 m, optional clothoid, left arc R = 14 m (90° in all), optional clothoid, straight 30 m.
+/// Straight 12 m, optional clothoid, left arc R = 14 m (90° in all by default), optional clothoid,
+/// straight 30 m.
 std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options = {});
 
 /// The scene: coordinates s₁ (driven), bogie-1 yaw, front pivot, articulation, rear pivot,

@@ -27,7 +27,7 @@ constexpr double kLinearDensity = 2.0;  // [kg/m]
 constexpr double kBarWidth = 0.03;      // square cross-section [m]
 constexpr double kEndTime = 10.0;
 constexpr double kStep = 1e-3;
-constexpr double kInitialCrankRate = 7.0;  // [rad/s], enough for the crank to turn over the top
+constexpr double kInitialCrankRate = 7.0;  // [rad/s] before assemble() projects it onto the loop
 
 /// Uniform slender bar along x from the frame origin: centre of mass and inertia about it.
 void addBar(Model& model, const std::string& name, FrameIndex frame, double length) {
@@ -157,14 +157,15 @@ TEST_F(FourBarTest, ClosureErrorStaysBelowOneNanometreAtEveryStep) {
 
 TEST_F(FourBarTest, EnergyErrorIsSmallAndSecondOrderInTheStep) {
   // The trapezoidal rule conserves the energy of a linear system exactly and that of a nonlinear
-  // conservative one up to a bounded O(h²) oscillation: with the fastest rate ω ≈ 10 rad/s of this
-  // linkage, (ωh)²/12 ≈ 1e-5 at h = 1 ms, so 1e-4 of the kinetic-energy scale is a safe bound, and
-  // halving h must divide the error by ≈ 4 (accepted: ≥ 3).
+  // conservative one up to a bounded oscillation of relative size O((ωh)²). The joint rates of this
+  // run reach ω ≈ 17 rad/s, (ωh)² ≈ 3e-4 at h = 1 ms: we allow 2e-4 of the kinetic-energy scale,
+  // and halving h must divide the error by ≈ 4 (accepted: ≥ 3), which a first-order error
+  // (numerical dissipation) cannot do.
   const EnergyHistory coarse = energyHistory(*model_, *coarse_);
   const EnergyHistory fine = energyHistory(*model_, *fine_);
   const double coarse_error = coarse.maxRelativeDeviation(0, coarse.deviation.size());
   const double fine_error = fine.maxRelativeDeviation(0, fine.deviation.size());
-  EXPECT_LE(coarse_error, 1e-4);
+  EXPECT_LE(coarse_error, 2e-4);
   EXPECT_GE(coarse_error / fine_error, 3.0) << "h: " << coarse_error << ", h/2: " << fine_error;
 }
 

@@ -155,7 +155,8 @@ class TangentMatricesTest : public ::testing::Test {
  protected:
   static constexpr double kTime = 0.3;
 
-  TangentMatricesTest() : rng_(20240611u), model_(randomSpatialChain(rng_)), ws_(model_), ad_ws_(model_) {
+  TangentMatricesTest()
+      : rng_(20240611u), model_(randomSpatialChain(rng_)), ws_(model_), jacobian_ws_(model_), ad_ws_(model_) {
     const Eigen::Index n = model_.coordinateCount();
     q_ = rng_.vector(n, -1.0, 1.0);
     v_ = rng_.vector(n, -2.0, 2.0);
@@ -182,7 +183,7 @@ class TangentMatricesTest : public ::testing::Test {
   Eigen::MatrixXd jacobianAt(const Eigen::VectorXd& q) {
     Eigen::VectorXd b;
     Eigen::MatrixXd B;
-    constraintJacobian(model_, ad_ws_, q, b, B);
+    constraintJacobian(model_, jacobian_ws_, q, b, B);
     return B;
   }
 
@@ -194,7 +195,7 @@ class TangentMatricesTest : public ::testing::Test {
 
   Random rng_;
   Model model_;
-  Workspace<double> ws_;
+  Workspace<double> ws_, jacobian_ws_;
   Workspace<AdScalar> ad_ws_;
   Eigen::VectorXd q_, v_, a_, lambda_;
 };

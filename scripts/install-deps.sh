@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian packages mbsopt needs, and only those missing (idempotent).
+# Uses sudo only when not already root.
+set -euo pipefail
+
+packages=(
+  g++ cmake make            # toolchain
+  libeigen3-dev             # dense linear algebra, AutoDiff
+  libcli11-dev              # command line
+  libgtest-dev              # tests
+  libbenchmark-dev          # benchmarks
+  libyaml-cpp-dev           # scene files
+  nlohmann-json3-dev        # machine-readable outputs
+  libnlopt-cxx-dev          # SLSQP, MMA, CCSAQ
+  coinor-libipopt-dev       # Ipopt 3.11
+  gnuplot-nox               # plots
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages are installed"
+  exit 0
+fi
+
+as_root=()
+[ "$(id -u)" -eq 0 ] || as_root=(sudo)
+echo "install-deps: installing ${missing[*]}"
+"${as_root[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
