@@ -229,7 +229,9 @@ void NewmarkIntegrator::projectOntoConstraints() {
   // onto the constraint: min ½ΔᵀMΔ subject to B(x − Δ) + c₀ = 0, i.e. [M Bᵀ; B 0][−Δ; μ] = −[0; c];
   // the kinetic energy removed is then ½ΔᵀMΔ ≥ 0, never more.
   if (model_.constraintCount() == 0) return;
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free_.size()));
+  const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
+  if (zero_.size() != nf) zero_.setZero(nf);
+  const Eigen::VectorXd& zero = zero_;
   // Velocities: ḃ = B q̇ + ∂b/∂t = 0.
   velocityPass(model_, ws_, v_);
   closureEquations(model_, ws_, Derivative::Velocity, closure_);
@@ -256,9 +258,12 @@ void NewmarkIntegrator::step() {
   const double beta = settings_.beta, gamma = settings_.gamma;
   q_pred_ = q_ + h * v_ + (0.5 - beta) * h * h * a_;  // (32), the parts known at tₙ
   v_pred_ = v_ + (1.0 - gamma) * h * a_;
-  // Newton starts from its own last two solutions (before projection) extrapolated linearly; the
+  // Newton starts from its own last solutions (before projection) extrapolated quadratically; the
   // converged solution does not depend on the start, only the iteration count does.
-  if (newton_history_ >= 2) {
+  if (newton_history_ >= 3) {
+    a_start_ = 3.0 * (a_newton_ - a_newton_previous_) + a_newton_before_;
+    lambda_start_ = 2.0 * lambda_ - lambda_previous_;
+  } else if (newton_history_ == 2) {
     a_start_ = 2.0 * a_newton_ - a_newton_previous_;
     lambda_start_ = 2.0 * lambda_ - lambda_previous_;
   } else {
@@ -280,6 +285,7 @@ void NewmarkIntegrator::step() {
                                 " iterations",
                             r_free_);
   }
+  a_newton_before_ = a_newton_previous_;
   a_newton_previous_ = a_newton_;
   a_newton_ = a_;
   ++newton_history_;

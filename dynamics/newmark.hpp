@@ -118,9 +118,9 @@ class NewmarkIntegrator {
   Eigen::VectorXd q_, v_, a_, lambda_;
   Eigen::VectorXd q_pred_, v_pred_;  // full-size predictors q̃, ṽ
   Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
-  Eigen::VectorXd a_newton_, a_newton_previous_;  ///< converged Newton accelerations before projection
+  Eigen::VectorXd a_newton_, a_newton_previous_, a_newton_before_;  ///< converged Newton accelerations before projection
   int newton_history_ = 0;
-  Eigen::VectorXd f_, b_at_jacobian_, closure_, r_free_, da_, dlambda_, correction_;
+  Eigen::VectorXd f_, b_at_jacobian_, zero_, closure_, r_free_, da_, dlambda_, correction_;
   Eigen::MatrixXd B_full_, B_free_;
   bool reduced_dirty_ = true;  ///< V₂ᵀJV₂ must be refactored (J or B changed)
   double t0_ = 0.0;

@@ -23,6 +23,7 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   v1_ = svd_.matrixV().leftCols(rank_);
   v2_ = svd_.matrixV().rightCols(n - rank_);
   inverse_s1_ = singular_values_.head(rank_).cwiseInverse();
+  x_r_.resize(rank_);
 }
 
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
@@ -31,24 +32,38 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
     rcond_ = 1.0;
     return true;
   }
-  reduced_.compute(v2_.transpose() * J * v2_);
+  j_v2_.noalias() = J * v2_;
+  reduced_matrix_.noalias() = v2_.transpose() * j_v2_;
+  reduced_.compute(reduced_matrix_);
   rcond_ = reduced_.rcond();
   return rcond_ > 1e-13 && std::isfinite(rcond_);
 }
 
 void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
                          Eigen::VectorXd& dmu) const {
-  const Eigen::VectorXd x_r = -(inverse_s1_.asDiagonal() * (u1_.transpose() * g));
-  dx = v1_ * x_r;
+  x_r_.noalias() = u1_.transpose() * g;
+  x_r_ = -(inverse_s1_.asDiagonal() * x_r_);
+  dx.noalias() = v1_ * x_r_;
   if (v2_.cols() > 0) {
-    const Eigen::VectorXd x_n = reduced_.solve(-(v2_.transpose() * (r + J_ * dx)));
-    dx += v2_ * x_n;
+    work_ = r;
+    work_.noalias() += J_ * dx;
+    x_n_.noalias() = v2_.transpose() * work_;
+    x_n_ = -x_n_;
+    x_n_ = reduced_.solve(x_n_);
+    dx.noalias() += v2_ * x_n_;
   }
-  dmu = -(u1_ * (inverse_s1_.asDiagonal() * (v1_.transpose() * (r + J_ * dx))));
+  work_ = r;
+  work_.noalias() += J_ * dx;
+  x_r_.noalias() = v1_.transpose() * work_;
+  x_r_ = inverse_s1_.asDiagonal() * x_r_;
+  dmu.noalias() = u1_ * x_r_;
+  dmu = -dmu;
 }
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
-  dx = v1_ * (inverse_s1_.asDiagonal() * (u1_.transpose() * c));
+  x_r_.noalias() = u1_.transpose() * c;
+  x_r_ = inverse_s1_.asDiagonal() * x_r_;
+  dx.noalias() = v1_ * x_r_;
 }
 
 }  // namespace mbsopt

@@ -44,7 +44,9 @@ class SvdPartition {
   Eigen::MatrixXd u1_, v1_, v2_;
   Eigen::VectorXd inverse_s1_;
   Eigen::MatrixXd J_;
+  Eigen::MatrixXd j_v2_, reduced_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
+  mutable Eigen::VectorXd x_r_, x_n_, work_;  // solve() buffers, so that a solve allocates nothing
   double rcond_ = 0.0;
 };
 

@@ -58,7 +58,8 @@ void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::
                         Eigen::MatrixXd& B) {
   const Eigen::Index n = model.coordinateCount();
   B.resize(model.constraintCount(), n);
-  Eigen::VectorXd unit = Eigen::VectorXd::Zero(n), column;
+  thread_local Eigen::VectorXd unit, column;
+  unit.setZero(n);
   forwardKinematics(model, ws, q, unit, unit, KinematicsLevel::Velocity);  // rotations, positions, joint axes
   closureEquations(model, ws, Derivative::Position, b);
   for (Eigen::Index j = 0; j < n; ++j) {

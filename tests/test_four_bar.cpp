@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "dynamics/assembly.hpp"
 #include "dynamics/kinematics.hpp"
@@ -101,58 +102,54 @@ EnergyHistory energyHistory(const Model& model, const Trajectory& trajectory) {
   return history;
 }
 
-class FourBarTest : public ::testing::Test {
- protected:
-  /// Both simulations are shared by the tests of the suite (they are the expensive part).
-  static void SetUpTestSuite() {
-    model_ = new Model(crankRocker());
-    q0_ = new Eigen::VectorXd(3);
-    v0_ = new Eigen::VectorXd(3);
+struct FourBarRun {
+  Model model = crankRocker();
+  Eigen::VectorXd q0, v0;
+  AssemblyReport assembly;
+  Trajectory coarse, fine;  ///< h and h/2
+
+  FourBarRun() : q0(3), v0(3) {
     // Rough guess of the elbow-up branch at a crank angle of 60°; assemble() closes the loop.
-    *q0_ << 60.0 * kDegree, -27.0 * kDegree, 91.0 * kDegree;
-    *v0_ << kInitialCrankRate, 0.0, 0.0;
-    assembly_ = assemble(*model_, *q0_, *v0_, 0.0);
-    coarse_ = new Trajectory(simulate(kStep));
-    fine_ = new Trajectory(simulate(0.5 * kStep));
+    q0 << 60.0 * kDegree, -27.0 * kDegree, 91.0 * kDegree;
+    v0 << kInitialCrankRate, 0.0, 0.0;
+    assembly = assemble(model, q0, v0, 0.0);
+    coarse = simulate(kStep);
+    fine = simulate(0.5 * kStep);
   }
-  static void TearDownTestSuite() {
-    delete fine_;
-    delete coarse_;
-    delete v0_;
-    delete q0_;
-    delete model_;
-  }
-  static Trajectory simulate(double step) {
+  Trajectory simulate(double step) const {
     NewmarkSettings settings;
     settings.step = step;
     settings.end_time = kEndTime;
-    return NewmarkIntegrator(*model_, settings).simulate(*q0_, *v0_);
+    return NewmarkIntegrator(model, settings).simulate(q0, v0);
   }
+};
 
-  static inline Model* model_ = nullptr;
-  static inline Eigen::VectorXd *q0_ = nullptr, *v0_ = nullptr;
-  static inline AssemblyReport assembly_;
-  static inline Trajectory *coarse_ = nullptr, *fine_ = nullptr;
+class FourBarTest : public ::testing::Test {
+ protected:
+  /// The simulations are shared by the tests of the suite (they are the expensive part).
+  static void SetUpTestSuite() { run_ = std::make_unique<FourBarRun>(); }
+  static void TearDownTestSuite() { run_.reset(); }
+  static inline std::unique_ptr<FourBarRun> run_;
 };
 
 TEST_F(FourBarTest, AssemblyClosesTheLoopFromARoughGuess) {
-  EXPECT_LE(assembly_.closure_error, 1e-12);
-  EXPECT_GT(assembly_.position_correction, 1e-3);  // the guess was off by ~0.5°: assemble did real work
-  EXPECT_NEAR((*q0_)[0], 60.0 * kDegree, 2.0 * kDegree);  // stayed on the intended branch, near the guess
+  EXPECT_LE(run_->assembly.closure_error, 1e-12);
+  EXPECT_GT(run_->assembly.position_correction, 1e-3);  // the guess was off by ~0.5°: assemble did real work
+  EXPECT_NEAR(run_->q0[0], 60.0 * kDegree, 2.0 * kDegree);  // stayed on the intended branch, near the guess
 }
 
 TEST_F(FourBarTest, CrankTurnsOverSoTheWholeCycleIsExercised) {
-  const Eigen::VectorXd crank = coarse_->q.row(0);
+  const Eigen::VectorXd crank = run_->coarse.q.row(0);
   EXPECT_GT(crank.maxCoeff() - crank.minCoeff(), 4.0 * kPi);  // at least two revolutions in 10 s
 }
 
 TEST_F(FourBarTest, ClosureErrorStaysBelowOneNanometreAtEveryStep) {
   // Position-level closure is solved by Newton to ‖Δq̈‖ ≤ 1e-10 (1 + ‖q̈‖), i.e. b ≈ βh²·1e-10·… ≪ 1e-9 m.
-  ASSERT_EQ(coarse_->closure_error.size(), static_cast<Eigen::Index>(std::lround(kEndTime / kStep)) + 1);
+  ASSERT_EQ(run_->coarse.closure_error.size(), static_cast<Eigen::Index>(std::lround(kEndTime / kStep)) + 1);
   Eigen::Index worst = 0;
-  const double largest = coarse_->closure_error.maxCoeff(&worst);
-  EXPECT_LE(largest, 1e-9) << "at t = " << coarse_->time[worst] << " s";
-  EXPECT_LE(coarse_->statistics.max_closure_error, 1e-9);
+  const double largest = run_->coarse.closure_error.maxCoeff(&worst);
+  EXPECT_LE(largest, 1e-9) << "at t = " << run_->coarse.time[worst] << " s";
+  EXPECT_LE(run_->coarse.statistics.max_closure_error, 1e-9);
 }
 
 TEST_F(FourBarTest, EnergyErrorIsSmallAndSecondOrderInTheStep) {
@@ -161,8 +158,8 @@ TEST_F(FourBarTest, EnergyErrorIsSmallAndSecondOrderInTheStep) {
   // run reach ω ≈ 17 rad/s, (ωh)² ≈ 3e-4 at h = 1 ms: we allow 2e-4 of the kinetic-energy scale,
   // and halving h must divide the error by ≈ 4 (accepted: ≥ 3), which a first-order error
   // (numerical dissipation) cannot do.
-  const EnergyHistory coarse = energyHistory(*model_, *coarse_);
-  const EnergyHistory fine = energyHistory(*model_, *fine_);
+  const EnergyHistory coarse = energyHistory(run_->model, run_->coarse);
+  const EnergyHistory fine = energyHistory(run_->model, run_->fine);
   const double coarse_error = coarse.maxRelativeDeviation(0, coarse.deviation.size());
   const double fine_error = fine.maxRelativeDeviation(0, fine.deviation.size());
   EXPECT_LE(coarse_error, 2e-4);
@@ -170,10 +167,11 @@ TEST_F(FourBarTest, EnergyErrorIsSmallAndSecondOrderInTheStep) {
 }
 
 TEST_F(FourBarTest, EnergyDoesNotDrift) {
-  // A bounded oscillating error repeats cycle after cycle (2.5 s spans several crank revolutions):
+  // A bounded oscillating error repeats cycle after cycle (a quarter, 2.5 s, spans more than one
+  // crank revolution of ≈ 2.2 s):
   // a drift (numerical dissipation or growth, e.g. from the constraint projections) would make the
   // last quarter of the run markedly worse than the first.
-  const EnergyHistory history = energyHistory(*model_, *coarse_);
+  const EnergyHistory history = energyHistory(run_->model, run_->coarse);
   const Eigen::Index quarter = history.deviation.size() / 4;
   const double first = history.maxRelativeDeviation(0, quarter);
   const double last = history.maxRelativeDeviation(history.deviation.size() - quarter, quarter);
