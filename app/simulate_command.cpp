@@ -1,12 +1,14 @@
 #include "app/simulate_command.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "app/csv_output.hpp"
+#include "dynamics/sensors.hpp"
 #include "problems/tramway.hpp"
 
 namespace mbsopt {
@@ -16,6 +18,7 @@ namespace {
 struct SimulateOptions {
   std::string scene;
   std::vector<double> design;
+  std::string chart = "absolute";
   double step = 0.0;
   double end_time = 0.0;
   std::string out;
@@ -30,7 +33,9 @@ Scene loadScene(const SimulateOptions& options) {
       throw std::invalid_argument("--design takes 4 values kf,kr,cf,cr; got " + std::to_string(options.design.size()));
     design = {options.design[0], options.design[1], options.design[2], options.design[3]};
   }
-  return tramwayScene(design);
+  TramwayOptions tramway;
+  tramway.chart = options.chart == "relative" ? BogieYawChart::RelativeToTrack : BogieYawChart::Absolute;
+  return tramwayScene(design, tramway);
 }
 
 void run(const SimulateOptions& options) {
@@ -50,12 +55,33 @@ void run(const SimulateOptions& options) {
   const Trajectory trajectory = integrator.simulate(scene.q0, scene.v0, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.out.empty()) writeTrajectoryCsv(options.out, scene.model, trajectory);
+  const Eigen::MatrixXd sensors = sensorHistory(scene.model, trajectory);
+  for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
+    Eigen::Index at = 0;
+    const double peak = sensors.col(static_cast<Eigen::Index>(s)).cwiseAbs().maxCoeff(&at);
+    std::cout << "  max |" << scene.model.sensors()[s].name << "| = " << peak << " at t = " << trajectory.time[at]
+              << " s\n";
+  }
   const IntegratorStatistics& stats = trajectory.statistics;
   std::cout << "simulated " << options.scene << ": " << stats.steps << " steps of " << scene.settings.step
             << " s, " << stats.newton_iterations << " Newton iterations, " << stats.jacobian_updates
             << " tangent and " << stats.mass_updates << " mass-matrix updates, max closure error " << stats.max_closure_error << " m, wall time " << wall
             << " s" << (options.out.empty() ? "" : ", wrote " + options.out) << '\n';
 }
+
+const CLI::Validator kPositiveFinite(
+    [](const std::string& text) -> std::string {
+      double value = 0.0;
+      try {
+        std::size_t used = 0;
+        value = std::stod(text, &used);
+        if (used != text.size()) return "'" + text + "' is not a number";
+      } catch (const std::exception&) {
+        return "'" + text + "' is not a number";
+      }
+      return value > 0.0 && std::isfinite(value) ? std::string() : "must be positive and finite, got " + text;
+    },
+    "POSITIVE");
 
 }  // namespace
 
@@ -68,13 +94,17 @@ void registerSimulateCommand(CLI::App& app) {
                       "default 246e3,246e3,15e3,15e3")
       ->delimiter(',')
       ->expected(4);
-  command->add_option("--dt", options->step, "Time step h [s] (scene default: tramway 1e-3)")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--chart", options->chart,
+                      "Tramway bogie-yaw coordinates: 'absolute' (default; guidance springs act on yaw - track "
+                      "heading) or 'relative' (the spec's literal chart, yaw from the track tangent; it gives the "
+                      "bogies a non-physical yaw-rate kick where the track curvature jumps)")
+      ->check(CLI::IsMember({"absolute", "relative"}));
+  command->add_option("--dt", options->step, "Time step h [s] (scene default: tramway 1e-3)")->check(kPositiveFinite);
   command->add_option("--t-end", options->end_time, "End time [s] (scene default: tramway 12)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveFinite);
   command->add_option("--out", options->out,
-                      "CSV file: one row per step with t, every sensor (a_lat [m/s²], yaw_front, yaw_rear [rad]) "
-                      "and every coordinate");
+                      "CSV file: one row per step with t [s], every sensor (tramway: a_lat [m/s²], yaw_front, "
+                      "yaw_rear [rad]) and every coordinate [m or rad]; written only when complete");
   command->callback([options] { run(*options); });
 }
 

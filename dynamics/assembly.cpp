@@ -23,11 +23,10 @@ AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd&
   Workspace<double> ws(model);
   SvdPartition partition(svd_threshold);
   Eigen::VectorXd b, correction;
-  Eigen::MatrixXd B, B_free(model.constraintCount(), nf);
+  Eigen::MatrixXd B_free;
   const Eigen::VectorXd q_start = q;
   auto factor = [&] {
-    constraintJacobian(model, ws, q, b, B);
-    for (Eigen::Index k = 0; k < nf; ++k) B_free.col(k) = B.col(free[static_cast<std::size_t>(k)]);
+    constraintJacobian(model, ws, q, free, b, B_free);
     partition.setConstraintJacobian(B_free);
   };
   constexpr int kMaxIterations = 50;

@@ -7,32 +7,35 @@ namespace mbsopt {
 
 namespace {
 
-/// Exit frame relative to entry frame, all vectors in entry-frame axes.
+/// Motion of the exit frame relative to the entry frame, already turned into ground axes by the
+/// entry rotation R_e. Terms an element does not have stay zero and cost no product.
 template <class Scalar>
 struct RelativeMotion {
-  Matrix3<Scalar> rotation = Matrix3<Scalar>::Identity();
-  Vector3<Scalar> translation = Vector3<Scalar>::Zero();
+  Matrix3<Scalar> rotation;                                ///< absolute rotation of the exit frame, R_e R_rel
+  Vector3<Scalar> translation = Vector3<Scalar>::Zero();   ///< r_s/e
   Vector3<Scalar> angular_axis = Vector3<Scalar>::Zero();  ///< ∂ω_rel/∂q̇
   Vector3<Scalar> linear_axis = Vector3<Scalar>::Zero();   ///< ∂v_rel/∂q̇
-  Vector3<Scalar> angular_bias = Vector3<Scalar>::Zero();  ///< α_rel − angular_axis·q̈
-  Vector3<Scalar> linear_bias = Vector3<Scalar>::Zero();   ///< a_rel − linear_axis·q̈
+  Vector3<Scalar> angular_bias = Vector3<Scalar>::Zero();  ///< α_rel − angular_axis·q̈ (accelerations only)
+  Vector3<Scalar> linear_bias = Vector3<Scalar>::Zero();   ///< a_rel − linear_axis·q̈ (accelerations only)
 };
 
 template <class Scalar>
-RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Scalar& q, const Scalar& qd, bool rates) {
+RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Scalar>& Re, const Scalar& q,
+                                      const Scalar& qd, bool accelerations) {
   RelativeMotion<Scalar> m;
   std::visit(Overloaded{
                  [&](const Offset& e) {
-                   m.rotation = e.rotation.template cast<Scalar>();
-                   m.translation = e.translation.template cast<Scalar>();
+                   m.rotation = Re * e.rotation.template cast<Scalar>();
+                   m.translation = Re * e.translation.template cast<Scalar>();
                  },
                  [&](const RevoluteJoint& e) {
-                   m.rotation = axisRotation(e.axis, q);
-                   m.angular_axis = e.axis.template cast<Scalar>();
+                   m.rotation = Re * axisRotation(e.axis, q);
+                   m.angular_axis = Re * e.axis.template cast<Scalar>();
                  },
                  [&](const PrismaticJoint& e) {
-                   m.linear_axis = e.axis.template cast<Scalar>();
-                   m.translation = m.linear_axis * q;
+                   m.rotation = Re;
+                   m.translation = Re * (e.axis.template cast<Scalar>() * q);
+                   m.linear_axis = Re * e.axis.template cast<Scalar>();
                  },
                  [&](const CurveSliderJoint& e) {
                    // Exact geometry at the value of s, carried to first order in s for derivative types:
@@ -43,20 +46,37 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Scalar& q, 
                    const Scalar ds = q - Scalar(valueOf(q));
                    const Scalar heading = Scalar(point.heading) + Scalar(point.curvature) * ds;
                    const Scalar curvature = Scalar(point.curvature) + Scalar(point.curvature_derivative) * ds;
-                   const Vector3<Scalar> tangent(cos(heading), sin(heading), Scalar(0));
-                   const Vector3<Scalar> normal(-sin(heading), cos(heading), Scalar(0));
-                   const bool rotates = e.orientation == SliderOrientation::FollowTrack;
-                   m.translation = point.position.template cast<Scalar>() + point.tangent().template cast<Scalar>() * ds;
-                   m.linear_axis = tangent;
-                   if (rates) m.linear_bias = curvature * qd * qd * normal;  // a = t s̈ + κ ṡ² n
-                   if (!rotates) return;
-                   m.rotation = axisRotation(Eigen::Vector3d::UnitZ(), heading);
-                   m.angular_axis = Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
-                   if (rates)  // α = (κ s̈ + κ' ṡ²) z
-                     m.angular_bias = Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative) * qd * qd);
+                   const Scalar cos_heading = cos(heading), sin_heading = sin(heading);
+                   const Vector3<Scalar> tangent(cos_heading, sin_heading, Scalar(0));
+                   const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
+                   m.translation = Re * (point.position.template cast<Scalar>() + tangent_at_s.template cast<Scalar>() * ds);
+                   m.linear_axis = Re * tangent;
+                   if (accelerations) {  // a = t s̈ + κ ṡ² n
+                     const Vector3<Scalar> normal(-sin_heading, cos_heading, Scalar(0));
+                     m.linear_bias = Re * (curvature * qd * qd * normal);
+                   }
+                   if (e.orientation == SliderOrientation::Translate) {
+                     m.rotation = Re;
+                     return;
+                   }
+                   m.rotation = Re * axisRotation(Eigen::Vector3d::UnitZ(), heading);
+                   m.angular_axis = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
+                   if (accelerations)  // α = (κ s̈ + κ' ṡ²) z
+                     m.angular_bias = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative) * qd * qd);
                  }},
              kind);
   return m;
+}
+
+/// One element of the velocity recursion (20)-(21) at joint rate u, from the axes stored in ws, into
+/// the frame rates (angular, linear).
+void propagateRate(const KinematicElement& element, std::size_t k, double u, const Workspace<double>& ws,
+                   std::vector<Eigen::Vector3d>& angular, std::vector<Eigen::Vector3d>& linear) {
+  const auto e = static_cast<std::size_t>(element.entry);
+  const auto s = static_cast<std::size_t>(element.exit);
+  const Eigen::Vector3d& we = angular[e];
+  angular[s] = we + ws.motion_angular[k] * u;
+  linear[s] = linear[e] + we.cross(ws.position[s] - ws.position[e]) + ws.motion_linear[k] * u;
 }
 
 }  // namespace
@@ -75,16 +95,15 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
     const auto i = static_cast<Eigen::Index>(element.coordinate);
     const Scalar qi = active ? q[i] : Scalar(0);
     const Scalar vi = active && rates ? v[i] : Scalar(0);
-    const RelativeMotion<Scalar> rel = relativeMotion(element.kind, qi, vi, rates);
+    const RelativeMotion<Scalar> rel = relativeMotion(element.kind, ws.rotation[e], qi, vi, accelerations);
 
-    const Matrix3<Scalar>& Re = ws.rotation[e];
-    const Vector3<Scalar> r = Re * rel.translation;  // r_s/e in ground axes
-    ws.rotation[s] = Re * rel.rotation;
+    const Vector3<Scalar>& r = rel.translation;  // r_s/e in ground axes
+    ws.rotation[s] = rel.rotation;
     ws.position[s] = ws.position[e] + r;
     if (!rates) continue;
 
-    const Vector3<Scalar> Sw = Re * rel.angular_axis;
-    const Vector3<Scalar> Sv = Re * rel.linear_axis;
+    const Vector3<Scalar>& Sw = rel.angular_axis;
+    const Vector3<Scalar>& Sv = rel.linear_axis;
     ws.motion_angular[k] = Sw;
     ws.motion_linear[k] = Sv;
     const Vector3<Scalar> w_rel = Sw * vi;
@@ -95,9 +114,9 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
     if (!accelerations) continue;
 
     const Scalar ai = active ? a[i] : Scalar(0);
-    ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + Re * rel.angular_bias;
+    ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + rel.angular_bias;
     ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
-                         Scalar(2) * we.cross(v_rel) + Sv * ai + Re * rel.linear_bias;
+                         Scalar(2) * we.cross(v_rel) + Sv * ai + rel.linear_bias;
   }
 }
 
@@ -105,13 +124,23 @@ void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::Vector
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
-    const auto e = static_cast<std::size_t>(element.entry);
-    const auto s = static_cast<std::size_t>(element.exit);
-    const double vi = element.coordinate >= 0 ? v[element.coordinate] : 0.0;
-    const Eigen::Vector3d& we = ws.angular_velocity[e];
-    ws.angular_velocity[s] = we + ws.motion_angular[k] * vi;
-    ws.velocity[s] = ws.velocity[e] + we.cross(ws.position[s] - ws.position[e]) + ws.motion_linear[k] * vi;
+    propagateRate(element, k, element.coordinate >= 0 ? v[element.coordinate] : 0.0, ws, ws.angular_velocity,
+                  ws.velocity);
   }
+}
+
+void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std::vector<Eigen::Vector3d>& angular,
+                  std::vector<Eigen::Vector3d>& linear) {
+  // Every element lies after its entry frame, so the elements before the coordinate's own do not
+  // move: the recursion starts there, from frames at rest.
+  for (std::size_t f = 0; f < angular.size(); ++f) {
+    angular[f].setZero();
+    linear[f].setZero();
+  }
+  const auto& elements = model.elements();
+  for (auto k = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(coordinate)].element);
+       k < elements.size(); ++k)
+    propagateRate(elements[k], k, elements[k].coordinate == coordinate ? 1.0 : 0.0, ws, angular, linear);
 }
 
 template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "dynamics/model.hpp"
 #include "dynamics/workspace.hpp"
@@ -12,5 +13,8 @@ namespace mbsopt {
 /// Needs ws to hold rotations, positions and joint axes at q (forwardKinematics at Velocity level or
 /// above). Overwrites the acceleration and wrench buffers of ws. M is coordinateCount() square.
 void massMatrix(const Model& model, Workspace<double>& ws, Eigen::MatrixXd& M);
+/// The block of M on `coordinates` (rows and columns in that order, e.g. the free coordinates),
+/// computing only those columns. Same needs and effects on ws.
+void massMatrix(const Model& model, Workspace<double>& ws, const std::vector<int>& coordinates, Eigen::MatrixXd& M);
 
 }  // namespace mbsopt

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace mbsopt {
@@ -26,6 +27,12 @@ int equationCount(const CutKind& cut) {
   return std::visit(Overloaded{[](const SphericalCut&) { return 3; }, [](const RevoluteCut&) { return 5; },
                                [](const WeldCut&) { return 6; }},
                     cut);
+}
+
+std::vector<int> allCoordinates(const Model& model) {
+  std::vector<int> all(static_cast<std::size_t>(model.coordinateCount()));
+  std::iota(all.begin(), all.end(), 0);
+  return all;
 }
 
 Model::Model() { frames_.push_back({"ground", -1}); }

@@ -245,4 +245,7 @@ class Model {
 /// Number of closure equations of a cut joint.
 int equationCount(const CutKind& cut);
 
+/// 0, 1, …, coordinateCount() − 1: every coordinate, driven ones included.
+std::vector<int> allCoordinates(const Model& model);
+
 }  // namespace mbsopt

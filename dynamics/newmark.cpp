@@ -75,13 +75,8 @@ void NewmarkIntegrator::setDriven(double t) {
 }
 
 void NewmarkIntegrator::updateConstraintPartition() {
-  if (model_.constraintCount() == 0) {
-    B_free_.resize(0, static_cast<Eigen::Index>(free_.size()));
-  } else {
-    constraintJacobian(model_, ws_, q_, b_at_jacobian_, B_full_);
-    B_free_.resize(B_full_.rows(), static_cast<Eigen::Index>(free_.size()));
-    for (std::size_t k = 0; k < free_.size(); ++k) B_free_.col(static_cast<Eigen::Index>(k)) = B_full_.col(free_[k]);
-  }
+  if (model_.constraintCount() == 0) B_free_.resize(0, static_cast<Eigen::Index>(free_.size()));
+  else constraintJacobian(model_, ws_, q_, free_, b_at_jacobian_, B_free_);
   partition_.setConstraintJacobian(B_free_);
   reduced_dirty_ = true;
 }
@@ -105,10 +100,7 @@ void NewmarkIntegrator::updateIterationMatrix() {
 
 void NewmarkIntegrator::updateMassMatrix() {
   // Needs ws_ to hold the rotations, positions and joint axes at q_; leaves them in place.
-  massMatrix(model_, ws_, mass_full_);
-  for (std::size_t c = 0; c < free_.size(); ++c)
-    for (std::size_t r = 0; r < free_.size(); ++r)
-      mass_(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = mass_full_(free_[r], free_[c]);
+  massMatrix(model_, ws_, free_, mass_);
   J_ = mass_ + tangent_part_;
   ++stats_.mass_updates;
   reduced_dirty_ = true;

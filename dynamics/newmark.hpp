@@ -110,7 +110,7 @@ class NewmarkIntegrator {
   SvdPartition partition_;
   TangentMatrices tangents_;
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale
-  Eigen::MatrixXd mass_, mass_full_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
+  Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
 
   std::vector<int> free_;
   double t_ = 0.0;
@@ -121,7 +121,7 @@ class NewmarkIntegrator {
   Eigen::VectorXd a_newton_, a_newton_previous_, a_newton_before_;  ///< converged Newton accelerations before projection
   int newton_history_ = 0;
   Eigen::VectorXd f_, b_at_jacobian_, zero_, closure_, r_free_, da_, dlambda_, correction_;
-  Eigen::MatrixXd B_full_, B_free_;
+  Eigen::MatrixXd B_free_;
   bool reduced_dirty_ = true;  ///< V₂ᵀJV₂ must be refactored (J or B changed)
   double t0_ = 0.0;
   double closure_error_ = 0.0;

@@ -1,7 +1,22 @@
 #include "dynamics/svd_partition.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace mbsopt {
+
+namespace {
+
+/// ‖x‖₁ of column j of (LU)⁻¹, i.e. of the solution of LUx = e_j by forward (unit L) and back
+/// substitution on the packed factors `lu`; x is the buffer.
+double inverseColumnOneNorm(const Eigen::MatrixXd& lu, Eigen::Index j, Eigen::VectorXd& x) {
+  const Eigen::Index n = lu.rows();
+  x.setUnit(n, j);
+  for (Eigen::Index i = j + 1; i < n; ++i) x[i] -= lu.row(i).segment(j, i - j).dot(x.segment(j, i - j));
+  for (Eigen::Index i = n; i-- > 0;) x[i] = (x[i] - lu.row(i).tail(n - 1 - i).dot(x.tail(n - 1 - i))) / lu(i, i);
+  return x.lpNorm<1>();
+}
+
+}  // namespace
 
 void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   const Eigen::Index n = B.cols();
@@ -35,35 +50,43 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   j_v2_.noalias() = J * v2_;
   reduced_matrix_.noalias() = v2_.transpose() * j_v2_;
   reduced_.compute(reduced_matrix_);
-  rcond_ = reduced_.rcond();
+  rcond_ = reducedReciprocalCondition();
   return rcond_ > 1e-13 && std::isfinite(rcond_);
 }
 
+double SvdPartition::reducedReciprocalCondition() const {
+  // 1 / (‖A‖₁ ‖A⁻¹‖₁), exact (Eigen's estimator rcond() allocates on every call; these matrices are
+  // small). With PA = LU, A⁻¹ = U⁻¹L⁻¹P: P only reorders the columns, so ‖A⁻¹‖₁ = ‖U⁻¹L⁻¹‖₁.
+  const Eigen::MatrixXd& lu = reduced_.matrixLU();
+  double inverse_norm = 0.0;
+  for (Eigen::Index j = 0; j < lu.cols(); ++j) {
+    const double column_norm = inverseColumnOneNorm(lu, j, x_n_);
+    if (!std::isfinite(column_norm)) return 0.0;
+    inverse_norm = std::max(inverse_norm, column_norm);
+  }
+  return 1.0 / (reduced_matrix_.cwiseAbs().colwise().sum().maxCoeff() * inverse_norm);
+}
+
+// The products below use lazyProduct (coefficient by coefficient): the matrices have a few rows
+// and columns, where the blocked matrix-vector kernels cost more than the arithmetic.
 void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
                          Eigen::VectorXd& dmu) const {
-  x_r_.noalias() = u1_.transpose() * g;
-  x_r_ = -(inverse_s1_.asDiagonal() * x_r_);
-  dx.noalias() = v1_ * x_r_;
+  x_r_.noalias() = -(inverse_s1_.asDiagonal() * u1_.transpose().lazyProduct(g));
+  dx.noalias() = v1_.lazyProduct(x_r_);
   if (v2_.cols() > 0) {
-    work_ = r;
-    work_.noalias() += J_ * dx;
-    x_n_.noalias() = v2_.transpose() * work_;
-    x_n_ = -x_n_;
-    x_n_ = reduced_.solve(x_n_);
-    dx.noalias() += v2_ * x_n_;
+    work_.noalias() = r + J_.lazyProduct(dx);
+    reduced_rhs_.noalias() = -v2_.transpose().lazyProduct(work_);
+    x_n_ = reduced_.solve(reduced_rhs_);  // not in place: that would allocate a permutation mask
+    dx.noalias() += v2_.lazyProduct(x_n_);
   }
-  work_ = r;
-  work_.noalias() += J_ * dx;
-  x_r_.noalias() = v1_.transpose() * work_;
-  x_r_ = inverse_s1_.asDiagonal() * x_r_;
-  dmu.noalias() = u1_ * x_r_;
-  dmu = -dmu;
+  work_.noalias() = r + J_.lazyProduct(dx);
+  x_r_.noalias() = inverse_s1_.asDiagonal() * v1_.transpose().lazyProduct(work_);
+  dmu.noalias() = -u1_.lazyProduct(x_r_);
 }
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
-  x_r_.noalias() = u1_.transpose() * c;
-  x_r_ = inverse_s1_.asDiagonal() * x_r_;
-  dx.noalias() = v1_ * x_r_;
+  x_r_.noalias() = inverse_s1_.asDiagonal() * u1_.transpose().lazyProduct(c);
+  dx.noalias() = v1_.lazyProduct(x_r_);
 }
 
 }  // namespace mbsopt

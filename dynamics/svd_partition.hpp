@@ -22,7 +22,7 @@ class SvdPartition {
   /// SVD of B (m × n, m may be 0). Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular (reciprocal condition
-  /// number below 1e-13). Needs setConstraintJacobian first.
+  /// number in the 1-norm below 1e-13). Needs setConstraintJacobian first.
   bool setIterationMatrix(const Eigen::MatrixXd& J);
 
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
@@ -37,6 +37,8 @@ class SvdPartition {
   double reducedConditionEstimate() const { return rcond_; }
 
  private:
+  double reducedReciprocalCondition() const;
+
   double threshold_;
   int rank_ = 0;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd_;
@@ -46,7 +48,7 @@ class SvdPartition {
   Eigen::MatrixXd J_;
   Eigen::MatrixXd j_v2_, reduced_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
-  mutable Eigen::VectorXd x_r_, x_n_, work_;  // solve() buffers, so that a solve allocates nothing
+  mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of solve() and the condition number: no allocation
   double rcond_ = 0.0;
 };
 

@@ -54,21 +54,23 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
   }
 }
 
+void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
+                        const std::vector<int>& columns, Eigen::VectorXd& b, Eigen::MatrixXd& B) {
+  B.resize(model.constraintCount(), static_cast<Eigen::Index>(columns.size()));
+  thread_local Eigen::VectorXd rest, column;
+  rest.setZero(model.coordinateCount());
+  forwardKinematics(model, ws, q, rest, rest, KinematicsLevel::Velocity);  // rotations, positions, joint axes
+  closureEquations(model, ws, Derivative::Position, b);
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    unitRatePass(model, ws, columns[c], ws.angular_velocity, ws.velocity);
+    closureEquations(model, ws, Derivative::Velocity, column);
+    B.col(static_cast<Eigen::Index>(c)) = column;
+  }
+}
+
 void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
                         Eigen::MatrixXd& B) {
-  const Eigen::Index n = model.coordinateCount();
-  B.resize(model.constraintCount(), n);
-  thread_local Eigen::VectorXd unit, column;
-  unit.setZero(n);
-  forwardKinematics(model, ws, q, unit, unit, KinematicsLevel::Velocity);  // rotations, positions, joint axes
-  closureEquations(model, ws, Derivative::Position, b);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    unit[j] = 1.0;
-    velocityPass(model, ws, unit);
-    closureEquations(model, ws, Derivative::Velocity, column);
-    B.col(j) = column;
-    unit[j] = 0.0;
-  }
+  constraintJacobian(model, ws, q, allCoordinates(model), b, B);
 }
 
 }  // namespace mbsopt

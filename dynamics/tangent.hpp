@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "dynamics/model.hpp"
 #include "dynamics/scalar.hpp"
@@ -26,5 +27,8 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
 /// dependence besides the coordinates, so column j of B is ḃ(q, q̇ = e_j) (one velocity pass each).
 void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
                         Eigen::MatrixXd& B);
+/// The same with only the columns of `columns`, in that order (the integrator's free coordinates).
+void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
+                        const std::vector<int>& columns, Eigen::VectorXd& b, Eigen::MatrixXd& B);
 
 }  // namespace mbsopt

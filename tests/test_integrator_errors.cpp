@@ -1,0 +1,121 @@
+// Failures are reported, never hidden (DESIGN.md §3): the integrator stops with an error naming the
+// time, the step, the residual norm and the element involved.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "dynamics/newmark.hpp"
+
+using namespace mbsopt;
+
+namespace {
+
+const Eigen::Vector3d kX = Eigen::Vector3d::UnitX(), kZ = Eigen::Vector3d::UnitZ();
+const Eigen::Matrix3d kInertia = 1e-2 * Eigen::Matrix3d::Identity();
+
+NewmarkSettings settings(double step, double end_time) {
+  NewmarkSettings s;
+  s.step = step;
+  s.end_time = end_time;
+  return s;
+}
+
+}  // namespace
+
+// The two points of a spring coincide: its direction u = d/|d| is 0/0 and the residual is NaN.
+TEST(IntegratorErrors, NaNInTheResidualNamesTheTimeStepAndElement) {
+  Model model;
+  const FrameIndex slider = model.addPrismatic("slider", Model::ground, kX);
+  model.addBody("block", slider, 1.0, Eigen::Vector3d::Zero(), kInertia);
+  model.addPointSpringDamper("spring", Model::ground, Eigen::Vector3d::Zero(), slider, Eigen::Vector3d::Zero(), 10.0,
+                             0.0, 1.0);
+  NewmarkIntegrator integrator(model, settings(0.125, 2.0));
+  try {
+    integrator.simulate(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1));  // block on the anchor
+    FAIL() << "expected a SimulationError";
+  } catch (const SimulationError& error) {
+    EXPECT_TRUE(std::isnan(error.residual_norm));
+    EXPECT_EQ(error.step, 0);
+    EXPECT_EQ(error.time, 0.0);
+    EXPECT_EQ(error.element, "slider");
+    EXPECT_NE(std::string(error.what()).find("not finite"), std::string::npos) << error.what();
+  }
+}
+
+// A joint that carries no mass makes the iteration matrix singular on its direction.
+TEST(IntegratorErrors, SingularIterationMatrixIsReported) {
+  Model model;
+  const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
+  model.addOffset("arm", hinge, kX);  // no body anywhere beyond the joint
+  NewmarkIntegrator integrator(model, settings(1e-3, 0.01));
+  EXPECT_THROW(
+      {
+        try {
+          integrator.simulate(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1));
+        } catch (const SimulationError& error) {
+          EXPECT_NE(std::string(error.what()).find("singular"), std::string::npos) << error.what();
+          throw;
+        }
+      },
+      SimulationError);
+}
+
+// A stiff pendulum swinging fast through large angles cannot converge in one Newton iteration.
+TEST(IntegratorErrors, NewtonNonConvergenceSaysHowFarItGot) {
+  Model model;
+  const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
+  model.addBody("bob", hinge, 1.0, kX, kInertia);
+  model.setGravity(Eigen::Vector3d(0.0, -9.81, 0.0));
+  NewmarkSettings s = settings(0.05, 1.0);
+  s.max_newton_iterations = 1;
+  NewmarkIntegrator integrator(model, s);
+  Eigen::VectorXd v0(1);
+  v0 << 20.0;
+  try {
+    integrator.simulate(Eigen::VectorXd::Zero(1), v0);
+    FAIL() << "expected a SimulationError";
+  } catch (const SimulationError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("did not converge"), std::string::npos) << message;
+    EXPECT_NE(message.find("t = "), std::string::npos) << message;
+    EXPECT_NE(message.find("'hinge'"), std::string::npos) << message;
+    EXPECT_GT(error.residual_norm, 0.0);
+  }
+}
+
+TEST(IntegratorErrors, InvalidSettingsAndStatesAreRejected) {
+  Model model;
+  const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
+  model.addBody("bob", hinge, 1.0, kX, kInertia);
+  EXPECT_THROW(NewmarkIntegrator(model, settings(0.0, 1.0)), std::invalid_argument);
+  EXPECT_THROW(NewmarkIntegrator(model, settings(1e-3, -1.0)), std::invalid_argument);
+  EXPECT_THROW(NewmarkIntegrator(model, settings(std::numeric_limits<double>::quiet_NaN(), 1.0)),
+               std::invalid_argument);
+  NewmarkIntegrator integrator(model, settings(1e-3, 1.0));
+  EXPECT_THROW(integrator.initialize(Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)), std::invalid_argument);
+  Eigen::VectorXd nan(1);
+  nan << std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(integrator.initialize(nan, Eigen::VectorXd::Zero(1)), std::invalid_argument);
+}
+
+TEST(IntegratorErrors, ModelBuilderRejectsBadInput) {
+  Model model;
+  EXPECT_THROW(model.addRevolute("zero_axis", Model::ground, Eigen::Vector3d::Zero()), std::invalid_argument);
+  EXPECT_THROW(model.addRevolute("bad_parent", 7, kZ), std::invalid_argument);
+  const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
+  EXPECT_THROW(model.addRevolute("hinge", Model::ground, kZ), std::invalid_argument);  // duplicate name
+  EXPECT_THROW(model.addBody("massless", hinge, 0.0, Eigen::Vector3d::Zero(), kInertia), std::invalid_argument);
+  EXPECT_THROW(model.addBody("flat", hinge, 1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 1, 0).asDiagonal()),
+               std::invalid_argument);
+  Eigen::Matrix3d skew = kInertia;
+  skew(0, 1) = 1.0;
+  EXPECT_THROW(model.addBody("asymmetric", hinge, 1.0, Eigen::Vector3d::Zero(), skew), std::invalid_argument);
+  EXPECT_THROW(model.addSphericalCut("self", hinge, hinge), std::invalid_argument);
+  EXPECT_THROW(model.addJointSpringDamper("spring", "no_such_joint", 1.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(model.parameter("no_such.parameter"), std::invalid_argument);
+  model.addJointSpringDamper("spring", "hinge", 5.0, 1.0);
+  model.parameter("spring.k") = 7.0;
+  EXPECT_EQ(std::get<JointSpringDamper>(model.forces()[0]).stiffness, 7.0);
+}
