@@ -126,14 +126,15 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   // Consistent accelerations: [M Bᵀ; B 0][q̈; λ] = −[f(0, q̇, q); b̈(0)], exact in one solve since
   // f is linear in q̈ and λ, and b̈ in q̈.
   residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
-  if (!f_.allFinite()) fail("the initial residual is not finite", f_);
+  for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
+  if (!r_free_.allFinite()) fail("the initial residual is not finite", r_free_);
   tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, t_, tangents_);
   const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
   Eigen::MatrixXd mass(nf, nf);
   for (Eigen::Index r = 0; r < nf; ++r)
     for (Eigen::Index c = 0; c < nf; ++c)
       mass(r, c) = tangents_.mass(free_[static_cast<std::size_t>(r)], free_[static_cast<std::size_t>(c)]);
-  if (!partition_.setIterationMatrix(mass)) fail("the mass matrix is singular on the free directions", f_);
+  if (!partition_.setIterationMatrix(mass)) fail("the mass matrix is singular on the free directions", r_free_);
   reduced_dirty_ = true;  // the partition now holds M, not J
   projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
   residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);

@@ -11,10 +11,11 @@ template <class Scalar> using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
 template <class Scalar> using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
 template <class Scalar> using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
-/// Forward-mode automatic differentiation with a derivative vector that lives on the stack:
-/// up to kMaxAdDirections seeded directions per pass, no heap allocation per operation.
-inline constexpr int kMaxAdDirections = 32;
-using AdDerivatives = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAdDirections, 1>;
+/// Forward-mode automatic differentiation with a fixed-size derivative vector on the stack:
+/// kMaxAdDirections seeded directions per pass, no heap allocation per operation. Fixed size (not
+/// "dynamic up to a maximum") so that constants and seeded values always combine coherently.
+inline constexpr int kMaxAdDirections = 16;
+using AdDerivatives = Eigen::Matrix<double, kMaxAdDirections, 1>;
 using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;
 
 inline double valueOf(double x) { return x; }

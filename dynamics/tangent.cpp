@@ -15,7 +15,7 @@ VectorX<AdScalar> seeded(const Eigen::VectorXd& values, Eigen::Index offset, Eig
   VectorX<AdScalar> x(values.size());
   for (Eigen::Index j = 0; j < values.size(); ++j) {
     x[j].value() = values[j];
-    x[j].derivatives() = AdDerivatives::Zero(count);
+    x[j].derivatives().setZero();
     const Eigen::Index global = offset + j;
     if (global >= first && global < first + count) x[j].derivatives()[global - first] = 1.0;
   }
@@ -45,7 +45,7 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
       const AdDerivatives& d = f[i].derivatives();
       for (Eigen::Index j = 0; j < count; ++j) {
         const Eigen::Index input = first + j;
-        const double value = d.size() > j ? d[j] : 0.0;  // a row with no dependence has no derivatives
+        const double value = d[j];
         if (input < n) out.mass(i, input) = value;
         else if (input < 2 * n) out.damping(i, input - n) = value;
         else out.stiffness(i, input - 2 * n) = value;
