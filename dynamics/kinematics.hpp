@@ -21,10 +21,9 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
 /// Linear in v: with v = e_j it gives the j-th column of every frame's velocity Jacobian.
 void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& v);
 /// The velocity recursion for the unit rate e_coordinate alone, into the frame rates (angular, linear):
-/// into ws.angular_velocity/velocity it gives column `coordinate` of the velocity Jacobians; into
-/// ws.angular_acceleration/acceleration, the frame accelerations of q̈ = e_coordinate with every
-/// velocity term removed (the mass matrix's unit-acceleration pass). Skips the elements before the
-/// coordinate's own, which it cannot move. Needs the rotations, positions and joint axes in ws.
+/// into ws.angular_velocity/velocity it gives column `coordinate` of the velocity Jacobians. Skips
+/// the elements before the coordinate's own, which it cannot move. Needs the rotations, positions
+/// and joint axes in ws.
 void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std::vector<Eigen::Vector3d>& angular,
                   std::vector<Eigen::Vector3d>& linear);
 

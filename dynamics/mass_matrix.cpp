@@ -1,69 +1,124 @@
 #include "dynamics/mass_matrix.hpp"
 
-#include "dynamics/kinematics.hpp"
-
 namespace mbsopt {
 
 namespace {
 
-/// World-axes centre of mass and inertia of each body at the rotations in ws, shared by all columns.
-struct BodyInertia {
-  std::vector<Eigen::Vector3d> centre;
-  std::vector<Eigen::Matrix3d> inertia;
-
-  void update(const Model& model, const Workspace<double>& ws) {
-    centre.resize(model.bodies().size());
-    inertia.resize(model.bodies().size());
-    for (std::size_t b = 0; b < model.bodies().size(); ++b) {
-      const Body& body = model.bodies()[b];
-      const Eigen::Matrix3d& R = ws.rotation[static_cast<std::size_t>(body.frame)];
-      centre[b] = R * body.centre_of_mass;
-      inertia[b] = R * body.inertia * R.transpose();
-    }
-  }
+/// Mass, first moment and rotational inertia of a set of bodies about a frame's origin, in ground
+/// axes: for a point mass m at r from the origin, first_moment = m r and rotational = m (|r|² 1 − r rᵀ).
+struct CompositeInertia {
+  double mass = 0.0;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotational = Eigen::Matrix3d::Zero();
 };
 
-/// Inertia wrenches of the bodies at the frame accelerations in ws, then the backward recursion
-/// (22)-(23) and the residual rows (24): the generalised forces of every coordinate.
-void inertiaForces(const Model& model, Workspace<double>& ws, const BodyInertia& bodies, Eigen::VectorXd& forces) {
-  for (std::size_t k = 0; k < ws.force.size(); ++k) {
-    ws.force[k].setZero();
-    ws.moment[k].setZero();
-  }
-  for (std::size_t b = 0; b < model.bodies().size(); ++b) {
-    const Body& body = model.bodies()[b];
-    const auto k = static_cast<std::size_t>(body.frame);
-    const Eigen::Vector3d& c = bodies.centre[b];
-    const Eigen::Vector3d& alpha = ws.angular_acceleration[k];
-    const Eigen::Vector3d force = body.mass * (ws.acceleration[k] + alpha.cross(c));
-    ws.force[k] += force;
-    ws.moment[k] += bodies.inertia[b] * alpha + c.cross(force);
+/// Force and moment about `point`, all in ground axes.
+struct Wrench {
+  Eigen::Vector3d force;
+  Eigen::Vector3d moment;
+  Eigen::Vector3d point;
+};
+
+/// Adds `beyond`, taken about a point at offset d from the origin of `composite`, to `composite`.
+/// Parallel-axis theorem (every r becomes r + d): h += m d, and with u = h + m d / 2,
+/// I += 2 (u·d) 1 − u dᵀ − d uᵀ (= 2 (h·d) 1 − h dᵀ − d hᵀ + m (|d|² 1 − d dᵀ)).
+void addShifted(const CompositeInertia& beyond, const Eigen::Vector3d& d, CompositeInertia& composite) {
+  composite.mass += beyond.mass;
+  composite.first_moment += beyond.first_moment;
+  composite.rotational += beyond.rotational;
+  if (d.isZero(0.0)) return;  // same origin: a revolute joint, a body centred on its frame
+  const Eigen::Vector3d u = beyond.first_moment + 0.5 * beyond.mass * d;
+  const Eigen::Matrix3d u_d = u * d.transpose();
+  composite.first_moment += beyond.mass * d;
+  composite.rotational -= u_d + u_d.transpose();
+  composite.rotational.diagonal().array() += 2.0 * u.dot(d);
+}
+
+/// Adds a body to the composite inertia of its frame (rotation R): its own inertia, in ground axes
+/// about its centre of mass, shifted to the frame's origin.
+void addBody(const Body& body, const Eigen::Matrix3d& R, CompositeInertia& composite) {
+  const CompositeInertia about_centre{body.mass, Eigen::Vector3d::Zero(), R * body.inertia * R.transpose()};
+  addShifted(about_centre, R * body.centre_of_mass, composite);
+}
+
+/// The composite inertia of every frame: the bodies on it and on every frame beyond it, about its
+/// origin. One backward sweep: the elements are in topological order, so all the elements leaving
+/// a frame come after the one entering it.
+void compositeInertias(const Model& model, const Workspace<double>& ws, std::vector<CompositeInertia>& composites) {
+  composites.assign(static_cast<std::size_t>(model.frameCount()), CompositeInertia{});
+  for (const Body& body : model.bodies()) {
+    const auto f = static_cast<std::size_t>(body.frame);
+    addBody(body, ws.rotation[f], composites[f]);
   }
   const auto& elements = model.elements();
   for (std::size_t k = elements.size(); k-- > 0;) {
-    const KinematicElement& element = elements[k];
-    const auto e = static_cast<std::size_t>(element.entry), s = static_cast<std::size_t>(element.exit);
-    if (element.coordinate >= 0)
-      forces[element.coordinate] = ws.motion_linear[k].dot(ws.force[s]) + ws.motion_angular[k].dot(ws.moment[s]);
-    ws.force[e] += ws.force[s];
-    ws.moment[e] += ws.moment[s] + (ws.position[s] - ws.position[e]).cross(ws.force[s]);
+    const auto e = static_cast<std::size_t>(elements[k].entry), s = static_cast<std::size_t>(elements[k].exit);
+    addShifted(composites[s], ws.position[s] - ws.position[e], composites[e]);
+  }
+}
+
+/// IC S: the rate of momentum of the composite inertia IC of element k's exit frame when the joint
+/// accelerates at unit rate from rest, S = (motion_angular, motion_linear):
+/// f = m v̇ + ω̇ × h, n = I ω̇ + h × v̇ about the exit origin.
+Wrench unitAccelerationWrench(const CompositeInertia& composite, const Workspace<double>& ws, std::size_t k,
+                              std::size_t exit) {
+  const Eigen::Vector3d& w = ws.motion_angular[k];
+  const Eigen::Vector3d& v = ws.motion_linear[k];
+  const Eigen::Vector3d& h = composite.first_moment;
+  return {composite.mass * v + w.cross(h), composite.rotational * w + h.cross(v), ws.position[exit]};
+}
+
+/// Sᵀ w: the generalised force of a wrench on the joint of element k, whose axes S are taken at
+/// its exit origin.
+double generalisedForce(const Wrench& wrench, const Workspace<double>& ws, std::size_t k, std::size_t exit) {
+  const Eigen::Vector3d moment = wrench.moment + (wrench.point - ws.position[exit]).cross(wrench.force);
+  return ws.motion_angular[k].dot(moment) + ws.motion_linear[k].dot(wrench.force);
+}
+
+/// -1 for the coordinates not in `coordinates`, the position in it for the others.
+void subsetPositions(const Model& model, const std::vector<int>& coordinates, std::vector<int>& position) {
+  position.assign(static_cast<std::size_t>(model.coordinateCount()), -1);
+  for (std::size_t c = 0; c < coordinates.size(); ++c)
+    position[static_cast<std::size_t>(coordinates[c])] = static_cast<int>(c);
+}
+
+/// The element whose exit frame is the entry of element k; -1 for an element leaving the ground.
+int parentElement(const Model& model, int k) {
+  return model.frames()[static_cast<std::size_t>(model.elements()[static_cast<std::size_t>(k)].entry)].element;
+}
+
+/// Column c of M (the joint of element i) and, by symmetry, row c: S_jᵀ IC_i S_i for the joints j
+/// from element i to the ground whose coordinate is requested (`position` ≥ 0).
+void fillColumnAndRow(const Model& model, const Workspace<double>& ws, const std::vector<CompositeInertia>& composites,
+                      const std::vector<int>& position, int i, Eigen::Index c, Eigen::MatrixXd& M) {
+  const auto& elements = model.elements();
+  const auto moved = static_cast<std::size_t>(elements[static_cast<std::size_t>(i)].exit);
+  const Wrench wrench = unitAccelerationWrench(composites[moved], ws, static_cast<std::size_t>(i), moved);
+  for (int j = i; j >= 0; j = parentElement(model, j)) {
+    const KinematicElement& joint = elements[static_cast<std::size_t>(j)];
+    const int r = joint.coordinate >= 0 ? position[static_cast<std::size_t>(joint.coordinate)] : -1;
+    if (r >= 0)
+      M(r, c) = M(c, r) = generalisedForce(wrench, ws, static_cast<std::size_t>(j), static_cast<std::size_t>(joint.exit));
   }
 }
 
 }  // namespace
 
+// Composite Rigid Body Algorithm (Featherstone, Rigid Body Dynamics Algorithms, 2008, ch. 6). The joint of
+// element i moves only what lies beyond it, so M(i, j) = S_jᵀ IC_i S_i for every joint j on the path
+// from element i to the ground (i included), IC_i being the composite inertia beyond i, and
+// M(i, j) = 0 when neither joint is on the other's path. One backward sweep for the IC, then one
+// walk to the ground per requested column.
 void massMatrix(const Model& model, Workspace<double>& ws, const std::vector<int>& coordinates, Eigen::MatrixXd& M) {
+  thread_local std::vector<CompositeInertia> composites;
+  thread_local std::vector<int> position;  // of each coordinate in `coordinates`, or -1
+  compositeInertias(model, ws, composites);
+  subsetPositions(model, coordinates, position);
   const auto n = static_cast<Eigen::Index>(coordinates.size());
-  M.resize(n, n);
-  thread_local BodyInertia bodies;
-  thread_local Eigen::VectorXd column;
-  bodies.update(model, ws);
-  column.resize(model.coordinateCount());
+  M.setZero(n, n);
   for (Eigen::Index c = 0; c < n; ++c) {
-    // Frame accelerations caused by q̈_j = 1 alone.
-    unitRatePass(model, ws, coordinates[static_cast<std::size_t>(c)], ws.angular_acceleration, ws.acceleration);
-    inertiaForces(model, ws, bodies, column);
-    for (Eigen::Index r = 0; r < n; ++r) M(r, c) = column[coordinates[static_cast<std::size_t>(r)]];
+    const int element = model.coordinates()[static_cast<std::size_t>(coordinates[static_cast<std::size_t>(c)])].element;
+    fillColumnAndRow(model, ws, composites, position, element, c, M);
   }
 }
 

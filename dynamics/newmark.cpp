@@ -21,6 +21,10 @@ std::string describe(const std::string& what, double time, long step, double res
 
 // Contraction rate of the modified Newton iteration above which the iteration matrix is refreshed.
 constexpr double kSlowContraction = 0.05;
+// Steps between two measurements of the Newton contraction rate, and the safety factor on that
+// rate when it is used to accept a first iterate.
+constexpr long kRateCheckInterval = 16;
+constexpr double kRateSafety = 10.0;
 
 
 }  // namespace
@@ -116,6 +120,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   t0_ = t0;
   step_count_ = 0;
   newton_history_ = 0;
+  contraction_ = 0.0;
   stats_ = {};
   q_ = q0;
   v_ = v0;
@@ -198,7 +203,15 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     if (!std::isfinite(increment)) fail("the Newton increment is not finite", r_free_);
     // Converged: the increment is below tolerance or the round-off floor, or it has stopped
     // shrinking within a few digits of that floor.
-    const bool small = increment <= std::max(settings_.newton_tolerance * (1.0 + largest), roundoff_floor);
+    const double target = std::max(settings_.newton_tolerance * (1.0 + largest), roundoff_floor);
+    if (k > 0) contraction_ = increment / previous;
+    // The first iterate is accepted when the contraction rate measured on a recent step says the
+    // next increment would already be below target (the convergence test of DASSL/IDA); the rate is
+    // measured again every kRateCheckInterval steps so that it cannot go stale.
+    const bool rate_known =
+        settings_.accept_by_contraction_rate && contraction_ > 0.0 && step_count_ % kRateCheckInterval != 0;
+    const bool small =
+        increment <= target || (k == 0 && rate_known && kRateSafety * contraction_ * increment <= target);
     const bool stagnant = k > 0 && increment <= 64.0 * roundoff_floor && increment > 0.2 * previous;
     if (small || stagnant) {
       for (int i : free_) {

@@ -23,6 +23,7 @@
 
 #include "dynamics/closure.hpp"
 #include "dynamics/kinematics.hpp"
+#include "dynamics/mass_matrix.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/residual.hpp"
 #include "dynamics/tangent.hpp"
@@ -107,6 +108,38 @@ Model randomSpatialChain(Random& rng) {
   const FrameIndex hinge = model.addOffset("hinge", body_frames[3], rng.vector(-0.3, 0.3), rng.rotation());
   const FrameIndex bearing = model.addOffset("bearing", Model::ground, rng.vector(-0.5, 0.5), rng.rotation());
   model.addRevoluteCut("hinge_cut", hinge, bearing, rng.obliqueAxis(), rng.obliqueAxis());
+  return model;
+}
+
+/// A tree with branches and no loop (7 + 2 coordinates): a trunk body on a revolute and a prismatic
+/// joint from the ground carries two chains whose elements are added interleaved (so the topological
+/// order is not a depth-first one), a third chain hangs from the massless frame between the trunk's
+/// two joints, and a second chain stands on the ground. Some bodies sit on offset frames.
+Model randomBranchedTree(Random& rng) {
+  Model model;
+  const auto body = [&](const std::string& name, FrameIndex frame) {
+    const double mass = rng.uniform(0.5, 3.0);
+    model.addBody(name + "_body", frame, mass, rng.vector(-0.25, 0.25), rng.inertia(mass));
+  };
+  const FrameIndex base = model.addOffset("base", Model::ground, rng.vector(-0.4, 0.4), rng.rotation());
+  const FrameIndex trunk_hinge = model.addRevolute("trunk_a", base, rng.obliqueAxis());
+  const FrameIndex trunk = model.addPrismatic("trunk_b", trunk_hinge, rng.obliqueAxis());
+  body("trunk", trunk);
+  FrameIndex left = model.addOffset("left_offset", trunk, rng.vector(-0.4, 0.4), rng.rotation());
+  FrameIndex right = model.addOffset("right_offset", trunk, rng.vector(-0.4, 0.4), rng.rotation());
+  left = model.addRevolute("left_a", left, rng.obliqueAxis());
+  right = model.addPrismatic("right_a", right, rng.obliqueAxis());
+  body("right_1", right);
+  left = model.addPrismatic("left_b", left, rng.obliqueAxis());
+  right = model.addRevolute("right_b", right, rng.obliqueAxis());
+  body("left", model.addOffset("left_centre", left, rng.vector(-0.4, 0.4), rng.rotation()));
+  body("right_2", right);
+  const FrameIndex side = model.addRevolute("side", trunk_hinge, rng.obliqueAxis());
+  body("side", model.addOffset("side_centre", side, rng.vector(-0.4, 0.4), rng.rotation()));
+  const FrameIndex other = model.addRevolute("other_a", Model::ground, rng.obliqueAxis());
+  body("other_1", other);
+  body("other_2", model.addPrismatic("other_b", other, rng.obliqueAxis()));
+  model.setGravity(9.81 * rng.obliqueAxis());
   return model;
 }
 
@@ -265,6 +298,36 @@ TEST_F(TangentMatricesTest, AccelerationClosureIsJacobianTimesAccelerationPlusIt
   const Eigen::MatrixXd B_rate = (jacobianAt(path(tau)) - jacobianAt(path(-tau))) / (2.0 * tau);
   const Eigen::VectorXd expected = jacobianAt(q_) * a_ + B_rate * v_;
   expectRelativelyClose(closureAt(q_, Derivative::Acceleration), expected, kFdTolerance, "b̈ vs B q̈ + Ḃ q̇");
+}
+
+TEST_F(TangentMatricesTest, CompositeRigidBodyMassMatrixEqualsTheAdMass) {
+  // The CRBA mass matrix, all coordinates and a block on an unordered subset, against the AD mass,
+  // on the fixture's chain and on a branched tree.
+  const auto expectEqualsAdMass = [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                     const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
+                                     const std::vector<int>& subset, const std::string& what) {
+    Workspace<AdScalar> ad_ws(model);
+    TangentMatrices tangents;
+    tangentMatrices(model, ad_ws, q, v, a, lambda, kTime, tangents);
+    Workspace<double> ws(model);
+    forwardKinematics(model, ws, q, v, a, KinematicsLevel::Velocity);
+    Eigen::MatrixXd M, block;
+    massMatrix(model, ws, M);
+    massMatrix(model, ws, subset, block);
+    expectRelativelyClose(M, tangents.mass, kIdentityTolerance, what + ": CRBA M vs AD M");
+    expectRelativelyClose(block, tangents.mass(subset, subset), kIdentityTolerance, what + ": CRBA block vs AD block",
+                          maxAbs(tangents.mass));
+  };
+  expectEqualsAdMass(model_, q_, v_, a_, lambda_, {7, 2, 11, 4, 0, 9}, "spatial chain");
+
+  Random rng(20240612u);
+  const Model tree = randomBranchedTree(rng);
+  ASSERT_EQ(tree.coordinateCount(), 9);
+  const Eigen::Index n = tree.coordinateCount();
+  const Eigen::VectorXd q = rng.vector(n, -1.0, 1.0), v = rng.vector(n, -2.0, 2.0), a = rng.vector(n, -5.0, 5.0);
+  const std::vector<int> subset = {tree.coordinate("right_b"), tree.coordinate("left_a"), tree.coordinate("side"),
+                                   tree.coordinate("other_b"), tree.coordinate("trunk_a")};
+  expectEqualsAdMass(tree, q, v, a, Eigen::VectorXd(), subset, "branched tree");
 }
 
 }  // namespace
