@@ -15,13 +15,13 @@ struct RelativeMotion {
   Vector3<Scalar> translation = Vector3<Scalar>::Zero();   ///< r_s/e
   Vector3<Scalar> angular_axis = Vector3<Scalar>::Zero();  ///< ∂ω_rel/∂q̇
   Vector3<Scalar> linear_axis = Vector3<Scalar>::Zero();   ///< ∂v_rel/∂q̇
-  Vector3<Scalar> angular_bias = Vector3<Scalar>::Zero();  ///< α_rel − angular_axis·q̈ (accelerations only)
-  Vector3<Scalar> linear_bias = Vector3<Scalar>::Zero();   ///< a_rel − linear_axis·q̈ (accelerations only)
+  Vector3<Scalar> angular_bias = Vector3<Scalar>::Zero();  ///< (α_rel − angular_axis·q̈)/q̇²
+  Vector3<Scalar> linear_bias = Vector3<Scalar>::Zero();   ///< (a_rel − linear_axis·q̈)/q̇²
 };
 
 template <class Scalar>
 RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Scalar>& Re, const Scalar& q,
-                                      const Scalar& qd, bool accelerations) {
+                                      bool rates) {
   RelativeMotion<Scalar> m;
   std::visit(Overloaded{
                  [&](const Offset& e) {
@@ -51,9 +51,9 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                    const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
                    m.translation = Re * (point.position.template cast<Scalar>() + tangent_at_s.template cast<Scalar>() * ds);
                    m.linear_axis = Re * tangent;
-                   if (accelerations) {  // a = t s̈ + κ ṡ² n
+                   if (rates) {  // a = t s̈ + κ ṡ² n
                      const Vector3<Scalar> normal(-sin_heading, cos_heading, Scalar(0));
-                     m.linear_bias = Re * (curvature * qd * qd * normal);
+                     m.linear_bias = Re * (curvature * normal);
                    }
                    if (e.orientation == SliderOrientation::Translate) {
                      m.rotation = Re;
@@ -61,8 +61,8 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                    }
                    m.rotation = Re * axisRotation(Eigen::Vector3d::UnitZ(), heading);
                    m.angular_axis = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
-                   if (accelerations)  // α = (κ s̈ + κ' ṡ²) z
-                     m.angular_bias = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative) * qd * qd);
+                   if (rates)  // α = (κ s̈ + κ' ṡ²) z
+                     m.angular_bias = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative));
                  }},
              kind);
   return m;
@@ -82,9 +82,27 @@ void propagateRate(const KinematicElement& element, std::size_t k, double u, con
 }  // namespace
 
 template <class Scalar>
-void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                       const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level) {
-  const bool rates = level != KinematicsLevel::Position;
+void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    const Scalar qi = element.coordinate >= 0 ? q[element.coordinate] : Scalar(0);
+    const RelativeMotion<Scalar> rel = relativeMotion(element.kind, ws.rotation[e], qi, axes);
+    ws.rotation[s] = rel.rotation;
+    ws.position[s] = ws.position[e] + rel.translation;
+    if (!axes) continue;
+    ws.motion_angular[k] = rel.angular_axis;
+    ws.motion_linear[k] = rel.linear_axis;
+    ws.bias_angular[k] = rel.angular_bias;
+    ws.bias_linear[k] = rel.linear_bias;
+  }
+}
+
+template <class Scalar>
+void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                KinematicsLevel level) {
   const bool accelerations = level == KinematicsLevel::Acceleration;
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
@@ -92,42 +110,32 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
     const auto e = static_cast<std::size_t>(element.entry);
     const auto s = static_cast<std::size_t>(element.exit);
     const bool active = element.coordinate >= 0;
-    const auto i = static_cast<Eigen::Index>(element.coordinate);
-    const Scalar qi = active ? q[i] : Scalar(0);
-    const Scalar vi = active && rates ? v[i] : Scalar(0);
-    const RelativeMotion<Scalar> rel = relativeMotion(element.kind, ws.rotation[e], qi, vi, accelerations);
-
-    const Vector3<Scalar>& r = rel.translation;  // r_s/e in ground axes
-    ws.rotation[s] = rel.rotation;
-    ws.position[s] = ws.position[e] + r;
-    if (!rates) continue;
-
-    const Vector3<Scalar>& Sw = rel.angular_axis;
-    const Vector3<Scalar>& Sv = rel.linear_axis;
-    ws.motion_angular[k] = Sw;
-    ws.motion_linear[k] = Sv;
+    const Scalar vi = active ? v[element.coordinate] : Scalar(0);
+    const Vector3<Scalar> r = ws.position[s] - ws.position[e];  // r_s/e in ground axes
+    const Vector3<Scalar>& Sw = ws.motion_angular[k];
+    const Vector3<Scalar>& Sv = ws.motion_linear[k];
     const Vector3<Scalar> w_rel = Sw * vi;
     const Vector3<Scalar> v_rel = Sv * vi;
     const Vector3<Scalar>& we = ws.angular_velocity[e];
-    ws.angular_velocity[s] = we + w_rel;                  // (21)
+    ws.angular_velocity[s] = we + w_rel;                    // (21)
     ws.velocity[s] = ws.velocity[e] + we.cross(r) + v_rel;  // (20)
     if (!accelerations) continue;
-
-    const Scalar ai = active ? a[i] : Scalar(0);
-    ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + rel.angular_bias;
+    const Scalar ai = active ? a[element.coordinate] : Scalar(0);
+    const Scalar vi2 = vi * vi;
+    ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
     ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
-                         Scalar(2) * we.cross(v_rel) + Sv * ai + rel.linear_bias;
+                         Scalar(2) * we.cross(v_rel) + Sv * ai + ws.bias_linear[k] * vi2;
   }
 }
 
-void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& v) {
-  const auto& elements = model.elements();
-  for (std::size_t k = 0; k < elements.size(); ++k) {
-    const KinematicElement& element = elements[k];
-    propagateRate(element, k, element.coordinate >= 0 ? v[element.coordinate] : 0.0, ws, ws.angular_velocity,
-                  ws.velocity);
-  }
+template <class Scalar>
+void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                       const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level) {
+  const bool rates = level != KinematicsLevel::Position;
+  frameGeometry(model, ws, q, rates);
+  if (rates) frameRates(model, ws, v, a, level);
 }
+
 
 void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std::vector<Eigen::Vector3d>& angular,
                   std::vector<Eigen::Vector3d>& linear) {
@@ -143,6 +151,8 @@ void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std
     propagateRate(elements[k], k, elements[k].coordinate == coordinate ? 1.0 : 0.0, ws, angular, linear);
 }
 
+template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,
+                                 KinematicsLevel);
 template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -16,10 +16,12 @@ template <class Scalar>
 void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                        const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level);
 
-/// Frame velocities for joint rates v, reusing the rotations, positions and joint axes already in ws
-/// (forwardKinematics at Velocity level or above): ω_s = ω_e + S_ω v_i, v_s = v_e + ω_e × r + S_v v_i.
-/// Linear in v: with v = e_j it gives the j-th column of every frame's velocity Jacobian.
-void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& v);
+/// The rate stage of forwardKinematics alone: frame velocities (20)-(21) and, at Acceleration level,
+/// accelerations for joint rates v and accelerations a, reusing the rotations, positions, joint
+/// axes and biases already in ws (forwardKinematics at Velocity level or above, at the same q).
+template <class Scalar>
+void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                KinematicsLevel level);
 /// The velocity recursion for the unit rate e_coordinate alone, into the frame rates (angular, linear):
 /// into ws.angular_velocity/velocity it gives column `coordinate` of the velocity Jacobians. Skips
 /// the elements before the coordinate's own, which it cannot move. Needs the rotations, positions
@@ -27,6 +29,8 @@ void velocityPass(const Model& model, Workspace<double>& ws, const Eigen::Vector
 void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std::vector<Eigen::Vector3d>& angular,
                   std::vector<Eigen::Vector3d>& linear);
 
+extern template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
+                                        const VectorX<double>&, KinematicsLevel);
 extern template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                                const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 extern template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

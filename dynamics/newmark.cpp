@@ -230,7 +230,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
 }
 
 void NewmarkIntegrator::projectOntoConstraints() {
-  // Needs ws_ to hold the rotations, positions and joint axes at q (updateConstraintPartition does),
+  // Needs ws_ to hold the geometry at q (updateConstraintPartition leaves it there),
   // and the partition to hold M(q) as its matrix. Each correction Δ is the M-orthogonal projection
   // onto the constraint: min ½ΔᵀMΔ subject to B(x − Δ) + c₀ = 0, i.e. [M Bᵀ; B 0][−Δ; μ] = −[0; c];
   // the kinetic energy removed is then ½ΔᵀMΔ ≥ 0, never more.
@@ -239,12 +239,12 @@ void NewmarkIntegrator::projectOntoConstraints() {
   if (zero_.size() != nf) zero_.setZero(nf);
   const Eigen::VectorXd& zero = zero_;
   // Velocities: ḃ = B q̇ + ∂b/∂t = 0.
-  velocityPass(model_, ws_, v_);
+  frameRates(model_, ws_, v_, a_, KinematicsLevel::Velocity);
   closureEquations(model_, ws_, Derivative::Velocity, closure_);
   partition_.solve(zero, closure_, correction_, dlambda_);
   for (std::size_t k = 0; k < free_.size(); ++k) v_[free_[k]] += correction_[static_cast<Eigen::Index>(k)];
   // Accelerations: b̈ = 0.
-  forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Acceleration);
+  frameRates(model_, ws_, v_, a_, KinematicsLevel::Acceleration);
   closureEquations(model_, ws_, Derivative::Acceleration, closure_);
   partition_.solve(zero, closure_, correction_, dlambda_);
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += correction_[static_cast<Eigen::Index>(k)];

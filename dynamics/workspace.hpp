@@ -21,15 +21,19 @@ struct Workspace {
         force(rotation.size(), Vector3<Scalar>::Zero()),
         moment(rotation.size(), Vector3<Scalar>::Zero()),
         motion_angular(model.elements().size(), Vector3<Scalar>::Zero()),
-        motion_linear(model.elements().size(), Vector3<Scalar>::Zero()) {}
+        motion_linear(model.elements().size(), Vector3<Scalar>::Zero()),
+        bias_angular(model.elements().size(), Vector3<Scalar>::Zero()),
+        bias_linear(model.elements().size(), Vector3<Scalar>::Zero()) {}
 
   // Absolute kinematics of every frame, in ground axes (forward recursion).
   std::vector<Matrix3<Scalar>> rotation;
   std::vector<Vector3<Scalar>> position, angular_velocity, velocity, angular_acceleration, acceleration;
   // Wrench each frame must transmit to what lies beyond it, about its origin (backward recursion).
   std::vector<Vector3<Scalar>> force, moment;
-  // Per active element: ∂ω_s/e/∂q̇ and ∂v_s/e/∂q̇ in ground axes.
+  // Per active element: ∂ω_s/e/∂q̇ and ∂v_s/e/∂q̇ in ground axes, and the relative accelerations
+  // not proportional to q̈, per q̇² (a curve slider's κ n and κ' z).
   std::vector<Vector3<Scalar>> motion_angular, motion_linear;
+  std::vector<Vector3<Scalar>> bias_angular, bias_linear;
 };
 
 }  // namespace mbsopt
