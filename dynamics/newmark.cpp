@@ -133,13 +133,8 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
   for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
   if (!r_free_.allFinite()) fail("the initial residual is not finite", r_free_);
-  tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, t_, tangents_);
-  const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
-  Eigen::MatrixXd mass(nf, nf);
-  for (Eigen::Index r = 0; r < nf; ++r)
-    for (Eigen::Index c = 0; c < nf; ++c)
-      mass(r, c) = tangents_.mass(free_[static_cast<std::size_t>(r)], free_[static_cast<std::size_t>(c)]);
-  if (!partition_.setIterationMatrix(mass)) fail("the mass matrix is singular on the free directions", r_free_);
+  massMatrix(model_, ws_, free_, mass_);
+  if (!partition_.setIterationMatrix(mass_)) fail("the mass matrix is singular on the free directions", r_free_);
   reduced_dirty_ = true;  // the partition now holds M, not J
   projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
   residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
@@ -283,7 +278,7 @@ void NewmarkIntegrator::step() {
   t_ = t0_ + static_cast<double>(step_count_) * h;  // no round-off drift of the time grid
   setDriven(t_);
   if (!newton(false)) {
-    // Retry once from the same guess with a Jacobian evaluated at every iteration's start.
+    // Retry once from the same start with freshly evaluated tangent matrices.
     a_ = a_start_;
     lambda_ = lambda_start_;
     setDriven(t_);
