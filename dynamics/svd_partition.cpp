@@ -43,15 +43,12 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
 
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   J_ = J;
-  if (v2_.cols() == 0) {
-    rcond_ = 1.0;
-    return true;
-  }
+  if (v2_.cols() == 0) return true;
   j_v2_.noalias() = J * v2_;
   reduced_matrix_.noalias() = v2_.transpose() * j_v2_;
   reduced_.compute(reduced_matrix_);
-  rcond_ = reducedReciprocalCondition();
-  return rcond_ > 1e-13 && std::isfinite(rcond_);
+  const double reciprocal_condition = reducedReciprocalCondition();
+  return reciprocal_condition > 1e-13 && std::isfinite(reciprocal_condition);
 }
 
 double SvdPartition::reducedReciprocalCondition() const {

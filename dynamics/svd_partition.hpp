@@ -34,7 +34,6 @@ class SvdPartition {
   const Eigen::VectorXd& singularValues() const { return singular_values_; }
   /// V₂: an orthonormal basis of the directions the constraints leave free (the degrees of freedom).
   const Eigen::MatrixXd& freeDirections() const { return v2_; }
-  double reducedConditionEstimate() const { return rcond_; }
 
  private:
   double reducedReciprocalCondition() const;
@@ -49,7 +48,6 @@ class SvdPartition {
   Eigen::MatrixXd j_v2_, reduced_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
   mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of solve() and the condition number: no allocation
-  double rcond_ = 0.0;
 };
 
 }  // namespace mbsopt

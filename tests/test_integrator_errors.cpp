@@ -2,6 +2,7 @@
 // time, the step, the residual norm and the element involved.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -118,4 +119,21 @@ TEST(IntegratorErrors, ModelBuilderRejectsBadInput) {
   model.addJointSpringDamper("spring", "hinge", 5.0, 1.0);
   model.parameter("spring.k") = 7.0;
   EXPECT_EQ(std::get<JointSpringDamper>(model.forces()[0]).stiffness, 7.0);
+}
+
+// Every numeric parameter has a stable dotted name that reads and writes the model.
+TEST(ModelParameters, DottedNamesAddressEveryForceAndBodyParameter) {
+  Model model;
+  const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
+  model.addBody("bob", hinge, 2.0, kX, kInertia);
+  model.addJointSpringDamper("spring", "hinge", 5.0, 1.0, 0.25);
+  model.addPointSpringDamper("strut", Model::ground, kX, hinge, kX, 3.0, 0.5, 1.5);
+  const std::vector<std::string> names = model.parameterNames();
+  for (const char* name : {"gravity.z", "bob.mass", "bob.com_x", "bob.Izz", "spring.k", "spring.c", "spring.rest",
+                           "strut.k", "strut.c", "strut.rest_length"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  EXPECT_EQ(model.parameter("spring.rest"), 0.25);
+  EXPECT_EQ(model.parameter("strut.rest_length"), 1.5);
+  model.parameter("bob.mass") = 3.0;
+  EXPECT_EQ(model.bodies()[0].mass, 3.0);
 }
