@@ -56,6 +56,8 @@ AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd&
                              std::to_string(report.iterations) + " least-squares corrections");
   }
   report.position_correction = (q - q_start).cwiseAbs().maxCoeff();
+  forwardKinematics(model, ws, q, v, v, KinematicsLevel::Position);
+  checkWeldOrientations(model, ws);
   // Velocities: remove the part violating ḃ = 0 (minimum-norm correction).
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(q.size());
   forwardKinematics(model, ws, q, v, zero, KinematicsLevel::Velocity);

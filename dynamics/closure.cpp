@@ -1,19 +1,16 @@
 #include "dynamics/closure.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "dynamics/overloaded.hpp"
 
 namespace mbsopt {
 
 namespace {
-
-/// Two unit vectors that complete `axis` to an orthonormal basis (deterministic choice).
-std::array<Eigen::Vector3d, 2> perpendicularPair(const Eigen::Vector3d& axis) {
-  const Eigen::Vector3d helper = std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d e1 = axis.cross(helper).normalized();
-  return {e1, axis.cross(e1)};
-}
 
 /// Unit vector u fixed in frame a paired with unit vector w fixed in frame b: equation u·w = 0.
 struct Orthogonality {
@@ -104,6 +101,23 @@ void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const Vect
           ws.moment[ia] += torque;
           ws.moment[ib] -= torque;
         });
+  }
+}
+
+void checkWeldOrientations(const Model& model, const Workspace<double>& ws) {
+  for (const CutJoint& cut : model.cuts()) {
+    const auto* weld = std::get_if<WeldCut>(&cut.kind);
+    if (!weld) continue;
+    const double trace = (ws.rotation[static_cast<std::size_t>(weld->frame_a)].transpose() *
+                          ws.rotation[static_cast<std::size_t>(weld->frame_b)])
+                             .trace();
+    if (trace <= 1.0) {
+      const double angle = std::acos(std::clamp(0.5 * (trace - 1.0), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+      throw std::invalid_argument("the frames of the weld cut '" + cut.name + "' are turned by " +
+                                  std::to_string(angle) +
+                                  "° from each other: its equations hold there too, but the frames do not coincide; "
+                                  "start from a configuration closer to the intended one");
+    }
   }
 }
 

@@ -18,6 +18,12 @@ void closureEquations(const Model& model, const Workspace<Scalar>& ws, Derivativ
 template <class Scalar>
 void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda);
 
+/// The closure equations of a weld cut (three orthogonalities) also hold when frame b is turned by
+/// 180° (or 120° about a diagonal) relative to frame a. Throws std::invalid_argument naming the cut
+/// when the frames of a weld cut are turned by more than 90° from each other (trace(R_aᵀR_b) ≤ 1).
+/// Needs forwardKinematics at Position level.
+void checkWeldOrientations(const Model& model, const Workspace<double>& ws);
+
 extern template void closureEquations<double>(const Model&, const Workspace<double>&, Derivative,
                                               VectorX<double>&);
 extern template void closureEquations<AdScalar>(const Model&, const Workspace<AdScalar>&, Derivative,

@@ -38,14 +38,14 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                    m.linear_axis = Re * e.axis.template cast<Scalar>();
                  },
                  [&](const CurveSliderJoint& e) {
-                   // Exact geometry at the value of s, carried to first order in s for derivative types:
-                   // dr/ds = t, dψ/ds = κ, dκ/ds = κ'; piecewise κ'' = 0.
+                   // dr/ds = t to first order, as the heading and curvature (trackStateAt).
                    using std::cos;
                    using std::sin;
-                   const TrackPoint point = e.track->at(valueOf(q));
-                   const Scalar ds = q - Scalar(valueOf(q));
-                   const Scalar heading = Scalar(point.heading) + Scalar(point.curvature) * ds;
-                   const Scalar curvature = Scalar(point.curvature) + Scalar(point.curvature_derivative) * ds;
+                   const TrackState<Scalar> track = trackStateAt(*e.track, q);
+                   const TrackPoint& point = track.point;
+                   const Scalar& ds = track.offset;
+                   const Scalar& heading = track.heading;
+                   const Scalar& curvature = track.curvature;
                    const Scalar cos_heading = cos(heading), sin_heading = sin(heading);
                    const Vector3<Scalar> tangent(cos_heading, sin_heading, Scalar(0));
                    const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
@@ -79,8 +79,6 @@ void propagateRate(const KinematicElement& element, std::size_t k, double u, con
   linear[s] = linear[e] + we.cross(ws.position[s] - ws.position[e]) + ws.motion_linear[k] * u;
 }
 
-}  // namespace
-
 template <class Scalar>
 void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
   const auto& elements = model.elements();
@@ -99,6 +97,8 @@ void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scal
     ws.bias_linear[k] = rel.linear_bias;
   }
 }
+
+}  // namespace
 
 template <class Scalar>
 void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,

@@ -203,6 +203,8 @@ void Model::addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex f
 void Model::addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
                               std::shared_ptr<const Track> track, SliderOrientation orientation) {
   checkFrame(frame_a, name);
+  checkNewName(name);
+  checkNewName(name + "_closure");
   const FrameIndex track_point = addCurveSlider(name, base, std::move(track), orientation);
   if (orientation == SliderOrientation::FollowTrack) addWeldCut(name + "_closure", frame_a, track_point);
   else addSphericalCut(name + "_closure", frame_a, track_point);
@@ -284,17 +286,33 @@ void Model::forEachParameter(const std::function<void(const std::string&, double
   }
 }
 
-double& Model::parameter(std::string_view dotted_name) {
+double* Model::parameterSlot(std::string_view dotted_name) {
   double* found = nullptr;
   forEachParameter([&](const std::string& name, double& value) {
     if (name == dotted_name) found = &value;
   });
   if (!found) throw std::invalid_argument("no parameter named '" + std::string(dotted_name) + "'");
-  return *found;
+  return found;
 }
 
 double Model::parameter(std::string_view dotted_name) const {
-  return const_cast<Model*>(this)->parameter(dotted_name);
+  return *const_cast<Model*>(this)->parameterSlot(dotted_name);
+}
+
+void Model::setParameter(std::string_view dotted_name, double value) {
+  double* slot = parameterSlot(dotted_name);
+  if (!std::isfinite(value)) throw std::invalid_argument(std::string(dotted_name) + " must be finite");
+  const double previous = *slot;
+  *slot = value;
+  for (const Body& body : bodies_) {  // the same checks as addBody
+    const bool valid = body.mass > 0.0 &&
+                       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(body.inertia).eigenvalues().minCoeff() > 0.0;
+    if (!valid) {
+      *slot = previous;
+      throw std::invalid_argument(std::string(dotted_name) + " = " + std::to_string(value) + " leaves body '" +
+                                  body.name + "' without a positive mass and a positive-definite inertia");
+    }
+  }
 }
 
 std::vector<std::string> Model::parameterNames() const {

@@ -219,8 +219,10 @@ class Model {
   const std::string& coordinateOwner(int i) const;
 
   /// Named numeric parameters ("front_secondary.k", "carbody1.mass", "gravity.z", ...).
-  double& parameter(std::string_view dotted_name);
   double parameter(std::string_view dotted_name) const;
+  /// Sets a named parameter with the checks of the builder (finite; bodies keep a positive mass and a
+  /// positive-definite inertia); throws std::invalid_argument and leaves the model unchanged otherwise.
+  void setParameter(std::string_view dotted_name, double value);
   std::vector<std::string> parameterNames() const;
 
  private:
@@ -228,6 +230,7 @@ class Model {
   void checkFrame(FrameIndex frame, const std::string& who) const;
   void checkNewName(const std::string& name) const;
   void forEachParameter(const std::function<void(const std::string&, double&)>& visit);
+  double* parameterSlot(std::string_view dotted_name);
 
   std::vector<Frame> frames_;
   std::vector<KinematicElement> elements_;

@@ -1,6 +1,7 @@
 #include "dynamics/newmark.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "dynamics/closure.hpp"
@@ -51,6 +52,11 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
     throw std::invalid_argument("Newmark: beta must lie in (0, 1/2]");
   if (!(settings_.gamma > 0.0 && settings_.gamma < 1.0))
     throw std::invalid_argument("Newmark: gamma must lie in (0, 1)");
+  if (!(settings_.newton_tolerance > 0.0) || !std::isfinite(settings_.newton_tolerance))
+    throw std::invalid_argument("Newmark: the Newton tolerance must be positive and finite");
+  if (settings_.max_newton_iterations < 1) throw std::invalid_argument("Newmark: at least one Newton iteration");
+  if (!(settings_.svd_threshold > 0.0 && settings_.svd_threshold < 1.0))
+    throw std::invalid_argument("Newmark: the SVD threshold must lie in (0, 1)");
   const Eigen::Index n = model.coordinateCount();
   q_ = v_ = a_ = Eigen::VectorXd::Zero(n);
   r_free_.resize(static_cast<Eigen::Index>(free_.size()));
@@ -110,6 +116,25 @@ void NewmarkIntegrator::updateMassMatrix() {
   reduced_dirty_ = true;
 }
 
+void NewmarkIntegrator::checkInitialClosure() const {
+  // Needs updateConstraintPartition at q0 (b and the geometry in ws_).
+  if (model_.constraintCount() == 0) return;
+  const double error = b_at_jacobian_.cwiseAbs().maxCoeff();
+  if (!(error <= 1e-9 * (1.0 + q_.cwiseAbs().maxCoeff())))
+    throw std::invalid_argument("Newmark: the initial coordinates do not close the loops (closure error " +
+                                std::to_string(error) + "); assemble() them first");
+  checkWeldOrientations(model_, ws_);
+}
+
+void NewmarkIntegrator::evaluateResidual() {
+  try {
+    residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
+  } catch (const std::domain_error& degenerate) {  // an element whose force is undefined in this state
+    throw SimulationError(degenerate.what(), t_, step_count_, std::numeric_limits<double>::quiet_NaN(), "");
+  }
+  for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
+}
+
 void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, double t0) {
   const Eigen::Index n = model_.coordinateCount();
   if (q0.size() != n || v0.size() != n)
@@ -128,18 +153,17 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   lambda_.setZero(model_.constraintCount());
   setDriven(t0);
   updateConstraintPartition();
+  checkInitialClosure();
   // Consistent accelerations: [M Bᵀ; B 0][q̈; λ] = −[f(0, q̇, q); b̈(0)], exact in one solve since
   // f is linear in q̈ and λ, and b̈ in q̈.
-  residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
-  for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
+  evaluateResidual();
   if (!r_free_.allFinite()) fail("the initial residual is not finite", r_free_);
   massMatrix(model_, ws_, free_, mass_);
   if (!partition_.setIterationMatrix(mass_)) fail("the mass matrix is singular on the free directions", r_free_);
   reduced_dirty_ = true;  // the partition now holds M, not J
   projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
-  residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
+  evaluateResidual();
   closureEquations(model_, ws_, Derivative::Acceleration, closure_);
-  for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
   partition_.solve(r_free_, closure_, da_, dlambda_);
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += da_[static_cast<Eigen::Index>(k)];
   lambda_ += dlambda_;
@@ -165,8 +189,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
       q_[i] = q_pred_[i] + beta_h2 * a_[i];
       v_[i] = v_pred_[i] + gamma_h * a_[i];
     }
-    residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
-    for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
+    evaluateResidual();
     if (!r_free_.allFinite()) fail("the residual is not finite (NaN or infinity)", r_free_);
     closure_.resize(model_.constraintCount());
     if (model_.constraintCount() > 0) {
@@ -294,8 +317,9 @@ void NewmarkIntegrator::step() {
     // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
     updateConstraintPartition();
     updateMassMatrix();
-    partition_.setIterationMatrix(mass_);
+    if (!partition_.setIterationMatrix(mass_)) fail("the mass matrix is singular on the free directions", r_free_);
     projectOntoConstraints();
+    if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);
   } else {
     forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
   }
@@ -305,8 +329,10 @@ void NewmarkIntegrator::step() {
 
 Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                        const std::function<void(double)>& progress) {
+  // Enough steps to cover [0, end_time]: the last time point is end_time, or the first grid point
+  // after it when end_time is not a whole number of steps.
+  const long steps = std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
   initialize(q0, v0, 0.0);
-  const long steps = std::lround(settings_.end_time / settings_.step);
   const Eigen::Index n = model_.coordinateCount();
   Trajectory out;
   out.time.resize(steps + 1);

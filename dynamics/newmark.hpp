@@ -74,15 +74,19 @@ struct Trajectory {
 
 class NewmarkIntegrator {
  public:
+  /// The integrator keeps a reference to `model`, which must outlive it and stay unchanged.
   NewmarkIntegrator(const Model& model, NewmarkSettings settings);
+  NewmarkIntegrator(Model&& model, NewmarkSettings settings) = delete;
 
   /// Sets the state at t0: driven coordinates take their prescribed motion, velocities are projected
   /// onto the velocity constraints, and consistent accelerations and multipliers are computed.
-  /// q0 must already satisfy the closure equations (see assemble()).
+  /// q0 must already satisfy the closure equations, with weld cuts in their intended orientation
+  /// (see assemble()); otherwise std::invalid_argument.
   void initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, double t0 = 0.0);
   /// Advances one step of size settings.step.
   void step();
-  /// initialize + steps to end_time, storing every step. `progress(t)` is called after each step.
+  /// initialize + ⌈end_time/step⌉ steps (the grid covers [0, end_time]), storing every step.
+  /// `progress(t)` is called after each step.
   Trajectory simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                       const std::function<void(double)>& progress = {});
 
@@ -105,6 +109,8 @@ class NewmarkIntegrator {
   void updateConstraintPartition();
   void setDriven(double t);
   void projectOntoConstraints();
+  void checkInitialClosure() const;
+  void evaluateResidual();  ///< f_ and its free rows r_free_ at the current state
   void measureClosure();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
 

@@ -1,6 +1,8 @@
 #include "dynamics/residual.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
@@ -38,6 +40,8 @@ void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
   const Vector3<Scalar> d_rate =
       (ws.velocity[b] + ws.angular_velocity[b].cross(rb)) - (ws.velocity[a] + ws.angular_velocity[a].cross(ra));
   const Scalar length = sqrt(d.squaredNorm());
+  if (!(valueOf(length) > 1e-12 * (1.0 + std::abs(s.rest_length))))
+    throw std::domain_error("point spring-damper '" + s.name + "': its two points coincide, so its direction is undefined");
   const Vector3<Scalar> u = d / length;
   const Scalar tension = Scalar(s.stiffness) * (length - Scalar(s.rest_length)) + Scalar(s.damping) * u.dot(d_rate);
   const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched
@@ -59,10 +63,9 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   const Track& track = *std::get<CurveSliderJoint>(slider.kind).track;
   const auto base = static_cast<std::size_t>(slider.entry), frame = static_cast<std::size_t>(g.frame);
   const auto i = static_cast<Eigen::Index>(g.slider_coordinate);
-  const TrackPoint point = track.at(valueOf(q[i]));
-  const Scalar ds = q[i] - Scalar(valueOf(q[i]));  // carries derivatives with respect to s (see kinematics)
-  const Scalar heading = Scalar(point.heading) + Scalar(point.curvature) * ds;
-  const Scalar curvature = Scalar(point.curvature) + Scalar(point.curvature_derivative) * ds;
+  const TrackState<Scalar> state = trackStateAt(track, q[i]);
+  const Scalar& heading = state.heading;
+  const Scalar& curvature = state.curvature;
   const Vector3<Scalar> x = ws.rotation[base].transpose() * ws.rotation[frame].col(0);  // frame heading in base axes
   const Scalar c = cos(heading), s = sin(heading);
   const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]

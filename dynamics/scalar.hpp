@@ -2,6 +2,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cmath>
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -33,6 +35,14 @@ Matrix3<Scalar> axisRotation(const Eigen::Vector3d& axis, const Scalar& angle) {
       Scalar(-axis.y()), Scalar(axis.x()), Scalar(0);
   const Matrix3<Scalar> outer = (axis * axis.transpose()).template cast<Scalar>();
   return c * Matrix3<Scalar>::Identity() + (Scalar(1) - c) * outer + s * skew;
+}
+
+/// Two unit vectors e, f that complete the unit vector `axis` to a right-handed orthonormal basis
+/// (e, f, axis); a deterministic choice.
+inline std::array<Eigen::Vector3d, 2> perpendicularPair(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d helper = std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e = axis.cross(helper).normalized();
+  return {e, axis.cross(e)};
 }
 
 }  // namespace mbsopt

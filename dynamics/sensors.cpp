@@ -33,10 +33,7 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
           [&](const RelativeAngleSensor& s) -> Scalar {
             // Twist of R_aᵀR_b about the axis: angle of the image of a perpendicular e in the plane (e, axis×e).
             using std::atan2;
-            const Eigen::Vector3d helper =
-                std::abs(s.axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-            const Eigen::Vector3d e = s.axis.cross(helper).normalized();
-            const Eigen::Vector3d f = s.axis.cross(e);
+            const auto [e, f] = perpendicularPair(s.axis);
             const Matrix3<Scalar> relative =
                 ws.rotation[static_cast<std::size_t>(s.frame_a)].transpose() * ws.rotation[static_cast<std::size_t>(s.frame_b)];
             const Vector3<Scalar> image = relative * e.template cast<Scalar>();

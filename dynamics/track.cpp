@@ -42,6 +42,7 @@ Track& Track::arc(double radius, double angle) {
 }
 
 Track& Track::clothoid(double length, double curvature_end) {
+  if (!std::isfinite(curvature_end)) throw std::invalid_argument("Track::clothoid: the end curvature must be finite");
   append({SegmentType::Clothoid, length, endCurvature(segments_), curvature_end});
   return *this;
 }

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "dynamics/scalar.hpp"
+
 namespace mbsopt {
 
 /// Geometry of the track at one arc length, in the track's base frame (curve in its x-y plane).
@@ -17,6 +19,17 @@ struct TrackPoint {
 
   Eigen::Vector3d tangent() const;   ///< (cos ψ, sin ψ, 0)
   Eigen::Vector3d normal() const;    ///< (−sin ψ, cos ψ, 0), points to the left
+};
+
+/// Track geometry at arc length s for a scalar type that may carry derivatives: the exact values at
+/// the value of s, carried to first order in s (dψ/ds = κ, dκ/ds = κ', piecewise κ'' = 0), which is
+/// all a first-order derivative type needs. For double it is just the exact geometry.
+template <class Scalar>
+struct TrackState {
+  TrackPoint point;   ///< exact geometry at the value of s
+  Scalar offset;      ///< s − value(s): zero, with the derivatives of s
+  Scalar heading;     ///< ψ(s)
+  Scalar curvature;   ///< κ(s)
 };
 
 class Track {
@@ -59,5 +72,13 @@ class Track {
   std::vector<Segment> segments_;
   std::vector<SegmentStart> starts_;
 };
+
+template <class Scalar>
+TrackState<Scalar> trackStateAt(const Track& track, const Scalar& s) {
+  TrackState<Scalar> state{track.at(valueOf(s)), s - Scalar(valueOf(s)), Scalar(0), Scalar(0)};
+  state.heading = Scalar(state.point.heading) + Scalar(state.point.curvature) * state.offset;
+  state.curvature = Scalar(state.point.curvature) + Scalar(state.point.curvature_derivative) * state.offset;
+  return state;
+}
 
 }  // namespace mbsopt

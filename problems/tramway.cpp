@@ -1,6 +1,8 @@
 #include "problems/tramway.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace mbsopt {
 
@@ -23,9 +25,13 @@ Eigen::Matrix3d isotropic(double inertia) { return inertia * Eigen::Matrix3d::Id
 std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options) {
   using tramway::kRadius;
   const double turn = options.arc_angle;
+  const double Lt = options.transition_length;
+  if (!(turn > 0.0) || !std::isfinite(turn)) throw std::invalid_argument("tramway: the arc angle must be positive");
+  if (!(Lt >= 0.0 && Lt < kRadius * turn))
+    throw std::invalid_argument("tramway: the transition length must lie in [0, R·angle) = [0, " +
+                                std::to_string(kRadius * turn) + ") m so that the two clothoids leave an arc");
   auto track = std::make_shared<Track>();
   track->straight(tramway::kFirstStraight);
-  const double Lt = options.transition_length;
   if (Lt > 0.0) {
     // Each clothoid turns L_t / (2R); the arc keeps the rest of the turn.
     track->clothoid(Lt, 1.0 / kRadius).arc(kRadius, turn - Lt / kRadius).clothoid(Lt, 0.0);

@@ -70,7 +70,7 @@ class Random {
 };
 
 /// Six bodies in one spatial chain, two joints each (12 coordinates, so the AD of the 3n = 36
-/// inputs of the residual needs two passes of kMaxAdDirections = 32): revolute and prismatic joints
+/// inputs of the residual needs several passes of kMaxAdDirections): revolute and prismatic joints
 /// about random oblique axes behind offsets with random rotations; bodies with offset centres of
 /// mass and full inertia tensors; joint spring-dampers on every coordinate, a point spring-damper
 /// between bodies 1 and 4, gravity in a random direction. The loop is closed by a spherical cut
