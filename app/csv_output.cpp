@@ -5,12 +5,11 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "dynamics/sensors.hpp"
 
 namespace mbsopt {
 
-void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory) {
-  const Eigen::MatrixXd sensors = sensorHistory(model, trajectory);
+void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory,
+                        const Eigen::MatrixXd& sensors) {
   const std::string partial = path + ".partial";
   {
     std::ofstream out(partial);

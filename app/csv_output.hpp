@@ -8,6 +8,8 @@
 
 namespace mbsopt {
 
-void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory);
+/// `sensors`: sensorHistory(model, trajectory).
+void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory,
+                        const Eigen::MatrixXd& sensors);
 
 }  // namespace mbsopt

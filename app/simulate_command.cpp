@@ -56,8 +56,8 @@ void run(const SimulateOptions& options) {
   };
   const Trajectory trajectory = integrator.simulate(scene.q0, scene.v0, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!options.out.empty()) writeTrajectoryCsv(options.out, scene.model, trajectory);
   const Eigen::MatrixXd sensors = sensorHistory(scene.model, trajectory);
+  if (!options.out.empty()) writeTrajectoryCsv(options.out, scene.model, trajectory, sensors);
   for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
     Eigen::Index at = 0;
     const double peak = sensors.col(static_cast<Eigen::Index>(s)).cwiseAbs().maxCoeff(&at);

@@ -13,6 +13,9 @@ namespace mbsopt {
 AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd& v, double t, double tolerance,
                         double svd_threshold) {
   AssemblyReport report;
+  if (q.size() != model.coordinateCount() || v.size() != model.coordinateCount())
+    throw std::invalid_argument("assemble: the state has " + std::to_string(q.size()) + " coordinates, the model " +
+                                std::to_string(model.coordinateCount()));
   for (int i : model.drivenCoordinates()) {
     q[i] = model.coordinates()[static_cast<std::size_t>(i)].motion.value(t);
     v[i] = model.coordinates()[static_cast<std::size_t>(i)].motion.rate(t);
@@ -56,11 +59,11 @@ AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd&
                              std::to_string(report.iterations) + " least-squares corrections");
   }
   report.position_correction = (q - q_start).cwiseAbs().maxCoeff();
-  forwardKinematics(model, ws, q, v, v, KinematicsLevel::Position);
-  checkWeldOrientations(model, ws);
-  // Velocities: remove the part violating ḃ = 0 (minimum-norm correction).
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(q.size());
-  forwardKinematics(model, ws, q, v, zero, KinematicsLevel::Velocity);
+  checkWeldOrientations(model, ws);  // factor() left the geometry at q in ws
+  // Velocities: the minimum-norm correction onto ḃ = 0 in joint space, so the rates the user gave
+  // change as little as possible (the integrator's own projections use the mass metric instead,
+  // which removes the least kinetic energy; for a far-off input the two give different motions).
+  frameRates(model, ws, v, v, KinematicsLevel::Velocity);
   closureEquations(model, ws, Derivative::Velocity, b);
   partition.pseudoInverse(b, correction);
   for (Eigen::Index k = 0; k < nf; ++k) v[free[static_cast<std::size_t>(k)]] -= correction[k];

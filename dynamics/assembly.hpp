@@ -1,5 +1,6 @@
 // Assembly of an initial state onto the constraint manifold: least-squares (minimum-norm)
-// correction of the free coordinates through the SVD of B, by Gauss-Newton, then the velocities.
+// correction of the free coordinates through the SVD of B, by Gauss-Newton, then the velocities
+// (minimum-norm correction in joint space).
 #pragma once
 
 #include <Eigen/Core>

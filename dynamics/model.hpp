@@ -86,7 +86,8 @@ struct JointActuation {
 /// Guidance of a frame by a track: a torsional spring-damper about the track's binormal between the
 /// frame's heading and the track heading ψ(s) at a curve slider's arc length s (a bogie held by its
 /// wheels): τ = −k Δ − c Δ̇, Δ = heading(frame) − ψ(s), Δ̇ = ω_z − κ(s) ṡ. The generalised force on s
-/// is −κ τ (virtual work of the same potential and dissipation).
+/// is −κ τ (virtual work of the same potential and dissipation). The frame's heading is its x axis,
+/// taken in the plane of the track (a bogie frame whose x axis points forward).
 struct TrackGuidance {
   std::string name;
   FrameIndex frame;

@@ -82,6 +82,10 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
 template <class Scalar>
 void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, const VectorX<Scalar>& v,
               const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
+  const Eigen::Index n = model.coordinateCount();
+  if (q.size() != n || v.size() != n || a.size() != n || (lambda.size() != 0 && lambda.size() != model.constraintCount()))
+    throw std::invalid_argument("residual: q, q̇, q̈ need " + std::to_string(n) + " entries and λ 0 or " +
+                                std::to_string(model.constraintCount()));
   forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
     ws.force[k].setZero();
