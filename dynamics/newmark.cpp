@@ -171,10 +171,17 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   measureClosure();
 }
 
+void NewmarkIntegrator::applyNewmarkUpdate() {
+  const double h = settings_.step;
+  for (int i : free_) {  // (32)
+    q_[i] = q_pred_[i] + settings_.beta * h * h * a_[i];
+    v_[i] = v_pred_[i] + settings_.gamma * h * a_[i];
+  }
+}
+
 bool NewmarkIntegrator::newton(bool fresh_jacobian) {
   const double h = settings_.step;
   const double beta_h2 = settings_.beta * h * h;
-  const double gamma_h = settings_.gamma * h;
   const bool position_closure = settings_.closure == ClosureLevel::Position;
   Refresh refresh = fresh_jacobian || J_.size() == 0 ? Refresh::Tangents : Refresh::None;
   bool mass_refreshed = false;
@@ -185,10 +192,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
       model_.constraintCount() > 0 && position_closure ? 2.2e-16 * position_scale / beta_h2 : 0.0;
   double previous = 0.0;
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
-    for (int i : free_) {
-      q_[i] = q_pred_[i] + beta_h2 * a_[i];
-      v_[i] = v_pred_[i] + gamma_h * a_[i];
-    }
+    applyNewmarkUpdate();
     evaluateResidual();
     if (!r_free_.allFinite()) fail("the residual is not finite (NaN or infinity)", r_free_);
     closure_.resize(model_.constraintCount());
@@ -232,10 +236,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
         increment <= target || (k == 0 && rate_known && kRateSafety * contraction_ * increment <= target);
     const bool stagnant = k > 0 && increment <= 64.0 * roundoff_floor && increment > 0.2 * previous;
     if (small || stagnant) {
-      for (int i : free_) {
-        q_[i] = q_pred_[i] + beta_h2 * a_[i];
-        v_[i] = v_pred_[i] + gamma_h * a_[i];
-      }
+      applyNewmarkUpdate();
       return true;
     }
     // Slow contraction above round-off: the reused matrix is stale. Refresh M (cheap) first, and

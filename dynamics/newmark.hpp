@@ -110,7 +110,8 @@ class NewmarkIntegrator {
   void setDriven(double t);
   void projectOntoConstraints();
   void checkInitialClosure() const;
-  void evaluateResidual();  ///< f_ and its free rows r_free_ at the current state
+  void evaluateResidual();    ///< f_ and its free rows r_free_ at the current state
+  void applyNewmarkUpdate();  ///< q, q̇ of the free coordinates from q̈ and the predictors (32)
   void measureClosure();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
 
