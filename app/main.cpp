@@ -3,16 +3,22 @@
 #include <exception>
 #include <iostream>
 
+#include "app/parameters_command.hpp"
 #include "app/simulate_command.hpp"
+#include "problems/scene_file.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"mbsopt - simulate multibody systems (Newmark, relative coordinates, closed loops by SVD)"};
+  CLI::App app{"mbsopt - simulate multibody systems described in scene files (Newmark, relative coordinates, closed loops by SVD)"};
   app.require_subcommand(1);
   mbsopt::registerSimulateCommand(app);
+  mbsopt::registerParametersCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const mbsopt::SceneError& e) {  // "file:line:column: error: what", one line
+    std::cerr << e.what() << '\n';
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "mbsopt: error: " << e.what() << '\n';
     return 1;

@@ -48,15 +48,20 @@ AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd&
   report.closure_error = b.cwiseAbs().maxCoeff();
   if (!(report.closure_error <= std::max(tolerance, 1e-9))) {
     std::string names;
+    std::vector<int> open;
     Eigen::Index row = 0;
-    for (const CutJoint& cut : model.cuts()) {
-      const int rows = equationCount(cut.kind);
-      if (b.segment(row, rows).cwiseAbs().maxCoeff() > 1e-9) names += (names.empty() ? "" : ", ") + cut.name;
+    for (std::size_t c = 0; c < model.cuts().size(); ++c) {
+      const int rows = equationCount(model.cuts()[c].kind);
+      if (b.segment(row, rows).cwiseAbs().maxCoeff() > 1e-9) {
+        names += (names.empty() ? "" : ", ") + model.cuts()[c].name;
+        open.push_back(static_cast<int>(c));
+      }
       row += rows;
     }
-    throw std::runtime_error("the loop(s) closed by " + names + " cannot be assembled: closure error " +
-                             std::to_string(report.closure_error) + " m after " +
-                             std::to_string(report.iterations) + " least-squares corrections");
+    throw AssemblyError("the loop(s) closed by " + names + " cannot be assembled: closure error " +
+                            std::to_string(report.closure_error) + " m after " +
+                            std::to_string(report.iterations) + " least-squares corrections",
+                        std::move(open));
   }
   report.position_correction = (q - q_start).cwiseAbs().maxCoeff();
   checkWeldOrientations(model, ws);  // factor() left the geometry at q in ws

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "dynamics/model.hpp"
 
@@ -16,8 +19,19 @@ struct AssemblyReport {
   int iterations = 0;
 };
 
+/// A loop that cannot be closed: the cut joints whose equations stay violated.
+class AssemblyError : public std::runtime_error {
+ public:
+  AssemblyError(const std::string& what, std::vector<int> open_cuts)
+      : std::runtime_error(what), open_cuts_(std::move(open_cuts)) {}
+  const std::vector<int>& openCuts() const { return open_cuts_; }  ///< indices into Model::cuts()
+
+ private:
+  std::vector<int> open_cuts_;
+};
+
 /// Moves q (then v) onto b(q, t) = 0 (then ḃ = 0); driven coordinates take their prescribed
-/// motion at t. Throws std::runtime_error naming the cut joints that cannot be closed when the
+/// motion at t. Throws AssemblyError naming the cut joints that cannot be closed when the
 /// residual does not fall below `tolerance` (a loop that cannot be assembled).
 AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd& v, double t,
                         double tolerance = 1e-12, double svd_threshold = 1e-10);

@@ -21,6 +21,23 @@ void checkFinite(double value, const std::string& what) {
   if (!std::isfinite(value)) throw std::invalid_argument(what + " must be finite");
 }
 
+/// Empty when (mass, inertia) is a rigid body: positive mass, symmetric inertia with positive
+/// principal moments that satisfy the triangle inequalities I₁ ≤ I₂ + I₃ (the moments of a real
+/// mass distribution); otherwise what is wrong.
+std::string rigidBodyDefect(double mass, const Eigen::Vector3d& centre_of_mass, const Eigen::Matrix3d& inertia) {
+  if (!(mass > 0.0) || !std::isfinite(mass)) return "mass must be positive and finite";
+  if (!centre_of_mass.allFinite() || !inertia.allFinite()) return "centre of mass and inertia must be finite";
+  if ((inertia - inertia.transpose()).norm() > 1e-9 * std::max(1.0, inertia.norm()))
+    return "inertia tensor must be symmetric";
+  const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+  if (!(principal.minCoeff() > 0.0)) return "inertia tensor must be positive definite";
+  // Ascending order: only the largest can exceed the sum of the other two.
+  if (principal[2] > (principal[0] + principal[1]) * (1.0 + 1e-12))
+    return "principal moments of inertia violate the triangle inequality (largest " + std::to_string(principal[2]) +
+           " > sum of the other two " + std::to_string(principal[0] + principal[1]) + "): no rigid body has them";
+  return {};
+}
+
 }  // namespace
 
 int equationCount(const CutKind& cut) {
@@ -93,14 +110,8 @@ void Model::addBody(const std::string& name, FrameIndex frame, double mass, cons
                     const Eigen::Matrix3d& inertia) {
   checkNewName(name);
   checkFrame(frame, name);
-  if (!(mass > 0.0) || !std::isfinite(mass)) throw std::invalid_argument(name + ": mass must be positive and finite");
-  if (!centre_of_mass.allFinite() || !inertia.allFinite())
-    throw std::invalid_argument(name + ": centre of mass and inertia must be finite");
-  if ((inertia - inertia.transpose()).norm() > 1e-9 * std::max(1.0, inertia.norm()))
-    throw std::invalid_argument(name + ": inertia tensor must be symmetric");
-  const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
-  if (!(principal.minCoeff() > 0.0))
-    throw std::invalid_argument(name + ": inertia tensor must be positive definite");
+  if (const std::string defect = rigidBodyDefect(mass, centre_of_mass, inertia); !defect.empty())
+    throw std::invalid_argument(name + ": " + defect);
   names_.push_back(name);
   bodies_.push_back({name, frame, mass, centre_of_mass, inertia});
 }
@@ -261,7 +272,7 @@ void Model::forEachParameter(const std::function<void(const std::string&, double
   for (Body& body : bodies_) {
     visit(body.name + ".mass", body.mass);
     const char* axes = "xyz";
-    for (int i = 0; i < 3; ++i) visit(body.name + ".com_" + axes[i], body.centre_of_mass[i]);
+    for (int i = 0; i < 3; ++i) visit(body.name + ".com." + axes[i], body.centre_of_mass[i]);
     for (int i = 0; i < 3; ++i) visit(body.name + ".I" + axes[i] + axes[i], body.inertia(i, i));
   }
   for (ForceElement& force : forces_) {
@@ -305,12 +316,10 @@ void Model::setParameter(std::string_view dotted_name, double value) {
   const double previous = *slot;
   *slot = value;
   for (const Body& body : bodies_) {  // the same checks as addBody
-    const bool valid = body.mass > 0.0 &&
-                       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(body.inertia).eigenvalues().minCoeff() > 0.0;
-    if (!valid) {
+    if (const std::string defect = rigidBodyDefect(body.mass, body.centre_of_mass, body.inertia); !defect.empty()) {
       *slot = previous;
       throw std::invalid_argument(std::string(dotted_name) + " = " + std::to_string(value) + " leaves body '" +
-                                  body.name + "' without a positive mass and a positive-definite inertia");
+                                  body.name + "' invalid: " + defect);
     }
   }
 }

@@ -48,6 +48,9 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
     throw std::invalid_argument("Newmark: the time step must be positive and finite");
   if (!(settings_.end_time > 0.0) || !std::isfinite(settings_.end_time))
     throw std::invalid_argument("Newmark: the end time must be positive and finite");
+  if (!(settings_.end_time / settings_.step <= kMaxNewmarkSteps))
+    throw std::invalid_argument("Newmark: end time / step = " + std::to_string(settings_.end_time / settings_.step) +
+                                " steps, more than the 1e7 a run may take");
   if (!(settings_.beta > 0.0 && settings_.beta <= 0.5))
     throw std::invalid_argument("Newmark: beta must lie in (0, 1/2]");
   if (!(settings_.gamma > 0.0 && settings_.gamma < 1.0))

@@ -30,6 +30,10 @@ enum class ClosureLevel {
   Acceleration  ///< the paper's (38): B q̈ + Ḃ q̇ = 0 only; positions drift (for comparison)
 };
 
+/// Longest run the integrator accepts: the trajectory keeps q, q̇, q̈ and λ of every step in
+/// memory (10⁷ steps of a 10-coordinate model are ~3 GB).
+inline constexpr double kMaxNewmarkSteps = 1e7;
+
 struct NewmarkSettings {
   double step = 1e-3;      ///< h [s], fixed
   double end_time = 1.0;   ///< [s]

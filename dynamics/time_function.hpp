@@ -2,6 +2,7 @@
 // moving targets of guidance springs.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 namespace mbsopt {
@@ -16,6 +17,8 @@ class TimeFunction {
   };
 
   TimeFunction() = default;
+  TimeFunction(std::vector<double> coefficients, std::vector<Harmonic> harmonics)
+      : coefficients_(std::move(coefficients)), harmonics_(std::move(harmonics)) {}
   static TimeFunction constant(double value) { return polynomial({value}); }
   static TimeFunction polynomial(std::vector<double> coefficients);
   static TimeFunction harmonic(double amplitude, double angular_frequency, double phase = 0.0, double offset = 0.0);

@@ -175,7 +175,7 @@ TEST(ModelParameters, DottedNamesAddressEveryForceAndBodyParameter) {
   model.addJointSpringDamper("spring", "hinge", 5.0, 1.0, 0.25);
   model.addPointSpringDamper("strut", Model::ground, kX, hinge, kX, 3.0, 0.5, 1.5);
   const std::vector<std::string> names = model.parameterNames();
-  for (const char* name : {"gravity.z", "bob.mass", "bob.com_x", "bob.Izz", "spring.k", "spring.c", "spring.rest",
+  for (const char* name : {"gravity.z", "bob.mass", "bob.com.x", "bob.Izz", "spring.k", "spring.c", "spring.rest",
                            "strut.k", "strut.c", "strut.rest_length"})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
   EXPECT_EQ(model.parameter("spring.rest"), 0.25);

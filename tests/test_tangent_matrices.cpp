@@ -58,11 +58,13 @@ class Random {
     }
   }
   Eigen::Matrix3d rotation() { return Eigen::AngleAxisd(uniform(-kPi, kPi), obliqueAxis()).toRotationMatrix(); }
-  /// Symmetric positive definite (eigenvalues ≥ 0.02·mass), generally not diagonal in any body axes.
+  /// The inertia of a uniform box with random sides in [0.2, 1] m about its centre, turned by a
+  /// random rotation: a real rigid body's tensor, generally not diagonal in the frame's axes.
   Eigen::Matrix3d inertia(double mass) {
-    Eigen::Matrix3d A;
-    for (int r = 0; r < 3; ++r) A.row(r) = vector(-0.3, 0.3).transpose();
-    return mass * (A * A.transpose() + 0.02 * Eigen::Matrix3d::Identity());
+    const Eigen::Vector3d side = vector(0.2, 1.0), s2 = side.cwiseProduct(side);
+    const Eigen::Vector3d principal = mass / 12.0 * Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y());
+    const Eigen::Matrix3d R = rotation();
+    return R * principal.asDiagonal() * R.transpose();
   }
 
  private:

@@ -1,0 +1,48 @@
+#include "app/scene_argument.hpp"
+
+#include <filesystem>
+
+namespace mbsopt {
+
+void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_overrides) {
+  std::string builtins;
+  for (const std::string& name : builtinSceneNames()) builtins += (builtins.empty() ? "" : ", ") + name;
+  command.add_option("scene", argument.scene,
+                     "A scene file (YAML, see problems/scenes/README.md) or a built-in scene: " + builtins)
+      ->required();
+  if (!with_overrides) return;
+  command
+      .add_option("--set", argument.sets,
+                  "Override one number of the scene by its dotted name, e.g. --set front_secondary.k=300e3 or "
+                  "--set hinge.q0='45 deg'; repeat for several ('mbsopt parameters SCENE' lists the names)")
+      ->allow_extra_args(false);
+}
+
+SceneSource resolveScene(const std::string& scene) {
+  const bool looks_like_file = scene.ends_with(".yaml") || scene.ends_with(".yml") ||
+                               scene.find('/') != std::string::npos;
+  if (!looks_like_file && !std::filesystem::exists(scene)) {
+    if (auto builtin = builtinScene(scene)) return *builtin;
+    std::string names;
+    for (const std::string& name : builtinSceneNames()) names += (names.empty() ? "" : ", ") + name;
+    throw SceneError(scene, 0, 0, "no such scene file, nor a built-in scene of that name (built-in: " + names + ")");
+  }
+  return readSceneFile(scene);
+}
+
+std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets) {
+  std::vector<ParameterOverride> overrides;
+  for (const std::string& set : sets) {
+    const std::size_t equals = set.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw SceneError(source.path, 0, 0, "--set " + set + ": expected name=value");
+    double value = 0.0;
+    std::string why;
+    if (!parseNumber(set.substr(equals + 1), value, why))
+      throw SceneError(source.path, 0, 0, "--set " + set + ": " + why);
+    overrides.push_back({set.substr(0, equals), value});
+  }
+  return overrides;
+}
+
+}  // namespace mbsopt

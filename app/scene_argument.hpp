@@ -1,0 +1,27 @@
+// The scene argument of the commands: a YAML file or the name of a built-in scene, with its
+// `--set name=value` overrides.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "problems/scene_file.hpp"
+
+namespace mbsopt {
+
+struct SceneArgument {
+  std::string scene;              ///< a path to a .yaml file, or a built-in name
+  std::vector<std::string> sets;  ///< "name=value"
+};
+
+/// Adds the positional scene argument (and `--set` when `with_overrides`) to a subcommand.
+void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_overrides);
+
+/// The file, or the built-in scene of that name; a SceneError when neither exists.
+SceneSource resolveScene(const std::string& scene);
+
+/// Parses "name=value" (value a number, optionally with `deg`); errors name the scene.
+std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets);
+
+}  // namespace mbsopt

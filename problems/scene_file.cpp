@@ -1,0 +1,563 @@
+#include "problems/scene_file.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "dynamics/assembly.hpp"
+#include "problems/scene_parameters.hpp"
+#include "problems/yaml_reader.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+std::string location(const std::string& path, int line, int column) {
+  std::string text = path;
+  if (line > 0) text += ':' + std::to_string(line);
+  if (line > 0 && column > 0) text += ':' + std::to_string(column);
+  return text;
+}
+
+/// "bob: mass must be positive" from the model builder → "mass must be positive".
+std::string withoutOwner(const std::string& message, const std::string& owner) {
+  const std::string prefix = owner + ": ";
+  return message.starts_with(prefix) ? message.substr(prefix.size()) : message;
+}
+
+/// " (did you mean 'x'?)" when one of `candidates` is a plausible typo of `word`.
+std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string nearest = closestName(word, candidates);
+  return nearest.empty() ? "" : " (did you mean '" + nearest + "'?)";
+}
+
+TimeFunction readTimeFunction(const YamlContext& context, const YAML::Node& node, const std::string& what) {
+  if (node.IsScalar()) return TimeFunction::constant(readNumber(context, node, what));
+  const MapReader map(context, node, what);
+  map.allowKeys({"polynomial", "harmonics"});
+  std::vector<double> coefficients;
+  for (const YAML::Node& c : readList(context, map.node()["polynomial"], what + ".polynomial"))
+    coefficients.push_back(readNumber(context, c, what + ".polynomial"));
+  std::vector<TimeFunction::Harmonic> harmonics;
+  for (const YAML::Node& h : readList(context, map.node()["harmonics"], what + ".harmonics")) {
+    const MapReader harmonic(context, h, what + " harmonic");
+    harmonic.allowKeys({"amplitude", "angular_frequency", "phase"});
+    harmonics.push_back({harmonic.number("amplitude"), harmonic.number("angular_frequency"),
+                         harmonic.number("phase", 0.0)});
+  }
+  return {std::move(coefficients), std::move(harmonics)};
+}
+
+/// Builds the model of a parsed scene file section by section (problems/scenes/README.md).
+class SceneBuilder {
+ public:
+  SceneBuilder(const YamlContext& context, const YAML::Node& root) : context_(context), root_(context, root, "scene") {
+    root_.allowKeys({"settings", "gravity", "tracks", "elements", "bodies", "forces", "cuts", "sensors"});
+    root_.required("elements");
+    root_.required("bodies");
+  }
+
+  LoadedScene build() {
+    readSettings();
+    if (root_.has("gravity")) model().setGravity(root_.vector("gravity"));
+    readTracks();
+    readElements();
+    for (const YAML::Node& node : list("bodies")) readBody(node);
+    for (const YAML::Node& node : list("cuts")) readCut(node);
+    for (const YAML::Node& node : list("forces")) readForce(node);
+    for (const YAML::Node& node : list("sensors")) readSensor(node);
+    assembleInitialState();
+    return std::move(result_);
+  }
+
+ private:
+  struct InitialValue {
+    std::string coordinate;
+    double q0, v0;
+  };
+  struct PendingElement {
+    MapReader entry;
+    std::string name, parent;
+    enum class State { Waiting, Placing, Placed } state = State::Waiting;
+  };
+
+  Model& model() { return result_.scene.model; }
+
+  std::vector<YAML::Node> list(const std::string& section) const {
+    return readList(context_, root_.node()[section], section);
+  }
+
+  /// An entry of a named section: a map with a unique `name` and a `type` among `types`.
+  MapReader entry(const YAML::Node& node, const std::string& kind, std::string& name) {
+    const MapReader map(context_, node, kind);
+    name = map.name("name");
+    if (name == "ground") map.fail("name", "'ground' is the name of the fixed frame");
+    if (const auto used = names_.find(name); used != names_.end())
+      map.fail("name", "the name '" + name + "' is already used at line " + std::to_string(used->second.line + 1));
+    names_.emplace(name, map.node()["name"].Mark());
+    return MapReader(context_, node, kind + " '" + name + "'");
+  }
+
+  /// Runs a model-builder call; its std::invalid_argument becomes an error at `entry`.
+  template <class Build>
+  void build(const MapReader& entry, const std::string& name, Build&& call) {
+    try {
+      call();
+    } catch (const std::invalid_argument& e) {
+      context_.fail(entry.node(), entry.what() + ": " + withoutOwner(e.what(), name));
+    }
+  }
+
+  FrameIndex frame(const MapReader& entry, const std::string& key) {
+    const std::string name = entry.name(key);
+    std::vector<std::string> names;
+    for (const Frame& f : model().frames()) {
+      if (f.name == name) return static_cast<FrameIndex>(names.size());
+      names.push_back(f.name);
+    }
+    entry.fail(key, key + ": frame '" + name + "' does not exist" + suggestion(name, names) +
+                        " (frames are 'ground' and the elements)");
+  }
+
+  std::string joint(const MapReader& entry, const std::string& key) {
+    const std::string name = entry.name(key);
+    std::vector<std::string> names;
+    for (const Coordinate& c : model().coordinates()) {
+      if (c.name == name) return name;
+      names.push_back(c.name);
+    }
+    for (const Frame& f : model().frames())
+      if (f.name == name)
+        entry.fail(key, key + ": '" + name + "' is " + (f.element < 0 ? "the ground" : "an offset") +
+                            ", not a joint: it has no coordinate");
+    entry.fail(key, key + ": joint '" + name + "' does not exist" + suggestion(name, names) +
+                        " (joints are revolute, prismatic and curve-slider elements and curve-slider cuts)");
+  }
+
+  std::shared_ptr<const Track> track(const MapReader& entry) {
+    const std::string name = entry.name("track");
+    const auto found = tracks_.find(name);
+    if (found == tracks_.end()) {
+      std::vector<std::string> names;
+      for (const auto& [track_name, track] : tracks_) names.push_back(track_name);
+      entry.fail("track", "track '" + name + "' does not exist" + suggestion(name, names));
+    }
+    return found->second;
+  }
+
+  Eigen::Vector3d axis(const MapReader& entry, const std::string& key) {
+    const Eigen::Vector3d a = entry.vector(key);
+    if (!(a.norm() > 1e-12)) entry.fail(key, key + " must be a non-zero vector");
+    return a;
+  }
+
+  SliderOrientation orientation(const MapReader& entry) {
+    return entry.choice("orientation", {"follow_track", "translate"}, "follow_track") == "translate"
+               ? SliderOrientation::Translate
+               : SliderOrientation::FollowTrack;
+  }
+
+  void initialValues(const MapReader& entry, const std::string& coordinate) {
+    initial_.push_back({coordinate, entry.number("q0", 0.0), entry.number("v0", 0.0)});
+  }
+
+  void readSettings() {
+    NewmarkSettings& s = result_.scene.settings;
+    if (!root_.has("settings")) return;
+    const MapReader settings(context_, root_.node()["settings"], "settings");
+    settings.allowKeys({"step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
+                        "svd_threshold", "closure"});
+    s.step = settings.has("step") ? settings.positive("step") : s.step;
+    s.end_time = settings.has("end_time") ? settings.positive("end_time") : s.end_time;
+    if (!(s.end_time / s.step <= kMaxNewmarkSteps))
+      settings.fail(settings.has("end_time") ? "end_time" : "step",
+                    "end_time / step = " + formatNumber(s.end_time / s.step) + " steps, more than the " +
+                        formatNumber(kMaxNewmarkSteps) + " a run may take");
+    s.beta = settings.number("beta", s.beta);
+    if (!(s.beta > 0.0 && s.beta <= 0.5)) settings.fail("beta", "beta must lie in (0, 1/2]");
+    s.gamma = settings.number("gamma", s.gamma);
+    if (!(s.gamma > 0.0 && s.gamma < 1.0)) settings.fail("gamma", "gamma must lie in (0, 1)");
+    s.newton_tolerance = settings.has("newton_tolerance") ? settings.positive("newton_tolerance") : s.newton_tolerance;
+    s.max_newton_iterations = settings.positiveInteger("max_newton_iterations", s.max_newton_iterations);
+    s.svd_threshold = settings.number("svd_threshold", s.svd_threshold);
+    if (!(s.svd_threshold > 0.0 && s.svd_threshold < 1.0))
+      settings.fail("svd_threshold", "svd_threshold must lie in (0, 1)");
+    s.closure = settings.choice("closure", {"position", "acceleration"}, "position") == "acceleration"
+                    ? ClosureLevel::Acceleration
+                    : ClosureLevel::Position;
+  }
+
+  void readTracks() {
+    for (const YAML::Node& node : list("tracks")) {
+      std::string name;
+      const MapReader t = entry(node, "track", name);
+      t.allowKeys({"name", "origin", "heading", "segments"});
+      auto track = std::make_shared<Track>(t.vector("origin", Eigen::Vector3d::Zero()), t.number("heading", 0.0));
+      const std::vector<YAML::Node> segments = readList(context_, t.required("segments"), t.what() + ".segments");
+      if (segments.empty()) t.fail("segments", "a track needs at least one segment");
+      for (const YAML::Node& s : segments) {
+        const MapReader segment(context_, s, t.what() + " segment");
+        const std::string type = segment.choice("type", {"straight", "arc", "clothoid"});
+        if (type == "straight") {
+          segment.allowKeys({"type", "length"});
+          track->straight(segment.positive("length"));
+        } else if (type == "arc") {
+          segment.allowKeys({"type", "radius", "angle"});
+          const double radius = segment.positive("radius");
+          const double angle = segment.number("angle");
+          if (angle == 0.0) segment.fail("angle", "an arc must turn (angle ≠ 0)");
+          track->arc(radius, angle);
+        } else {
+          segment.allowKeys({"type", "length", "end_curvature"});
+          const double length = segment.positive("length");
+          track->clothoid(length, segment.number("end_curvature"));
+        }
+      }
+      tracks_.emplace(name, std::move(track));
+    }
+  }
+
+  void readElements() {
+    std::vector<PendingElement> pending;
+    std::map<std::string, std::size_t> index;
+    for (const YAML::Node& node : list("elements")) {
+      std::string name;
+      MapReader e = entry(node, "element", name);
+      const std::string type = e.choice("type", {"offset", "revolute", "prismatic", "curve_slider"});
+      if (type == "offset") e.allowKeys({"name", "type", "parent", "translation", "rotation"});
+      else if (type == "curve_slider") e.allowKeys({"name", "type", "parent", "track", "orientation", "q0", "v0", "motion"});
+      else e.allowKeys({"name", "type", "parent", "axis", "q0", "v0", "motion"});
+      const std::string parent = e.name("parent");
+      index.emplace(name, pending.size());
+      pending.push_back({std::move(e), name, parent});
+    }
+    // Depth-first from each element to the ground: parents first, file order otherwise.
+    std::vector<std::size_t> chain;
+    const auto place = [&](auto&& self, std::size_t i) -> void {
+      PendingElement& p = pending[i];
+      if (p.state == PendingElement::State::Placed) return;
+      if (p.state == PendingElement::State::Placing) {
+        std::string cycle;
+        for (auto it = std::find(chain.begin(), chain.end(), i); it != chain.end(); ++it)
+          cycle += pending[*it].name + " → ";
+        p.entry.fail("parent", "the elements " + cycle + p.name + " form a cycle: every chain must start at the ground");
+      }
+      p.state = PendingElement::State::Placing;
+      chain.push_back(i);
+      if (p.parent != "ground") {
+        const auto parent = index.find(p.parent);
+        if (parent == index.end()) {
+          std::vector<std::string> names{"ground"};
+          for (const PendingElement& other : pending) names.push_back(other.name);
+          p.entry.fail("parent", "parent '" + p.parent + "' does not exist" + suggestion(p.parent, names) +
+                                     " (it must be 'ground' or an element)");
+        }
+        self(self, parent->second);
+      }
+      addElement(p.entry, p.name, p.parent);
+      chain.pop_back();
+      p.state = PendingElement::State::Placed;
+    };
+    for (std::size_t i = 0; i < pending.size(); ++i) place(place, i);
+  }
+
+  void addElement(const MapReader& e, const std::string& name, const std::string& parent_name) {
+    const FrameIndex parent = parent_name == "ground" ? Model::ground : model().frame(parent_name);
+    const std::string type = e.choice("type", {"offset", "revolute", "prismatic", "curve_slider"});
+    if (type == "offset") {
+      Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+      if (e.has("rotation")) {
+        const MapReader r(context_, e.node()["rotation"], e.what() + " rotation");
+        r.allowKeys({"axis", "angle"});
+        rotation = Eigen::AngleAxisd(r.number("angle"), axis(r, "axis").normalized()).toRotationMatrix();
+      }
+      const Eigen::Vector3d translation = e.vector("translation", Eigen::Vector3d::Zero());
+      build(e, name, [&] { model().addOffset(name, parent, translation, rotation); });
+      return;
+    }
+    if (type == "curve_slider") {
+      const auto t = track(e);
+      const SliderOrientation o = orientation(e);
+      build(e, name, [&] { model().addCurveSlider(name, parent, t, o); });
+    } else {
+      const Eigen::Vector3d a = axis(e, "axis");
+      build(e, name, [&] {
+        if (type == "revolute") model().addRevolute(name, parent, a);
+        else model().addPrismatic(name, parent, a);
+      });
+    }
+    if (e.has("motion")) {
+      for (const char* key : {"q0", "v0"})
+        if (e.has(key))
+          e.fail(key, std::string(key) + " conflicts with 'motion': a driven joint starts where its motion says");
+      const TimeFunction motion = readTimeFunction(context_, e.node()["motion"], e.what() + ".motion");
+      build(e, name, [&] { model().drive(name, motion); });
+    } else {
+      initialValues(e, name);
+    }
+  }
+
+  void readBody(const YAML::Node& node) {
+    std::string name;
+    const MapReader b = entry(node, "body", name);
+    b.allowKeys({"name", "frame", "mass", "com", "Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"});
+    const FrameIndex f = frame(b, "frame");
+    const double mass = b.positive("mass");
+    const Eigen::Vector3d com = b.vector("com", Eigen::Vector3d::Zero());
+    Eigen::Matrix3d inertia;
+    inertia(0, 0) = b.number("Ixx");
+    inertia(1, 1) = b.number("Iyy");
+    inertia(2, 2) = b.number("Izz");
+    inertia(0, 1) = inertia(1, 0) = b.number("Ixy", 0.0);
+    inertia(0, 2) = inertia(2, 0) = b.number("Ixz", 0.0);
+    inertia(1, 2) = inertia(2, 1) = b.number("Iyz", 0.0);
+    build(b, name, [&] { model().addBody(name, f, mass, com, inertia); });
+  }
+
+  void readCut(const YAML::Node& node) {
+    std::string name;
+    const MapReader c = entry(node, "cut", name);
+    const std::string type = c.choice("type", {"spherical", "revolute", "weld", "curve_slider"});
+    if (type == "curve_slider") {
+      c.allowKeys({"name", "type", "frame", "base", "track", "orientation", "q0", "v0"});
+      const FrameIndex a = frame(c, "frame");
+      const FrameIndex base = c.has("base") ? frame(c, "base") : Model::ground;
+      const auto t = track(c);
+      const SliderOrientation o = orientation(c);
+      build(c, name, [&] { model().addCurveSliderCut(name, a, base, t, o); });
+      initialValues(c, name);
+    } else if (type == "revolute") {
+      c.allowKeys({"name", "type", "frame_a", "frame_b", "axis_in_a", "axis_in_b"});
+      const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");
+      const Eigen::Vector3d axis_a = axis(c, "axis_in_a"), axis_b = axis(c, "axis_in_b");
+      build(c, name, [&] { model().addRevoluteCut(name, a, b, axis_a, axis_b); });
+    } else {
+      c.allowKeys({"name", "type", "frame_a", "frame_b"});
+      const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");
+      build(c, name, [&] {
+        if (type == "spherical") model().addSphericalCut(name, a, b);
+        else model().addWeldCut(name, a, b);
+      });
+    }
+    cut_marks_.resize(model().cuts().size(), c.node().Mark());
+  }
+
+  void readForce(const YAML::Node& node) {
+    std::string name;
+    const MapReader f = entry(node, "force", name);
+    const std::string type =
+        f.choice("type", {"joint_spring_damper", "point_spring_damper", "joint_actuation", "track_guidance"});
+    if (type == "joint_spring_damper") {
+      f.allowKeys({"name", "type", "joint", "k", "c", "rest"});
+      const std::string j = joint(f, "joint");
+      const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
+      const TimeFunction rest =
+          f.has("rest") ? readTimeFunction(context_, f.node()["rest"], f.what() + ".rest") : TimeFunction::constant(0.0);
+      build(f, name, [&] { model().addGuidanceSpring(name, j, k, c, rest); });
+    } else if (type == "point_spring_damper") {
+      f.allowKeys({"name", "type", "frame_a", "point_a", "frame_b", "point_b", "k", "c", "rest_length"});
+      const FrameIndex a = frame(f, "frame_a"), b = frame(f, "frame_b");
+      const Eigen::Vector3d pa = f.vector("point_a", Eigen::Vector3d::Zero());
+      const Eigen::Vector3d pb = f.vector("point_b", Eigen::Vector3d::Zero());
+      const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
+      const double rest = f.nonNegative("rest_length", 0.0);
+      build(f, name, [&] { model().addPointSpringDamper(name, a, pa, b, pb, k, c, rest); });
+    } else if (type == "joint_actuation") {
+      f.allowKeys({"name", "type", "joint", "value"});
+      const std::string j = joint(f, "joint");
+      const TimeFunction value = readTimeFunction(context_, f.required("value"), f.what() + ".value");
+      build(f, name, [&] { model().addJointActuation(name, j, value); });
+    } else {
+      f.allowKeys({"name", "type", "frame", "slider", "k", "c"});
+      const FrameIndex fr = frame(f, "frame");
+      const std::string slider = joint(f, "slider");
+      const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
+      build(f, name, [&] { model().addTrackGuidance(name, fr, slider, k, c); });
+    }
+  }
+
+  Derivative quantity(const MapReader& s) {
+    const std::string q = s.choice("quantity", {"position", "velocity", "acceleration"});
+    return q == "position" ? Derivative::Position : q == "velocity" ? Derivative::Velocity : Derivative::Acceleration;
+  }
+
+  void readSensor(const YAML::Node& node) {
+    std::string name;
+    const MapReader s = entry(node, "sensor", name);
+    const std::string type = s.choice("type", {"point", "joint", "relative_angle"});
+    SensorKind kind;
+    if (type == "point") {
+      s.allowKeys({"name", "type", "frame", "point", "quantity", "axes", "component"});
+      const FrameIndex f = frame(s, "frame");
+      const Eigen::Vector3d point = s.vector("point", Eigen::Vector3d::Zero());
+      const Derivative d = quantity(s);
+      const FrameIndex axes = s.has("axes") ? frame(s, "axes") : Model::ground;
+      const std::string c = s.choice("component", {"x", "y", "z"});
+      kind = PointSensor{f, point, d, axes, c[0] - 'x'};
+    } else if (type == "joint") {
+      s.allowKeys({"name", "type", "joint", "quantity"});
+      kind = JointSensor{model().coordinate(joint(s, "joint")), quantity(s)};
+    } else {
+      s.allowKeys({"name", "type", "frame_a", "frame_b", "axis"});
+      const FrameIndex a = frame(s, "frame_a"), b = frame(s, "frame_b");
+      kind = RelativeAngleSensor{a, b, axis(s, "axis").normalized()};
+    }
+    build(s, name, [&] { model().addSensor(name, kind); });
+  }
+
+  /// q₀ and q̇₀ from the joints' q0 and v0, moved onto the loop closure when they miss it.
+  void assembleInitialState() {
+    Scene& scene = result_.scene;
+    const Eigen::Index n = model().coordinateCount();
+    scene.q0 = Eigen::VectorXd::Zero(n);
+    scene.v0 = Eigen::VectorXd::Zero(n);
+    for (const InitialValue& value : initial_) {
+      const int i = model().coordinate(value.coordinate);
+      scene.q0[i] = value.q0;
+      scene.v0[i] = value.v0;
+    }
+    const Eigen::VectorXd q_given = scene.q0, v_given = scene.v0;
+    try {
+      assemble(model(), scene.q0, scene.v0, 0.0, 1e-12, scene.settings.svd_threshold);
+    } catch (const AssemblyError& e) {
+      const int cut = e.openCuts().empty() ? 0 : e.openCuts().front();
+      context_.fail(cut_marks_.at(static_cast<std::size_t>(cut)), "cut '" + model().cuts()[cut].name + "': " + e.what());
+    } catch (const std::runtime_error& e) {
+      context_.fail(cut_marks_.empty() ? root_.node().Mark() : cut_marks_.front(), e.what());
+    }
+    warnIfMoved(scene.q0 - q_given, "coordinates", "");
+    warnIfMoved(scene.v0 - v_given, "rates", "/s");
+  }
+
+  void warnIfMoved(const Eigen::VectorXd& change, const char* what, const char* per_second) {
+    Eigen::VectorXd free_change = change;
+    for (const int d : model().drivenCoordinates()) free_change[d] = 0.0;  // a driver sets them exactly
+    if (free_change.size() == 0) return;
+    Eigen::Index worst = 0;
+    const double largest = free_change.cwiseAbs().maxCoeff(&worst);
+    if (!(largest > 1e-10)) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "%s: warning: the initial %s do not close the loops; moved them onto the closure by up to %.3g "
+                  "(m or rad)%s, at '%s'",
+                  context_.path().c_str(), what, largest, per_second,
+                  model().coordinates()[static_cast<std::size_t>(worst)].name.c_str());
+    result_.warnings.emplace_back(text);
+  }
+
+  const YamlContext& context_;
+  MapReader root_;
+  LoadedScene result_;
+  std::map<std::string, YAML::Mark> names_;
+  std::map<std::string, std::shared_ptr<const Track>> tracks_;
+  std::vector<InitialValue> initial_;
+  std::vector<YAML::Mark> cut_marks_;  ///< per cut of the model: where the file declares it
+};
+
+/// The 1-based number of the last line of `text` that holds something, at least 1.
+int lastContentLine(const std::string& text) {
+  int line = 1, last = 1;
+  for (char c : text) {
+    if (c == '\n') ++line;
+    else if (!std::isspace(static_cast<unsigned char>(c))) last = line;
+  }
+  return last;
+}
+
+/// Line `number` (1-based) of `text`.
+std::string lineOf(const std::string& text, int number) {
+  std::istringstream in(text);
+  std::string line;
+  for (int i = 0; i < number && std::getline(in, line); ++i) {
+  }
+  return line;
+}
+
+YAML::Node parse(const SceneSource& source) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(source.text);
+  } catch (const YAML::Exception& e) {
+    if (e.mark.is_null()) throw SceneError(source.path, 0, 0, "malformed YAML: " + e.msg);
+    // yaml-cpp reports an unclosed bracket at the end of the input: name the last line instead.
+    int line = std::min(e.mark.line + 1, lastContentLine(source.text));
+    const int column = line == e.mark.line + 1 ? e.mark.column + 1 : 1;
+    std::string hint;
+    for (int l : {line, line - 1})
+      if (l > 0 && lineOf(source.text, l).find('\t') != std::string::npos) {
+        hint = " (line " + std::to_string(l) + " has a tab: YAML indents with spaces only)";
+        break;
+      }
+    throw SceneError(source.path, line, column, "malformed YAML: " + e.msg + hint);
+  }
+  if (documents.size() > 1)
+    throw SceneError(source.path, documents[1].Mark().line + 1, documents[1].Mark().column + 1,
+                     "the file holds more than one YAML document ('---'); a scene is one document");
+  if (documents.empty() || !documents[0].IsDefined() || documents[0].IsNull())
+    throw SceneError(source.path, 0, 0, "the scene is empty");
+  return documents[0];
+}
+
+}  // namespace
+
+SceneError::SceneError(const std::string& path, int line, int column, const std::string& what)
+    : std::runtime_error(location(path, line, column) + ": error: " + what),
+      path_(path),
+      reason_(what),
+      line_(line),
+      column_(column) {}
+
+SceneSource readSceneFile(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw SceneError(path, 0, 0, "is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, 0, 0, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path, 0, 0, "cannot read the scene file");
+  return {path, text.str()};
+}
+
+LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
+  YamlContext context(source.path);
+  YAML::Node root = parse(source);
+  const std::vector<ParameterOverride> unmatched = applyOverrides(context, root, overrides);
+  LoadedScene loaded = SceneBuilder(context, root).build();
+  // Model parameters the file leaves at their defaults (a centre of mass, gravity) are set on the model.
+  Model& model = loaded.scene.model;
+  for (const ParameterOverride& o : unmatched) {
+    const std::vector<std::string> model_names = model.parameterNames();
+    if (std::find(model_names.begin(), model_names.end(), o.name) == model_names.end()) {
+      std::vector<std::string> names = model_names;
+      forEachNumber(root, [&](const std::string& name, const YAML::Node&) { names.push_back(name); });
+      throw SceneError(source.path, 0, 0,
+                       describe(o) + ": the scene has no number named '" + o.name + "'" + suggestion(o.name, names) +
+                           "; 'mbsopt parameters SCENE' lists them");
+    }
+    try {
+      model.setParameter(o.name, o.value);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(source.path, 0, 0, describe(o) + ": " + e.what());
+    }
+  }
+  return loaded;
+}
+
+std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source) {
+  const YamlContext context(source.path);
+  std::vector<std::pair<std::string, double>> parameters;
+  forEachNumber(parse(source), [&](const std::string& name, const YAML::Node& node) {
+    parameters.emplace_back(name, readNumber(context, node, name));
+  });
+  const Model model = loadScene(source).scene.model;
+  for (const std::string& name : model.parameterNames())
+    if (std::none_of(parameters.begin(), parameters.end(), [&](const auto& p) { return p.first == name; }))
+      parameters.emplace_back(name, model.parameter(name));
+  return parameters;
+}
+
+}  // namespace mbsopt

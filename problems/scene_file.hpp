@@ -1,0 +1,65 @@
+// Scene files (problems/scenes/README.md): a YAML description of a mechanism, its initial state and
+// its integration settings, built into a Scene. Every error names the file, line and column.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "problems/scene.hpp"
+
+namespace mbsopt {
+
+/// A scene file's text and the path under which errors name it.
+struct SceneSource {
+  std::string path;
+  std::string text;
+};
+
+/// A bad scene: "path:line:column: what" (line and column 1-based; 0 when unknown).
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(const std::string& path, int line, int column, const std::string& what);
+  const std::string& path() const { return path_; }
+  int line() const { return line_; }
+  int column() const { return column_; }
+  /// What is wrong, without the location.
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string path_, reason_;
+  int line_, column_;
+};
+
+/// A `--set name=value` override of one numeric parameter of the file.
+struct ParameterOverride {
+  std::string name;
+  double value;
+};
+
+struct LoadedScene {
+  Scene scene;
+  std::vector<std::string> warnings;  ///< e.g. how far the initial state was moved to close the loops
+};
+
+/// Parses the text of a scene number: a decimal literal, optionally followed by `deg` (× π/180).
+/// Returns false and sets `why` when the text is not a finite number.
+bool parseNumber(const std::string& text, double& value, std::string& why);
+
+/// Reads a file; throws SceneError when it cannot be read.
+SceneSource readSceneFile(const std::string& path);
+/// The scenes of problems/scenes/, compiled into the library, by base name ("pendulum").
+std::optional<SceneSource> builtinScene(const std::string& name);
+std::vector<std::string> builtinSceneNames();
+
+/// Parses, applies the overrides, builds and assembles the initial state onto the loop closure.
+/// Throws SceneError for anything wrong with the file or the overrides.
+LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOverride>& overrides = {});
+
+/// Every number of the file by its dotted name, with its value, in file order; then the model
+/// parameters the file leaves at their defaults (a centre of mass, gravity). Loads the scene.
+std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source);
+
+}  // namespace mbsopt

@@ -1,0 +1,78 @@
+// Typed, located reading of a YAML scene: numbers (with an optional `deg` suffix), vectors, names
+// and choices, with unknown, duplicate and missing keys reported at their line and column.
+#pragma once
+
+#include <Eigen/Core>
+#include <initializer_list>
+#include <set>
+#include <string>
+#include <vector>
+#include <yaml-cpp/yaml.h>
+
+#include "problems/scene_file.hpp"
+
+namespace mbsopt {
+
+/// The file being read, and the nodes that `--set` overrode (named in the errors they cause).
+class YamlContext {
+ public:
+  explicit YamlContext(std::string path) : path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const;
+  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& what) const;
+  void markOverridden(const YAML::Node& node, std::string origin);
+
+ private:
+  std::string path_;
+  std::vector<std::pair<YAML::Node, std::string>> overridden_;
+};
+
+/// The candidate nearest to `word` by edit distance when it is a plausible typo, else "".
+std::string closestName(const std::string& word, const std::vector<std::string>& candidates);
+
+/// A number node: finite, else an error at the node.
+double readNumber(const YamlContext& context, const YAML::Node& node, const std::string& what);
+
+/// Reads one YAML map, checking its keys: allowed ones only, no duplicates, required ones present.
+class MapReader {
+ public:
+  /// `what` names the map in messages ("body 'bob'", "settings").
+  MapReader(const YamlContext& context, const YAML::Node& node, std::string what);
+
+  /// Declares the allowed keys and reports the first one that is not, with a suggestion.
+  void allowKeys(std::initializer_list<const char*> keys) const;
+
+  bool has(const std::string& key) const;
+  const YAML::Node& node() const { return node_; }
+  const std::string& what() const { return what_; }
+  const YamlContext& context() const { return context_; }
+  /// The value of a key that must be present.
+  YAML::Node required(const std::string& key) const;
+  /// The location of a key (its value if present, else the map).
+  YAML::Mark markOf(const std::string& key) const;
+
+  double number(const std::string& key) const;
+  double number(const std::string& key, double fallback) const;
+  double positive(const std::string& key) const;
+  double nonNegative(const std::string& key, double fallback) const;
+  int positiveInteger(const std::string& key, int fallback) const;
+  Eigen::Vector3d vector(const std::string& key) const;
+  Eigen::Vector3d vector(const std::string& key, const Eigen::Vector3d& fallback) const;
+  /// A name: letters, digits and '_', starting with a letter or '_'.
+  std::string name(const std::string& key) const;
+  /// One of `choices`; `fallback` when absent (empty: required).
+  std::string choice(const std::string& key, std::initializer_list<const char*> choices,
+                     const char* fallback = "") const;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+
+ private:
+  const YamlContext& context_;
+  YAML::Node node_;
+  std::string what_;
+};
+
+/// Reads a YAML sequence (an absent node reads as empty); anything else is an error.
+std::vector<YAML::Node> readList(const YamlContext& context, const YAML::Node& node, const std::string& what);
+
+}  // namespace mbsopt
