@@ -1,5 +1,6 @@
 #include "dynamics/newmark.hpp"
 
+#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -32,6 +33,7 @@ constexpr double kRateSafety = 10.0;
 
 SimulationError::SimulationError(const std::string& what, double t, long s, double norm, std::string where)
     : std::runtime_error(describe(what, t, s, norm, where)),
+      reason(what),
       time(t),
       step(s),
       residual_norm(norm),
@@ -76,6 +78,21 @@ void NewmarkIntegrator::fail(const std::string& reason, const Eigen::VectorXd& r
     if (!std::isfinite(residual[i]) && i < static_cast<Eigen::Index>(free_.size()))
       element = model_.coordinateOwner(free_[static_cast<std::size_t>(i)]);
   throw SimulationError(reason, t_, step_count_, norm, element);
+}
+
+void NewmarkIntegrator::failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const {
+  // The direction the matrix does not resist within the free directions V₂: the last right
+  // singular vector of V₂ᵀ J V₂, mapped back; its largest component names the coordinate.
+  const Eigen::MatrixXd& v2 = partition_.freeDirections();
+  const Eigen::MatrixXd reduced = v2.transpose() * matrix * v2;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(reduced, Eigen::ComputeFullV);
+  const Eigen::VectorXd direction = v2 * svd.matrixV().col(reduced.cols() - 1);
+  Eigen::Index worst = 0;
+  direction.cwiseAbs().maxCoeff(&worst);
+  const std::string& element = model_.coordinateOwner(free_[static_cast<std::size_t>(worst)]);
+  throw SimulationError(reason + ": nothing resists a motion of '" + element +
+                            "' (a joint with no body beyond it, or a massless loop?)",
+                        t_, step_count_, r_free_.size() ? r_free_.norm() : 0.0, element);
 }
 
 void NewmarkIntegrator::setDriven(double t) {
@@ -132,8 +149,9 @@ void NewmarkIntegrator::checkInitialClosure() const {
 void NewmarkIntegrator::evaluateResidual() {
   try {
     residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
-  } catch (const std::domain_error& degenerate) {  // an element whose force is undefined in this state
-    throw SimulationError(degenerate.what(), t_, step_count_, std::numeric_limits<double>::quiet_NaN(), "");
+  } catch (const DegenerateElementError& degenerate) {  // an element whose force is undefined in this state
+    throw SimulationError(degenerate.what(), t_, step_count_, std::numeric_limits<double>::quiet_NaN(),
+                          degenerate.element());
   }
   for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
 }
@@ -162,7 +180,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   evaluateResidual();
   if (!r_free_.allFinite()) fail("the initial residual is not finite", r_free_);
   massMatrix(model_, ws_, free_, mass_);
-  if (!partition_.setIterationMatrix(mass_)) fail("the mass matrix is singular on the free directions", r_free_);
+  if (!partition_.setIterationMatrix(mass_)) failSingular("the mass matrix is singular on the free directions", mass_);
   reduced_dirty_ = true;  // the partition now holds M, not J
   projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
   evaluateResidual();
@@ -213,7 +231,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     }
     refresh = Refresh::None;
     if (reduced_dirty_) {
-      if (!partition_.setIterationMatrix(J_)) fail("the iteration matrix is singular on the free directions", r_free_);
+      if (!partition_.setIterationMatrix(J_)) failSingular("the iteration matrix is singular on the free directions", J_);
       reduced_dirty_ = false;
     }
     partition_.solve(r_free_, closure_, da_, dlambda_);
@@ -321,7 +339,7 @@ void NewmarkIntegrator::step() {
     // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
     updateConstraintPartition();
     updateMassMatrix();
-    if (!partition_.setIterationMatrix(mass_)) fail("the mass matrix is singular on the free directions", r_free_);
+    if (!partition_.setIterationMatrix(mass_)) failSingular("the mass matrix is singular on the free directions", mass_);
     projectOntoConstraints();
     if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);
   } else {

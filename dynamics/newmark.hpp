@@ -54,6 +54,7 @@ struct NewmarkSettings {
 class SimulationError : public std::runtime_error {
  public:
   SimulationError(const std::string& what, double time, long step, double residual_norm, std::string element);
+  std::string reason;  ///< what went wrong, without the time and the residual
   double time;
   long step;
   double residual_norm;
@@ -118,6 +119,8 @@ class NewmarkIntegrator {
   void applyNewmarkUpdate();  ///< q, q̇ of the free coordinates from q̈ and the predictors (32)
   void measureClosure();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
+  /// For an iteration matrix singular on the free directions: names the coordinate it leaves free.
+  [[noreturn]] void failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const;
 
   const Model& model_;
   NewmarkSettings settings_;

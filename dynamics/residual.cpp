@@ -41,7 +41,7 @@ void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
       (ws.velocity[b] + ws.angular_velocity[b].cross(rb)) - (ws.velocity[a] + ws.angular_velocity[a].cross(ra));
   const Scalar length = sqrt(d.squaredNorm());
   if (!(valueOf(length) > 1e-12 * (1.0 + std::abs(s.rest_length))))
-    throw std::domain_error("point spring-damper '" + s.name + "': its two points coincide, so its direction is undefined");
+    throw DegenerateElementError(s.name, "point spring-damper '" + s.name + "': its two points coincide, so its direction is undefined");
   const Vector3<Scalar> u = d / length;
   const Scalar tension = Scalar(s.stiffness) * (length - Scalar(s.rest_length)) + Scalar(s.damping) * u.dot(d_rate);
   const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched

@@ -72,6 +72,7 @@ class SceneBuilder {
     for (const YAML::Node& node : list("forces")) readForce(node);
     for (const YAML::Node& node : list("sensors")) readSensor(node);
     assembleInitialState();
+    checkFirstEvaluation();
     return std::move(result_);
   }
 
@@ -432,6 +433,19 @@ class SceneBuilder {
     }
     warnIfMoved(scene.q0 - q_given, "coordinates", "");
     warnIfMoved(scene.v0 - v_given, "rates", "/s");
+  }
+
+  /// Computes the initial accelerations, so that a scene whose dynamics are undefined from the start
+  /// (a joint with nothing to move, a point spring of zero length) is an error at its entry.
+  void checkFirstEvaluation() {
+    const Scene& scene = result_.scene;
+    try {
+      NewmarkIntegrator(scene.model, scene.settings).initialize(scene.q0, scene.v0, 0.0);
+    } catch (const SimulationError& e) {
+      const auto entry = names_.find(e.element);
+      if (entry == names_.end()) throw SceneError(context_.path(), 0, 0, e.what());
+      context_.fail(entry->second, "at t = 0: " + e.reason);
+    }
   }
 
   void warnIfMoved(const Eigen::VectorXd& change, const char* what, const char* per_second) {

@@ -3,6 +3,8 @@
 // by the trapezoidal rule (Newmark β = 1/4, γ = 1/2).
 #include <gtest/gtest.h>
 
+#include "tests/mechanical_energy.hpp"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -16,6 +18,9 @@
 
 namespace mbsopt {
 namespace {
+
+using test::Energy;
+using test::mechanicalEnergy;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180.0;
@@ -56,28 +61,6 @@ Model crankRocker() {
   model.addRevoluteCut("loop", coupler_tip, rocker_tip, z, z);  // 5 equations, 2 independent in the plane
   model.setGravity(Eigen::Vector3d(0.0, -9.81, 0.0));
   return model;
-}
-
-struct Energy {
-  double kinetic = 0.0;
-  double potential = 0.0;
-  double total() const { return kinetic + potential; }
-};
-
-/// T = Σ ½ m |v_c|² + ½ ωᵀ I ω and V = −Σ m g·r_c from the frame kinematics of the state.
-Energy mechanicalEnergy(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
-  forwardKinematics(model, ws, q, v, Eigen::VectorXd::Zero(q.size()).eval(), KinematicsLevel::Velocity);
-  Energy energy;
-  for (const Body& body : model.bodies()) {
-    const auto k = static_cast<std::size_t>(body.frame);
-    const Eigen::Matrix3d& R = ws.rotation[k];
-    const Eigen::Vector3d& w = ws.angular_velocity[k];
-    const Eigen::Vector3d c = R * body.centre_of_mass;
-    const Eigen::Vector3d v_c = ws.velocity[k] + w.cross(c);
-    energy.kinetic += 0.5 * body.mass * v_c.squaredNorm() + 0.5 * w.dot(R * body.inertia * R.transpose() * w);
-    energy.potential -= body.mass * model.gravity().dot(ws.position[k] + c);
-  }
-  return energy;
 }
 
 struct EnergyHistory {

@@ -8,6 +8,8 @@
 // with small-angle angular frequency ω = √(m g L / I_O) and period T₀ = 2π/ω.
 #include <gtest/gtest.h>
 
+#include "tests/closed_forms.hpp"
+
 #include <cmath>
 #include <vector>
 
@@ -61,16 +63,7 @@ std::vector<double> upwardZeroCrossings(const Trajectory& traj) {
   return crossings;
 }
 
-/// Complete elliptic integral of the first kind K(k) = π / (2 AGM(1, √(1 − k²))).
-double ellipticK(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 30 && std::abs(a - b) > 1e-16 * a; ++i) {
-    const double mean = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = mean;
-  }
-  return M_PI / (2.0 * a);
-}
+using mbsopt::test::ellipticK;
 
 TEST(Pendulum, SmallAnglePeriodIncludesAmplitudeAndNewmarkCorrections) {
   const Pendulum p;
