@@ -1,4 +1,4 @@
-// Writes a simulation to CSV: one row per time point, `t`, every sensor, then every coordinate.
+// Writes a simulation to CSV: one row per time point, `t`, every coordinate, then every sensor.
 // The file appears only when complete (written to a temporary name, then renamed).
 #pragma once
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/scene_argument.hpp"
+#include "problems/scene_text.hpp"
 
 namespace mbsopt {
 
@@ -11,12 +12,11 @@ void registerParametersCommand(CLI::App& app) {
   auto argument = std::make_shared<SceneArgument>();
   CLI::App* command = app.add_subcommand(
       "parameters", "List every number of a scene by its dotted name (what --set and design problems address), "
-                    "one 'name value' per line, in file order");
+                    "one 'name value' per line: the file's numbers in file order, then the defaults it leaves out");
   addSceneArgument(*command, *argument, false);
   command->callback([argument] {
     const SceneSource source = resolveScene(argument->scene);
-    loadScene(source);  // the list is only worth having for a scene that loads
-    for (const auto& [name, value] : sceneParameters(source)) std::printf("%s %.17g\n", name.c_str(), value);
+    for (const auto& [name, value] : sceneParameters(source)) std::printf("%s %s\n", name.c_str(), formatNumber(value).c_str());
   });
 }
 

@@ -2,13 +2,24 @@
 
 #include <filesystem>
 
+#include "problems/scene_text.hpp"
+
 namespace mbsopt {
 
+namespace {
+
+std::string builtinList() {
+  std::string names;
+  for (const std::string& name : builtinSceneNames()) names += (names.empty() ? "" : ", ") + name;
+  return names;
+}
+
+}  // namespace
+
 void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_overrides) {
-  std::string builtins;
-  for (const std::string& name : builtinSceneNames()) builtins += (builtins.empty() ? "" : ", ") + name;
   command.add_option("scene", argument.scene,
-                     "A scene file (YAML, see problems/scenes/README.md) or a built-in scene: " + builtins)
+                     "A scene file (YAML, see problems/scenes/README.md) or a built-in scene: " + builtinList() +
+                         " (a file of that name in the working directory comes first)")
       ->required();
   if (!with_overrides) return;
   command
@@ -23,11 +34,17 @@ SceneSource resolveScene(const std::string& scene) {
                                scene.find('/') != std::string::npos;
   if (!looks_like_file && !std::filesystem::exists(scene)) {
     if (auto builtin = builtinScene(scene)) return *builtin;
-    std::string names;
-    for (const std::string& name : builtinSceneNames()) names += (names.empty() ? "" : ", ") + name;
-    throw SceneError(scene, 0, 0, "no such scene file, nor a built-in scene of that name (built-in: " + names + ")");
+    throw SceneError(scene, 0, 0,
+                     "no such scene file, nor a built-in scene of that name (built-in: " + builtinList() + ")");
   }
   return readSceneFile(scene);
+}
+
+ParameterOverride parseOverride(const SceneSource& source, const std::string& name, const std::string& text) {
+  double value = 0.0;
+  std::string why;
+  if (!parseNumber(text, value, why)) throw SceneError(source.path, 0, 0, name + "=" + text + ": " + why);
+  return {name, value};
 }
 
 std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets) {
@@ -35,12 +52,8 @@ std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const s
   for (const std::string& set : sets) {
     const std::size_t equals = set.find('=');
     if (equals == std::string::npos || equals == 0)
-      throw SceneError(source.path, 0, 0, "--set " + set + ": expected name=value");
-    double value = 0.0;
-    std::string why;
-    if (!parseNumber(set.substr(equals + 1), value, why))
-      throw SceneError(source.path, 0, 0, "--set " + set + ": " + why);
-    overrides.push_back({set.substr(0, equals), value});
+      throw SceneError(source.path, 0, 0, "--set " + quoted(set) + ": expected name=value");
+    overrides.push_back(parseOverride(source, set.substr(0, equals), set.substr(equals + 1)));
   }
   return overrides;
 }

@@ -21,6 +21,9 @@ void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_over
 /// The file, or the built-in scene of that name; a SceneError when neither exists.
 SceneSource resolveScene(const std::string& scene);
 
+/// One override from its name and the value as typed (a number, optionally with `deg`).
+ParameterOverride parseOverride(const SceneSource& source, const std::string& name, const std::string& text);
+
 /// Parses "name=value" (value a number, optionally with `deg`); errors name the scene.
 std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets);
 

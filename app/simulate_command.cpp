@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
 #include "dynamics/sensors.hpp"
+#include "problems/scene_text.hpp"
 
 namespace mbsopt {
 
@@ -17,18 +19,43 @@ namespace {
 struct SimulateOptions {
   SceneArgument scene;
   bool fast_newton = false;
-  double step = 0.0;
-  double end_time = 0.0;
+  std::string step, end_time;  ///< as typed: they become overrides of settings.step, settings.end_time
   std::string out;
 };
 
+/// Refuses, before a run, an output path that cannot or must not be replaced by the CSV.
+void checkOutputPath(const SceneSource& source, const std::string& out) {
+  namespace fs = std::filesystem;
+  const fs::path path(out);
+  const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code error;
+  if (!fs::is_directory(directory, error))
+    throw SceneError(source.path, 0, 0, "--out " + out + ": the directory " + directory.string() + " does not exist");
+  const fs::file_status status = fs::symlink_status(path, error);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw SceneError(source.path, 0, 0, "--out " + out + ": exists and is not a regular file (a directory, a link "
+                                        "or a device); give a file name");
+  if (fs::exists(status) && fs::exists(source.path) && fs::equivalent(path, source.path, error))
+    throw SceneError(source.path, 0, 0, "--out " + out + ": is the scene file itself");
+}
+
+/// An error in the run names an element; the file says where that element is declared.
+[[noreturn]] void failAt(const SceneSource& source, const LoadedScene& loaded, const std::string& element,
+                         const std::string& what) {
+  const auto where = loaded.locations.find(element);
+  if (where == loaded.locations.end()) throw SceneError(source.path, 0, 0, what);
+  throw SceneError(source.path, where->second.line, where->second.column, what);
+}
+
 void run(const SimulateOptions& options) {
   const SceneSource source = resolveScene(options.scene.scene);
-  LoadedScene loaded = loadScene(source, parseOverrides(source, options.scene.sets));
+  std::vector<ParameterOverride> overrides = parseOverrides(source, options.scene.sets);
+  for (const auto& [text, name] : {std::pair{options.step, "settings.step"}, {options.end_time, "settings.end_time"}})
+    if (!text.empty()) overrides.push_back(parseOverride(source, name, text));
+  if (!options.out.empty()) checkOutputPath(source, options.out);
+  LoadedScene loaded = loadScene(source, overrides);
   for (const std::string& warning : loaded.warnings) std::cerr << warning << '\n';
   Scene& scene = loaded.scene;
-  if (options.step != 0.0) scene.settings.step = options.step;
-  if (options.end_time != 0.0) scene.settings.end_time = options.end_time;
   scene.settings.accept_by_contraction_rate = options.fast_newton;
 
   const auto start = std::chrono::steady_clock::now();
@@ -43,12 +70,22 @@ void run(const SimulateOptions& options) {
   Trajectory trajectory;
   try {
     trajectory = NewmarkIntegrator(scene.model, scene.settings).simulate(scene.q0, scene.v0, progress);
-  } catch (const std::exception& e) {  // the integrator's errors carry the time and the element
-    throw SceneError(source.path, 0, 0, e.what());
+  } catch (const SimulationError& e) {
+    failAt(source, loaded, e.element, e.what());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const Eigen::MatrixXd sensors = sensorHistory(scene.model, trajectory);
+  for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
+    const Eigen::Index column = static_cast<Eigen::Index>(s);
+    const std::string& name = scene.model.sensors()[s].name;
+    if (!sensors.col(column).allFinite()) {
+      Eigen::Index k = 0;
+      while (std::isfinite(sensors(k, column))) ++k;
+      failAt(source, loaded, name,
+             "sensor '" + name + "' is not finite at t = " + formatNumber(trajectory.time[k]) + " s");
+    }
+  }
   if (!options.out.empty()) writeTrajectoryCsv(options.out, scene.model, trajectory, sensors);
   for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
     Eigen::Index at = 0;
@@ -61,20 +98,6 @@ void run(const SimulateOptions& options) {
               wall, options.out.empty() ? "" : (", wrote " + options.out).c_str());
 }
 
-const CLI::Validator kPositiveFinite(
-    [](const std::string& text) -> std::string {
-      double value = 0.0;
-      try {
-        std::size_t used = 0;
-        value = std::stod(text, &used);
-        if (used != text.size()) return "'" + text + "' is not a number";
-      } catch (const std::exception&) {
-        return "'" + text + "' is not a number";
-      }
-      return value > 0.0 && std::isfinite(value) ? std::string() : "must be positive and finite, got " + text;
-    },
-    "POSITIVE");
-
 }  // namespace
 
 void registerSimulateCommand(CLI::App& app) {
@@ -82,20 +105,24 @@ void registerSimulateCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "simulate",
       "Simulate a scene with the Newmark integrator: prints the peak of every sensor and a summary line "
-      "(steps, Newton iterations, max closure error, wall time); writes a CSV with --out");
+      "(steps, Newton iterations, max closure error, wall time) on stdout, warnings and a progress line per "
+      "second on stderr; exit status 1 with one line 'file:line:column: error: what' on a bad scene");
   addSceneArgument(*command, options->scene, true);
-  command->add_option("--dt", options->step, "Time step h [s] (default: the scene's settings.step)")
-      ->check(kPositiveFinite);
-  command->add_option("--t-end", options->end_time, "End time [s] (default: the scene's settings.end_time)")
-      ->check(kPositiveFinite);
+  command->add_option("--dt", options->step,
+                      "Time step h [s]; the same as --set settings.step=H (default: the scene's settings.step)");
+  command->add_option("--t-end", options->end_time,
+                      "End time T [s]; the same as --set settings.end_time=T. The run takes ceil(T/h) steps, so it "
+                      "ends at T or just after (default: the scene's settings.end_time)");
   command->add_flag("--fast-newton", options->fast_newton,
                     "Accept a first Newton iterate when the contraction rate measured on recent steps says it is "
                     "converged (about 30% faster; results then differ at 1e-8 relative, too noisy for finite-"
                     "difference gradients)");
-  command->add_option("--out", options->out,
-                      "CSV file: one row per time point with t [s], every sensor and every coordinate by name "
-                      "(SI units: m, rad, m/s², ...); written to a temporary name and renamed when complete, so it "
-                      "never exists half written");
+  command
+      ->add_option("--out", options->out,
+                   "CSV file: one row per time point with t [s], every coordinate, then every sensor, by name "
+                   "(SI units: m, rad, m/s², ...); written to a temporary name and renamed when complete, so it "
+                   "never exists half written")
+      ->check([](const std::string& path) { return path.empty() ? "the file name is empty" : ""; });
   command->callback([options] { run(*options); });
 }
 

@@ -101,6 +101,11 @@ void NewmarkIntegrator::setDriven(double t) {
     q_[i] = motion.value(t);
     v_[i] = motion.rate(t);
     a_[i] = motion.acceleration(t);
+    if (!std::isfinite(q_[i]) || !std::isfinite(v_[i]) || !std::isfinite(a_[i])) {
+      const std::string& element = model_.coordinateOwner(i);
+      throw SimulationError("the prescribed motion of '" + element + "' or its derivatives are not finite", t,
+                            step_count_, std::numeric_limits<double>::quiet_NaN(), element);
+    }
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "dynamics/assembly.hpp"
 #include "problems/scene_parameters.hpp"
+#include "problems/scene_text.hpp"
 #include "problems/yaml_reader.hpp"
 
 namespace mbsopt {
@@ -28,12 +29,6 @@ std::string location(const std::string& path, int line, int column) {
 std::string withoutOwner(const std::string& message, const std::string& owner) {
   const std::string prefix = owner + ": ";
   return message.starts_with(prefix) ? message.substr(prefix.size()) : message;
-}
-
-/// " (did you mean 'x'?)" when one of `candidates` is a plausible typo of `word`.
-std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
-  const std::string nearest = closestName(word, candidates);
-  return nearest.empty() ? "" : " (did you mean '" + nearest + "'?)";
 }
 
 TimeFunction readTimeFunction(const YamlContext& context, const YAML::Node& node, const std::string& what) {
@@ -71,6 +66,7 @@ class SceneBuilder {
     for (const YAML::Node& node : list("cuts")) readCut(node);
     for (const YAML::Node& node : list("forces")) readForce(node);
     for (const YAML::Node& node : list("sensors")) readSensor(node);
+    recordLocations();
     assembleInitialState();
     checkFirstEvaluation();
     return std::move(result_);
@@ -83,7 +79,7 @@ class SceneBuilder {
   };
   struct PendingElement {
     MapReader entry;
-    std::string name, parent;
+    std::string name, type, parent;
     enum class State { Waiting, Placing, Placed } state = State::Waiting;
   };
 
@@ -98,6 +94,7 @@ class SceneBuilder {
     const MapReader map(context_, node, kind);
     name = map.name("name");
     if (name == "ground") map.fail("name", "'ground' is the name of the fixed frame");
+    if (name == "t") map.fail("name", "'t' is the time column of the CSV output");
     if (const auto used = names_.find(name); used != names_.end())
       map.fail("name", "the name '" + name + "' is already used at line " + std::to_string(used->second.line + 1));
     names_.emplace(name, map.node()["name"].Mark());
@@ -105,13 +102,18 @@ class SceneBuilder {
   }
 
   /// Runs a model-builder call; its std::invalid_argument becomes an error at `entry`.
-  template <class Build>
-  void build(const MapReader& entry, const std::string& name, Build&& call) {
+  template <class Call>
+  void guarded(const MapReader& entry, const std::string& name, Call&& call) {
     try {
       call();
     } catch (const std::invalid_argument& e) {
       context_.fail(entry.node(), entry.what() + ": " + withoutOwner(e.what(), name));
     }
+  }
+
+  /// Where the file declares each named entry, for errors found later (LoadedScene::locations).
+  void recordLocations() {
+    for (const auto& [name, mark] : names_) result_.locations[name] = {mark.line + 1, mark.column + 1};
   }
 
   FrameIndex frame(const MapReader& entry, const std::string& key) {
@@ -191,6 +193,12 @@ class SceneBuilder {
     s.closure = settings.choice("closure", {"position", "acceleration"}, "position") == "acceleration"
                     ? ClosureLevel::Acceleration
                     : ClosureLevel::Position;
+    // The Newmark family is unconditionally stable for linear problems iff 2β ≥ γ ≥ ½ (Hughes, The
+    // Finite Element Method, 2000, §9.1.2); outside, a small enough step is needed.
+    if (!(s.gamma >= 0.5 && 2.0 * s.beta >= s.gamma))
+      result_.warnings.push_back(location(context_.path(), settings.markOf("gamma").line + 1, 0) +
+                                 ": warning: beta = " + formatNumber(s.beta) + ", gamma = " + formatNumber(s.gamma) +
+                                 " are not unconditionally stable (that needs 2 beta >= gamma >= 1/2)");
   }
 
   void readTracks() {
@@ -235,7 +243,7 @@ class SceneBuilder {
       else e.allowKeys({"name", "type", "parent", "axis", "q0", "v0", "motion"});
       const std::string parent = e.name("parent");
       index.emplace(name, pending.size());
-      pending.push_back({std::move(e), name, parent});
+      pending.push_back({std::move(e), name, type, parent});
     }
     // Depth-first from each element to the ground: parents first, file order otherwise.
     std::vector<std::size_t> chain;
@@ -260,16 +268,16 @@ class SceneBuilder {
         }
         self(self, parent->second);
       }
-      addElement(p.entry, p.name, p.parent);
+      addElement(p.entry, p.name, p.type, p.parent);
       chain.pop_back();
       p.state = PendingElement::State::Placed;
     };
     for (std::size_t i = 0; i < pending.size(); ++i) place(place, i);
   }
 
-  void addElement(const MapReader& e, const std::string& name, const std::string& parent_name) {
+  void addElement(const MapReader& e, const std::string& name, const std::string& type,
+                  const std::string& parent_name) {
     const FrameIndex parent = parent_name == "ground" ? Model::ground : model().frame(parent_name);
-    const std::string type = e.choice("type", {"offset", "revolute", "prismatic", "curve_slider"});
     if (type == "offset") {
       Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
       if (e.has("rotation")) {
@@ -278,16 +286,16 @@ class SceneBuilder {
         rotation = Eigen::AngleAxisd(r.number("angle"), axis(r, "axis").normalized()).toRotationMatrix();
       }
       const Eigen::Vector3d translation = e.vector("translation", Eigen::Vector3d::Zero());
-      build(e, name, [&] { model().addOffset(name, parent, translation, rotation); });
+      guarded(e, name, [&] { model().addOffset(name, parent, translation, rotation); });
       return;
     }
     if (type == "curve_slider") {
       const auto t = track(e);
       const SliderOrientation o = orientation(e);
-      build(e, name, [&] { model().addCurveSlider(name, parent, t, o); });
+      guarded(e, name, [&] { model().addCurveSlider(name, parent, t, o); });
     } else {
       const Eigen::Vector3d a = axis(e, "axis");
-      build(e, name, [&] {
+      guarded(e, name, [&] {
         if (type == "revolute") model().addRevolute(name, parent, a);
         else model().addPrismatic(name, parent, a);
       });
@@ -297,7 +305,7 @@ class SceneBuilder {
         if (e.has(key))
           e.fail(key, std::string(key) + " conflicts with 'motion': a driven joint starts where its motion says");
       const TimeFunction motion = readTimeFunction(context_, e.node()["motion"], e.what() + ".motion");
-      build(e, name, [&] { model().drive(name, motion); });
+      guarded(e, name, [&] { model().drive(name, motion); });
     } else {
       initialValues(e, name);
     }
@@ -317,7 +325,7 @@ class SceneBuilder {
     inertia(0, 1) = inertia(1, 0) = b.number("Ixy", 0.0);
     inertia(0, 2) = inertia(2, 0) = b.number("Ixz", 0.0);
     inertia(1, 2) = inertia(2, 1) = b.number("Iyz", 0.0);
-    build(b, name, [&] { model().addBody(name, f, mass, com, inertia); });
+    guarded(b, name, [&] { model().addBody(name, f, mass, com, inertia); });
   }
 
   void readCut(const YAML::Node& node) {
@@ -330,17 +338,17 @@ class SceneBuilder {
       const FrameIndex base = c.has("base") ? frame(c, "base") : Model::ground;
       const auto t = track(c);
       const SliderOrientation o = orientation(c);
-      build(c, name, [&] { model().addCurveSliderCut(name, a, base, t, o); });
+      guarded(c, name, [&] { model().addCurveSliderCut(name, a, base, t, o); });
       initialValues(c, name);
     } else if (type == "revolute") {
       c.allowKeys({"name", "type", "frame_a", "frame_b", "axis_in_a", "axis_in_b"});
       const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");
       const Eigen::Vector3d axis_a = axis(c, "axis_in_a"), axis_b = axis(c, "axis_in_b");
-      build(c, name, [&] { model().addRevoluteCut(name, a, b, axis_a, axis_b); });
+      guarded(c, name, [&] { model().addRevoluteCut(name, a, b, axis_a, axis_b); });
     } else {
       c.allowKeys({"name", "type", "frame_a", "frame_b"});
       const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");
-      build(c, name, [&] {
+      guarded(c, name, [&] {
         if (type == "spherical") model().addSphericalCut(name, a, b);
         else model().addWeldCut(name, a, b);
       });
@@ -359,7 +367,7 @@ class SceneBuilder {
       const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
       const TimeFunction rest =
           f.has("rest") ? readTimeFunction(context_, f.node()["rest"], f.what() + ".rest") : TimeFunction::constant(0.0);
-      build(f, name, [&] { model().addGuidanceSpring(name, j, k, c, rest); });
+      guarded(f, name, [&] { model().addGuidanceSpring(name, j, k, c, rest); });
     } else if (type == "point_spring_damper") {
       f.allowKeys({"name", "type", "frame_a", "point_a", "frame_b", "point_b", "k", "c", "rest_length"});
       const FrameIndex a = frame(f, "frame_a"), b = frame(f, "frame_b");
@@ -367,18 +375,18 @@ class SceneBuilder {
       const Eigen::Vector3d pb = f.vector("point_b", Eigen::Vector3d::Zero());
       const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
       const double rest = f.nonNegative("rest_length", 0.0);
-      build(f, name, [&] { model().addPointSpringDamper(name, a, pa, b, pb, k, c, rest); });
+      guarded(f, name, [&] { model().addPointSpringDamper(name, a, pa, b, pb, k, c, rest); });
     } else if (type == "joint_actuation") {
       f.allowKeys({"name", "type", "joint", "value"});
       const std::string j = joint(f, "joint");
       const TimeFunction value = readTimeFunction(context_, f.required("value"), f.what() + ".value");
-      build(f, name, [&] { model().addJointActuation(name, j, value); });
+      guarded(f, name, [&] { model().addJointActuation(name, j, value); });
     } else {
       f.allowKeys({"name", "type", "frame", "slider", "k", "c"});
       const FrameIndex fr = frame(f, "frame");
       const std::string slider = joint(f, "slider");
       const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
-      build(f, name, [&] { model().addTrackGuidance(name, fr, slider, k, c); });
+      guarded(f, name, [&] { model().addTrackGuidance(name, fr, slider, k, c); });
     }
   }
 
@@ -408,7 +416,7 @@ class SceneBuilder {
       const FrameIndex a = frame(s, "frame_a"), b = frame(s, "frame_b");
       kind = RelativeAngleSensor{a, b, axis(s, "axis").normalized()};
     }
-    build(s, name, [&] { model().addSensor(name, kind); });
+    guarded(s, name, [&] { model().addSensor(name, kind); });
   }
 
   /// q₀ and q̇₀ from the joints' q0 and v0, moved onto the loop closure when they miss it.
@@ -426,13 +434,14 @@ class SceneBuilder {
     try {
       assemble(model(), scene.q0, scene.v0, 0.0, 1e-12, scene.settings.svd_threshold);
     } catch (const AssemblyError& e) {
-      const int cut = e.openCuts().empty() ? 0 : e.openCuts().front();
-      context_.fail(cut_marks_.at(static_cast<std::size_t>(cut)), "cut '" + model().cuts()[cut].name + "': " + e.what());
-    } catch (const std::runtime_error& e) {
-      context_.fail(cut_marks_.empty() ? root_.node().Mark() : cut_marks_.front(), e.what());
+      if (e.openCuts().empty() || cut_marks_.empty()) throw SceneError(context_.path(), 0, 0, e.what());
+      const auto cut = static_cast<std::size_t>(e.openCuts().front());
+      context_.fail(cut_marks_.at(cut), "cut '" + model().cuts()[cut].name + "': " + e.what());
+    } catch (const std::exception& e) {  // a flipped weld, a non-finite driver at t = 0
+      throw SceneError(context_.path(), 0, 0, std::string("the initial state: ") + e.what());
     }
-    warnIfMoved(scene.q0 - q_given, "coordinates", "");
-    warnIfMoved(scene.v0 - v_given, "rates", "/s");
+    warnIfMoved(scene.q0 - q_given, "coordinates", "m or rad");
+    warnIfMoved(scene.v0 - v_given, "rates", "m/s or rad/s");
   }
 
   /// Computes the initial accelerations, so that a scene whose dynamics are undefined from the start
@@ -443,25 +452,24 @@ class SceneBuilder {
       NewmarkIntegrator(scene.model, scene.settings).initialize(scene.q0, scene.v0, 0.0);
     } catch (const SimulationError& e) {
       const auto entry = names_.find(e.element);
-      if (entry == names_.end()) throw SceneError(context_.path(), 0, 0, e.what());
+      if (entry == names_.end()) throw SceneError(context_.path(), 0, 0, "at t = 0: " + e.reason);
       context_.fail(entry->second, "at t = 0: " + e.reason);
+    } catch (const std::exception& e) {
+      throw SceneError(context_.path(), 0, 0, std::string("at t = 0: ") + e.what());
     }
   }
 
-  void warnIfMoved(const Eigen::VectorXd& change, const char* what, const char* per_second) {
+  void warnIfMoved(const Eigen::VectorXd& change, const std::string& what, const std::string& unit) {
     Eigen::VectorXd free_change = change;
     for (const int d : model().drivenCoordinates()) free_change[d] = 0.0;  // a driver sets them exactly
     if (free_change.size() == 0) return;
     Eigen::Index worst = 0;
     const double largest = free_change.cwiseAbs().maxCoeff(&worst);
     if (!(largest > 1e-10)) return;
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "%s: warning: the initial %s do not close the loops; moved them onto the closure by up to %.3g "
-                  "(m or rad)%s, at '%s'",
-                  context_.path().c_str(), what, largest, per_second,
-                  model().coordinates()[static_cast<std::size_t>(worst)].name.c_str());
-    result_.warnings.emplace_back(text);
+    result_.warnings.push_back(context_.path() + ": warning: the initial " + what +
+                               " do not close the loops; moved them onto the closure by up to " +
+                               formatNumber(largest) + " " + unit + ", at '" +
+                               model().coordinates()[static_cast<std::size_t>(worst)].name + "'");
   }
 
   const YamlContext& context_;
@@ -533,44 +541,48 @@ SceneSource readSceneFile(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path, 0, 0, "cannot read the scene file");
+  if (text.str().find('\0') != std::string::npos)
+    throw SceneError(path, 0, 0, "the file holds NUL bytes: it is not a text (YAML) file");
   return {path, text.str()};
 }
 
 LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   YamlContext context(source.path);
   YAML::Node root = parse(source);
-  const std::vector<ParameterOverride> unmatched = applyOverrides(context, root, overrides);
-  LoadedScene loaded = SceneBuilder(context, root).build();
-  // Model parameters the file leaves at their defaults (a centre of mass, gravity) are set on the model.
-  Model& model = loaded.scene.model;
-  for (const ParameterOverride& o : unmatched) {
-    const std::vector<std::string> model_names = model.parameterNames();
-    if (std::find(model_names.begin(), model_names.end(), o.name) == model_names.end()) {
-      std::vector<std::string> names = model_names;
-      forEachNumber(root, [&](const std::string& name, const YAML::Node&) { names.push_back(name); });
-      throw SceneError(source.path, 0, 0,
-                       describe(o) + ": the scene has no number named '" + o.name + "'" + suggestion(o.name, names) +
-                           "; 'mbsopt parameters SCENE' lists them");
-    }
-    try {
-      model.setParameter(o.name, o.value);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(source.path, 0, 0, describe(o) + ": " + e.what());
-    }
-  }
-  return loaded;
+  rejectAliases(context, root);
+  applyOverrides(context, root, overrides);
+  return SceneBuilder(context, root).build();
 }
 
 std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source) {
-  const YamlContext context(source.path);
+  YamlContext context(source.path);
+  const YAML::Node root = parse(source);
+  rejectAliases(context, root);
   std::vector<std::pair<std::string, double>> parameters;
-  forEachNumber(parse(source), [&](const std::string& name, const YAML::Node& node) {
+  forEachNumber(root, [&](const std::string& name, const YAML::Node& node) {
     parameters.emplace_back(name, readNumber(context, node, name));
   });
-  const Model model = loadScene(source).scene.model;
-  for (const std::string& name : model.parameterNames())
-    if (std::none_of(parameters.begin(), parameters.end(), [&](const auto& p) { return p.first == name; }))
-      parameters.emplace_back(name, model.parameter(name));
+  // The defaults the file does not write, which --set can still address.
+  const Scene scene = SceneBuilder(context, root).build().scene;
+  const NewmarkSettings& s = scene.settings;
+  std::vector<std::pair<std::string, double>> defaults{
+      {"settings.step", s.step},
+      {"settings.end_time", s.end_time},
+      {"settings.beta", s.beta},
+      {"settings.gamma", s.gamma},
+      {"settings.newton_tolerance", s.newton_tolerance},
+      {"settings.max_newton_iterations", s.max_newton_iterations},
+      {"settings.svd_threshold", s.svd_threshold}};
+  for (const std::string& name : scene.model.parameterNames()) defaults.emplace_back(name, scene.model.parameter(name));
+  for (const int i : scene.model.freeCoordinates()) {
+    const std::string& name = scene.model.coordinates()[static_cast<std::size_t>(i)].name;
+    if (scene.model.coordinateOwner(i) != name) continue;  // a coordinate the file does not name
+    defaults.emplace_back(name + ".q0", 0.0);
+    defaults.emplace_back(name + ".v0", 0.0);
+  }
+  for (const auto& entry : defaults)
+    if (std::none_of(parameters.begin(), parameters.end(), [&](const auto& p) { return p.first == entry.first; }))
+      parameters.push_back(entry);
   return parameters;
 }
 

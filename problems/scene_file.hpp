@@ -2,6 +2,7 @@
 // its integration settings, built into a Scene. Every error names the file, line and column.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -39,14 +40,15 @@ struct ParameterOverride {
   double value;
 };
 
+struct SceneLocation {
+  int line = 0, column = 0;  ///< 1-based
+};
+
 struct LoadedScene {
   Scene scene;
   std::vector<std::string> warnings;  ///< e.g. how far the initial state was moved to close the loops
+  std::map<std::string, SceneLocation> locations;  ///< where each named entry is declared
 };
-
-/// Parses the text of a scene number: a decimal literal, optionally followed by `deg` (× π/180).
-/// Returns false and sets `why` when the text is not a finite number.
-bool parseNumber(const std::string& text, double& value, std::string& why);
 
 /// Reads a file; throws SceneError when it cannot be read.
 SceneSource readSceneFile(const std::string& path);
@@ -58,8 +60,9 @@ std::vector<std::string> builtinSceneNames();
 /// Throws SceneError for anything wrong with the file or the overrides.
 LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOverride>& overrides = {});
 
-/// Every number of the file by its dotted name, with its value, in file order; then the model
-/// parameters the file leaves at their defaults (a centre of mass, gravity). Loads the scene.
+/// Every number of the file by its dotted name, with its value, in file order; then the numbers it
+/// leaves at their defaults (settings, model parameters, initial coordinates and rates), which
+/// `--set` can address too. Builds the scene.
 std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source);
 
 }  // namespace mbsopt

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
+#include <sstream>
+
+#include "problems/scene_text.hpp"
 
 namespace mbsopt {
 
@@ -14,9 +16,20 @@ constexpr std::array<const char*, 10> kVectorKeys{"gravity", "translation", "axi
                                                   "point_a", "point_b",     "axis_in_a", "axis_in_b", "origin"};
 // Sections that list named entries; an entry's numbers are named after its `name`.
 constexpr std::array<const char*, 6> kNamedSections{"tracks", "elements", "bodies", "forces", "cuts", "sensors"};
+constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
 
 bool isVectorKey(const std::string& key) {
   return std::any_of(kVectorKeys.begin(), kVectorKeys.end(), [&](const char* k) { return key == k; });
+}
+
+bool isNamedSection(const std::string& key) {
+  return std::any_of(kNamedSections.begin(), kNamedSections.end(), [&](const char* s) { return key == s; });
+}
+
+int axisIndex(const std::string& part) {
+  for (int i = 0; i < 3; ++i)
+    if (part == kAxes[static_cast<std::size_t>(i)]) return i;
+  return -1;
 }
 
 using Visitor = std::function<void(const std::string&, const YAML::Node&)>;
@@ -27,7 +40,6 @@ void walk(const std::string& prefix, const std::string& key, const YAML::Node& n
     std::string why;
     if (parseNumber(node.Scalar(), value, why)) visit(prefix, node);
   } else if (node.IsSequence()) {
-    static constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
     const bool vector = isVectorKey(key) && node.size() == 3;
     for (std::size_t i = 0; i < node.size(); ++i)
       walk(prefix + "." + (vector ? kAxes[i] : std::to_string(i)), "", node[i], visit);
@@ -37,6 +49,67 @@ void walk(const std::string& prefix, const std::string& key, const YAML::Node& n
   }
 }
 
+std::vector<std::string> split(const std::string& dotted) {
+  std::vector<std::string> parts;
+  std::istringstream in(dotted);
+  for (std::string part; std::getline(in, part, '.');) parts.push_back(part);
+  return parts;
+}
+
+/// The map of the named entry `name` in any section, or an invalid node.
+YAML::Node namedEntry(const YAML::Node& root, const std::string& name) {
+  for (const auto& section : root) {
+    if (!section.first.IsScalar() || !isNamedSection(section.first.Scalar()) || !section.second.IsSequence()) continue;
+    for (const YAML::Node& entry : section.second)
+      if (entry.IsMap() && entry["name"].IsScalar() && entry["name"].Scalar() == name) return entry;
+  }
+  return YAML::Node(YAML::NodeType::Undefined);
+}
+
+/// Writes a number the file leaves at its default (`settings.beta`, `hinge.q0`, `bob.com.x`,
+/// `gravity.z`), creating the keys on the way. False when the path leads nowhere.
+bool insertDefault(YAML::Node& root, const std::vector<std::string>& parts, const std::string& value,
+                   YAML::Node& written) {
+  if (parts.empty()) return false;
+  YAML::Node node = root;
+  std::size_t first = 0;
+  if (parts[0] != "settings" && parts[0] != "gravity") {
+    const YAML::Node entry = namedEntry(root, parts[0]);
+    if (!entry.IsDefined()) return false;
+    node.reset(entry);
+    first = 1;
+  }
+  for (std::size_t i = first; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    const bool last = i + 1 == parts.size();
+    if (node.IsSequence()) {
+      const int axis = axisIndex(part);
+      std::size_t index = 0;
+      if (axis >= 0) index = static_cast<std::size_t>(axis);
+      else if (!part.empty() && std::all_of(part.begin(), part.end(), ::isdigit)) index = std::stoul(part);
+      else return false;
+      if (index >= node.size()) return false;
+      YAML::Node child = node[index];
+      node.reset(child);
+    } else if (node.IsMap()) {
+      if (!node[part].IsDefined()) {
+        if (last) node[part] = value;
+        else if (isVectorKey(part) && axisIndex(parts[i + 1]) >= 0 && i + 2 == parts.size())
+          node[part] = std::vector<std::string>{"0", "0", "0"};
+        else node[part] = YAML::Node(YAML::NodeType::Map);
+      }
+      YAML::Node child = node[part];
+      node.reset(child);
+    } else {
+      return false;
+    }
+  }
+  if (!node.IsScalar()) return false;
+  node = value;
+  written.reset(node);
+  return true;
+}
+
 }  // namespace
 
 void forEachNumber(const YAML::Node& root, const Visitor& visit) {
@@ -44,8 +117,7 @@ void forEachNumber(const YAML::Node& root, const Visitor& visit) {
   for (const auto& section : root) {
     if (!section.first.IsScalar()) continue;
     const std::string& key = section.first.Scalar();
-    const bool named = std::any_of(kNamedSections.begin(), kNamedSections.end(), [&](const char* s) { return key == s; });
-    if (!named) {
+    if (!isNamedSection(key)) {
       walk(key, key, section.second, visit);
       continue;
     }
@@ -62,29 +134,25 @@ void forEachNumber(const YAML::Node& root, const Visitor& visit) {
   }
 }
 
-std::vector<ParameterOverride> applyOverrides(YamlContext& context, YAML::Node& root,
-                                              const std::vector<ParameterOverride>& overrides) {
-  std::vector<ParameterOverride> unmatched;
+void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<ParameterOverride>& overrides) {
   for (const ParameterOverride& o : overrides) {
     std::vector<YAML::Node> targets;
+    std::vector<std::string> names;
     forEachNumber(root, [&](const std::string& name, const YAML::Node& node) {
       if (name == o.name) targets.push_back(node);
+      names.push_back(name);
     });
-    if (targets.empty()) {
-      unmatched.push_back(o);
-      continue;
+    YAML::Node written;
+    if (!targets.empty()) {
+      written.reset(targets.front());
+      written = formatNumber(o.value);
+    } else if (!root.IsMap() || !insertDefault(root, split(o.name), formatNumber(o.value), written)) {
+      throw SceneError(context.path(), 0, 0,
+                       describe(o) + ": the scene has no number named " + quoted(o.name) + suggestion(o.name, names) +
+                           "; 'mbsopt parameters SCENE' lists them");
     }
-    YAML::Node target = targets.front();
-    target = formatNumber(o.value);
-    context.markOverridden(target, describe(o));
+    context.markOverridden(written, describe(o));
   }
-  return unmatched;
-}
-
-std::string formatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
 }
 
 std::string describe(const ParameterOverride& o) { return "--set " + o.name + "=" + formatNumber(o.value); }

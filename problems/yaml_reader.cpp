@@ -1,9 +1,9 @@
 #include "problems/yaml_reader.hpp"
 
+#include "problems/scene_text.hpp"
+
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <numbers>
 
 namespace mbsopt {
 
@@ -13,22 +13,7 @@ std::string describe(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "nothing";
   if (node.IsSequence()) return "a list";
   if (node.IsMap()) return "a map";
-  return "'" + node.Scalar() + "'";
-}
-
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
-      diagonal = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitution});
-    }
-  }
-  return row[b.size()];
+  return quoted(node.Scalar());
 }
 
 std::string listOf(std::initializer_list<const char*> words) {
@@ -38,14 +23,6 @@ std::string listOf(std::initializer_list<const char*> words) {
 }
 
 }  // namespace
-
-std::string closestName(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best_name;
-  std::size_t best = std::max<std::size_t>(3, word.size() / 4 + 1);
-  for (const std::string& candidate : candidates)
-    if (const std::size_t d = editDistance(word, candidate); d < best) best = d, best_name = candidate;
-  return best_name;
-}
 
 namespace {
 
@@ -62,11 +39,13 @@ bool contains(const YAML::Node& tree, const YAML::Node& node) {
 
 }  // namespace
 
-void YamlContext::fail(const YAML::Node& node, const std::string& what) const {
+void YamlContext::fail(const YAML::Node& node, const std::string& what) const { fail(node, node.Mark(), what); }
+
+void YamlContext::fail(const YAML::Node& node, const YAML::Mark& mark, const std::string& what) const {
   std::string origin;  // the overrides inside the failing node may be the cause
   for (const auto& [overridden, text] : overridden_)
     if (contains(node, overridden)) origin += (origin.empty() ? " (value from " : ", ") + text;
-  fail(node.Mark(), what + (origin.empty() ? "" : origin + ")"));
+  fail(mark, what + (origin.empty() ? "" : origin + ")"));
 }
 
 void YamlContext::fail(const YAML::Mark& mark, const std::string& what) const {
@@ -78,36 +57,12 @@ void YamlContext::markOverridden(const YAML::Node& node, std::string origin) {
   overridden_.emplace_back(node, std::move(origin));
 }
 
-bool parseNumber(const std::string& text, double& value, std::string& why) {
-  std::string_view digits = text;
-  while (!digits.empty() && std::isspace(static_cast<unsigned char>(digits.back()))) digits.remove_suffix(1);
-  double scale = 1.0;
-  if (digits.ends_with("deg")) {
-    digits.remove_suffix(3);
-    while (!digits.empty() && std::isspace(static_cast<unsigned char>(digits.back()))) digits.remove_suffix(1);
-    scale = std::numbers::pi / 180.0;
-  }
-  if (digits.starts_with('+')) digits.remove_prefix(1);
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (digits.empty() || end != digits.data() + digits.size() || error == std::errc::invalid_argument) {
-    why = "expected a number, got '" + text + "'";
-    return false;
-  }
-  if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-    why = "'" + text + "' is not a finite number";
-    return false;
-  }
-  // (v / 180) π rather than v (π / 180): 90 deg is then exactly the double nearest π/2.
-  if (scale != 1.0) value = value / 180.0 * std::numbers::pi;
-  return true;
-}
-
 double readNumber(const YamlContext& context, const YAML::Node& node, const std::string& what) {
   if (!node.IsScalar()) context.fail(node, what + ": expected a number, got " + describe(node));
   const std::string& text = node.Scalar();
   if (text == ".nan" || text == ".NaN" || text == ".NAN" || text.ends_with(".inf") || text.ends_with(".Inf") ||
       text.ends_with(".INF"))
-    context.fail(node, what + ": '" + text + "' is not a finite number");
+    context.fail(node, what + ": " + quoted(text) + " is not a finite number");
   double value = 0.0;
   std::string why;
   if (!parseNumber(text, value, why)) context.fail(node, what + ": " + why);
@@ -121,7 +76,7 @@ MapReader::MapReader(const YamlContext& context, const YAML::Node& node, std::st
   for (const auto& entry : node) {
     if (!entry.first.IsScalar()) context.fail(entry.first, what_ + ": keys must be plain words");
     if (!seen.insert(entry.first.Scalar()).second)
-      context.fail(entry.first, what_ + ": duplicate key '" + entry.first.Scalar() + "'");
+      context.fail(entry.first, what_ + ": duplicate key " + quoted(entry.first.Scalar()));
   }
 }
 
@@ -129,9 +84,7 @@ void MapReader::allowKeys(std::initializer_list<const char*> keys) const {
   for (const auto& entry : node_) {
     const std::string& key = entry.first.Scalar();
     if (std::any_of(keys.begin(), keys.end(), [&](const char* allowed) { return key == allowed; })) continue;
-    const std::string hint = closestName(key, {keys.begin(), keys.end()});
-    context_.fail(entry.first, what_ + ": unknown key '" + key + "'" +
-                                   (hint.empty() ? "" : " (did you mean '" + hint + "'?)") +
+    context_.fail(entry.second, entry.first.Mark(), what_ + ": unknown key " + quoted(key) + suggestion(key, {keys.begin(), keys.end()}) +
                                    "; allowed keys: " + listOf(keys));
   }
 }
@@ -163,13 +116,13 @@ double MapReader::number(const std::string& key, double fallback) const {
 
 double MapReader::positive(const std::string& key) const {
   const double value = number(key);
-  if (!(value > 0.0)) fail(key, key + " must be positive, got " + node_[key].Scalar());
+  if (!(value > 0.0)) fail(key, key + " must be positive, got " + formatNumber(value));
   return value;
 }
 
 double MapReader::nonNegative(const std::string& key, double fallback) const {
   const double value = number(key, fallback);
-  if (value < 0.0) fail(key, key + " must not be negative, got " + node_[key].Scalar());
+  if (value < 0.0) fail(key, key + " must not be negative, got " + formatNumber(value));
   return value;
 }
 
@@ -177,7 +130,7 @@ int MapReader::positiveInteger(const std::string& key, int fallback) const {
   if (!has(key)) return fallback;
   const double value = number(key);
   if (!(value >= 1.0 && value <= 1e6 && value == std::floor(value)))
-    fail(key, key + " must be a positive integer, got " + node_[key].Scalar());
+    fail(key, key + " must be a positive integer, got " + formatNumber(value));
   return static_cast<int>(value);
 }
 
@@ -203,7 +156,7 @@ std::string MapReader::name(const std::string& key) const {
                      std::all_of(text.begin(), text.end(), [](char c) {
                        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
                      });
-  if (!valid) fail(key, key + ": '" + text + "' is not a valid name (letters, digits and '_')");
+  if (!valid) fail(key, key + ": " + quoted(text) + " is not a valid name (a letter or '_', then letters, digits, '_')");
   return text;
 }
 
@@ -215,6 +168,23 @@ std::string MapReader::choice(const std::string& key, std::initializer_list<cons
     for (const char* choice : choices)
       if (value.Scalar() == choice) return choice;
   fail(key, key + ": expected one of " + listOf(choices) + ", got " + describe(value));
+}
+
+void rejectAliases(const YamlContext& context, const YAML::Node& root) {
+  // A node reached twice is an alias of an anchor: each node has its own position in the text.
+  std::set<int> seen;
+  std::vector<YAML::Node> pending{root};
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    if (!node.IsNull() && !node.Mark().is_null() && !seen.insert(node.Mark().pos).second)
+      context.fail(node, "this value is anchored ('&name') and reused by an alias ('*name'); a scene refuses "
+                         "aliases, so that every number has one name of its own");
+    if (node.IsSequence())
+      for (const YAML::Node& child : node) pending.push_back(child);
+    if (node.IsMap())
+      for (const auto& child : node) pending.push_back(child.second);
+  }
 }
 
 std::vector<YAML::Node> readList(const YamlContext& context, const YAML::Node& node, const std::string& what) {

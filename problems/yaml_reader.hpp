@@ -20,15 +20,14 @@ class YamlContext {
   const std::string& path() const { return path_; }
   [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const;
   [[noreturn]] void fail(const YAML::Mark& mark, const std::string& what) const;
+  /// At `mark`, naming the overrides inside `node`.
+  [[noreturn]] void fail(const YAML::Node& node, const YAML::Mark& mark, const std::string& what) const;
   void markOverridden(const YAML::Node& node, std::string origin);
 
  private:
   std::string path_;
   std::vector<std::pair<YAML::Node, std::string>> overridden_;
 };
-
-/// The candidate nearest to `word` by edit distance when it is a plausible typo, else "".
-std::string closestName(const std::string& word, const std::vector<std::string>& candidates);
 
 /// A number node: finite, else an error at the node.
 double readNumber(const YamlContext& context, const YAML::Node& node, const std::string& what);
@@ -71,6 +70,10 @@ class MapReader {
   YAML::Node node_;
   std::string what_;
 };
+
+/// Refuses anchors and aliases (and with them alias cycles): a node reachable by two paths would
+/// have two dotted names.
+void rejectAliases(const YamlContext& context, const YAML::Node& root);
 
 /// Reads a YAML sequence (an absent node reads as empty); anything else is an error.
 std::vector<YAML::Node> readList(const YamlContext& context, const YAML::Node& node, const std::string& what);

@@ -11,6 +11,7 @@
 #include "dynamics/kinematics.hpp"
 #include "dynamics/sensors.hpp"
 #include "problems/scene_file.hpp"
+#include "problems/scene_text.hpp"
 #include "problems/tramway.hpp"
 
 namespace mbsopt {
@@ -107,6 +108,43 @@ TEST(SceneFile, DegreesAreExact) {
   EXPECT_FALSE(parseNumber("1e999", value, why));
   EXPECT_FALSE(parseNumber("nan", value, why));
   EXPECT_FALSE(parseNumber("3 m", value, why));
+  EXPECT_FALSE(parseNumber("+-1", value, why));
+  EXPECT_FALSE(parseNumber("1e-400", value, why));
+  EXPECT_NE(why.find("underflows"), std::string::npos) << why;
+  EXPECT_EQ(formatNumber(0.1), "0.1");  // shortest round trip
+  EXPECT_EQ(formatNumber(-9.81), "-9.81");
+  EXPECT_EQ(quoted("a\nb"), "'a\\x0ab'");  // one line, whatever the user typed
+}
+
+// Numbers the file leaves at their defaults are addressable too, and are checked like written ones.
+TEST(SceneFile, OverridesReachDefaults) {
+  const SceneSource source{"inline.yaml", R"(
+elements:
+  - {name: hinge, type: revolute, parent: ground, axis: [0, 0, 1]}
+bodies:
+  - {name: bob, frame: hinge, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}
+)"};
+  const LoadedScene loaded = loadScene(
+      source, {{"settings.beta", 0.3}, {"hinge.q0", 0.5}, {"bob.com.x", 0.25}, {"gravity.y", -9.81}});
+  EXPECT_EQ(loaded.scene.settings.beta, 0.3);
+  EXPECT_EQ(loaded.scene.q0[0], 0.5);
+  EXPECT_EQ(loaded.scene.model.parameter("bob.com.x"), 0.25);
+  EXPECT_EQ(loaded.scene.model.gravity().y(), -9.81);
+  EXPECT_THROW(loadScene(source, {{"settings.beta", 0.9}}), SceneError);  // outside (0, 1/2]
+  EXPECT_THROW(loadScene(source, {{"hinge.stiffness", 1.0}}), SceneError);  // not a key of a revolute joint
+  EXPECT_THROW(loadScene(source, {{"nobody.mass", 1.0}}), SceneError);
+  const auto parameters = sceneParameters(source);
+  for (const char* name : {"settings.gamma", "hinge.q0", "hinge.v0", "bob.com.y", "gravity.z"})
+    EXPECT_TRUE(std::any_of(parameters.begin(), parameters.end(), [&](const auto& p) { return p.first == name; }))
+        << name;
+}
+
+// An alias would give one number two names (and a self-referencing one, an endless tree).
+TEST(SceneFile, AliasesAreRefused) {
+  EXPECT_THROW(loadText("elements: []\nbodies: []\nsettings: &s {x: *s}\n"), SceneError);
+  EXPECT_THROW(loadText("elements:\n  - {name: a, type: revolute, parent: ground, axis: &z [0, 0, 1]}\n"
+                        "  - {name: b, type: revolute, parent: a, axis: *z}\nbodies: []\n"),
+               SceneError);
 }
 
 // An offset turned 90° about z then lifted, a prismatic joint along its x axis driven by
