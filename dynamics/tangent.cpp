@@ -7,23 +7,6 @@
 
 namespace mbsopt {
 
-namespace {
-
-/// Copies `values` into AD scalars; input j (global index offset + j) is seeded when it falls in
-/// [first, first + count), i.e. this pass differentiates with respect to those inputs.
-VectorX<AdScalar> seeded(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first, Eigen::Index count) {
-  VectorX<AdScalar> x(values.size());
-  for (Eigen::Index j = 0; j < values.size(); ++j) {
-    x[j].value() = values[j];
-    x[j].derivatives().setZero();
-    const Eigen::Index global = offset + j;
-    if (global >= first && global < first + count) x[j].derivatives()[global - first] = 1.0;
-  }
-  return x;
-}
-
-}  // namespace
-
 void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, TangentMatrices& out) {
   const Eigen::Index n = model.coordinateCount();
@@ -35,10 +18,10 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
   VectorX<AdScalar> f;
   for (Eigen::Index first = 0; first < 3 * n; first += kMaxAdDirections) {
     const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, 3 * n - first);
-    const VectorX<AdScalar> a_ad = seeded(a, 0, first, count);
-    const VectorX<AdScalar> v_ad = seeded(v, n, first, count);
-    const VectorX<AdScalar> q_ad = seeded(q, 2 * n, first, count);
-    const VectorX<AdScalar> lambda_ad = seeded(lambda, 3 * n, first, count);  // never seeded: constant
+    const VectorX<AdScalar> a_ad = seededVector(a, 0, first, count);
+    const VectorX<AdScalar> v_ad = seededVector(v, n, first, count);
+    const VectorX<AdScalar> q_ad = seededVector(q, 2 * n, first, count);
+    const VectorX<AdScalar> lambda_ad = seededVector(lambda, 3 * n, first, count);  // never seeded: constant
     residual(model, ws, q_ad, v_ad, a_ad, lambda_ad, t, f);
     for (Eigen::Index i = 0; i < n; ++i) {
       out.residual[i] = f[i].value();

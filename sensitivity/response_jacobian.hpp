@@ -1,0 +1,24 @@
+// Derivatives of a response (a sensor) with respect to the state: the ∂g/∂q, ∂g/∂q̇, ∂g/∂q̈ that
+// every gradient method needs, accelerations included (paper §5.3, (59)-(65)). Forward AD of the
+// sensor's own kinematics, so exact to round-off.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "dynamics/model.hpp"
+#include "dynamics/workspace.hpp"
+
+namespace mbsopt {
+
+struct ResponseJacobian {
+  double value = 0.0;
+  Eigen::RowVectorXd position;      ///< ∂g/∂q, every coordinate (driven ones included)
+  Eigen::RowVectorXd velocity;      ///< ∂g/∂q̇
+  Eigen::RowVectorXd acceleration;  ///< ∂g/∂q̈
+};
+
+/// The value and the state derivatives of `sensor` at (q, q̇, q̈).
+ResponseJacobian responseJacobian(const Model& model, Workspace<AdScalar>& ws, const Sensor& sensor,
+                                  const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a);
+
+}  // namespace mbsopt
