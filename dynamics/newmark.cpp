@@ -39,6 +39,26 @@ SimulationError::SimulationError(const std::string& what, double t, long s, doub
       residual_norm(norm),
       element(std::move(where)) {}
 
+SettingsDefect settingsDefect(const NewmarkSettings& s) {
+  const auto finitePositive = [](double x) { return x > 0.0 && std::isfinite(x); };
+  if (!finitePositive(s.step)) return {"step", "the time step must be positive and finite"};
+  if (!finitePositive(s.end_time)) return {"end_time", "the end time must be positive and finite"};
+  if (!(s.end_time / s.step <= kMaxNewmarkSteps)) {
+    std::ostringstream text;
+    text << "end time / step = " << s.end_time / s.step << " steps, more than the " << kMaxNewmarkSteps
+         << " a run may take";
+    return {"end_time", text.str()};
+  }
+  if (!(s.beta > 0.0 && s.beta <= 0.5)) return {"beta", "beta must lie in (0, 1/2]"};
+  if (!(s.gamma > 0.0 && s.gamma < 1.0)) return {"gamma", "gamma must lie in (0, 1)"};
+  if (!finitePositive(s.newton_tolerance))
+    return {"newton_tolerance", "the Newton tolerance must be positive and finite"};
+  if (s.max_newton_iterations < 1) return {"max_newton_iterations", "at least one Newton iteration"};
+  if (!(s.svd_threshold > 0.0 && s.svd_threshold < 1.0))
+    return {"svd_threshold", "the SVD threshold must lie in (0, 1)"};
+  return {};
+}
+
 NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings settings)
     : model_(model),
       settings_(settings),
@@ -46,22 +66,8 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
       ad_ws_(model),
       partition_(settings.svd_threshold),
       free_(model.freeCoordinates()) {
-  if (!(settings_.step > 0.0) || !std::isfinite(settings_.step))
-    throw std::invalid_argument("Newmark: the time step must be positive and finite");
-  if (!(settings_.end_time > 0.0) || !std::isfinite(settings_.end_time))
-    throw std::invalid_argument("Newmark: the end time must be positive and finite");
-  if (!(settings_.end_time / settings_.step <= kMaxNewmarkSteps))
-    throw std::invalid_argument("Newmark: end time / step = " + std::to_string(settings_.end_time / settings_.step) +
-                                " steps, more than the 1e7 a run may take");
-  if (!(settings_.beta > 0.0 && settings_.beta <= 0.5))
-    throw std::invalid_argument("Newmark: beta must lie in (0, 1/2]");
-  if (!(settings_.gamma > 0.0 && settings_.gamma < 1.0))
-    throw std::invalid_argument("Newmark: gamma must lie in (0, 1)");
-  if (!(settings_.newton_tolerance > 0.0) || !std::isfinite(settings_.newton_tolerance))
-    throw std::invalid_argument("Newmark: the Newton tolerance must be positive and finite");
-  if (settings_.max_newton_iterations < 1) throw std::invalid_argument("Newmark: at least one Newton iteration");
-  if (!(settings_.svd_threshold > 0.0 && settings_.svd_threshold < 1.0))
-    throw std::invalid_argument("Newmark: the SVD threshold must lie in (0, 1)");
+  if (const SettingsDefect defect = settingsDefect(settings_); !defect.field.empty())
+    throw std::invalid_argument("Newmark: " + defect.message);
   const Eigen::Index n = model.coordinateCount();
   q_ = v_ = a_ = Eigen::VectorXd::Zero(n);
   r_free_.resize(static_cast<Eigen::Index>(free_.size()));

@@ -51,6 +51,15 @@ struct NewmarkSettings {
 };
 
 /// Thrown when a step cannot be completed; says when, where and by how much.
+/// What is wrong with a set of settings: the field (named as in a scene file's `settings`:
+/// "step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
+/// "svd_threshold") and why. An empty field means the settings are valid.
+struct SettingsDefect {
+  std::string field;
+  std::string message;
+};
+SettingsDefect settingsDefect(const NewmarkSettings& settings);
+
 class SimulationError : public std::runtime_error {
  public:
   SimulationError(const std::string& what, double time, long step, double residual_norm, std::string element);

@@ -175,24 +175,18 @@ class SceneBuilder {
     const MapReader settings(context_, root_.node()["settings"], "settings");
     settings.allowKeys({"step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
                         "svd_threshold", "closure"});
-    s.step = settings.has("step") ? settings.positive("step") : s.step;
-    s.end_time = settings.has("end_time") ? settings.positive("end_time") : s.end_time;
-    if (!(s.end_time / s.step <= kMaxNewmarkSteps))
-      settings.fail(settings.has("end_time") ? "end_time" : "step",
-                    "end_time / step = " + formatNumber(s.end_time / s.step) + " steps, more than the " +
-                        formatNumber(kMaxNewmarkSteps) + " a run may take");
+    s.step = settings.number("step", s.step);
+    s.end_time = settings.number("end_time", s.end_time);
     s.beta = settings.number("beta", s.beta);
-    if (!(s.beta > 0.0 && s.beta <= 0.5)) settings.fail("beta", "beta must lie in (0, 1/2]");
     s.gamma = settings.number("gamma", s.gamma);
-    if (!(s.gamma > 0.0 && s.gamma < 1.0)) settings.fail("gamma", "gamma must lie in (0, 1)");
-    s.newton_tolerance = settings.has("newton_tolerance") ? settings.positive("newton_tolerance") : s.newton_tolerance;
+    s.newton_tolerance = settings.number("newton_tolerance", s.newton_tolerance);
     s.max_newton_iterations = settings.positiveInteger("max_newton_iterations", s.max_newton_iterations);
     s.svd_threshold = settings.number("svd_threshold", s.svd_threshold);
-    if (!(s.svd_threshold > 0.0 && s.svd_threshold < 1.0))
-      settings.fail("svd_threshold", "svd_threshold must lie in (0, 1)");
     s.closure = settings.choice("closure", {"position", "acceleration"}, "position") == "acceleration"
                     ? ClosureLevel::Acceleration
                     : ClosureLevel::Position;
+    if (const SettingsDefect defect = settingsDefect(s); !defect.field.empty())
+      settings.fail(settings.has(defect.field) ? defect.field : "step", defect.field + ": " + defect.message);
     // The Newmark family is unconditionally stable for linear problems iff 2β ≥ γ ≥ ½ (Hughes, The
     // Finite Element Method, 2000, §9.1.2); outside, a small enough step is needed.
     if (!(s.gamma >= 0.5 && 2.0 * s.beta >= s.gamma))
