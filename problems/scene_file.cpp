@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "dynamics/assembly.hpp"
+#include "problems/design_file.hpp"
 #include "problems/scene_parameters.hpp"
 #include "problems/scene_text.hpp"
 #include "problems/yaml_reader.hpp"
@@ -52,7 +53,7 @@ TimeFunction readTimeFunction(const YamlContext& context, const YAML::Node& node
 class SceneBuilder {
  public:
   SceneBuilder(const YamlContext& context, const YAML::Node& root) : context_(context), root_(context, root, "scene") {
-    root_.allowKeys({"settings", "gravity", "tracks", "elements", "bodies", "forces", "cuts", "sensors"});
+    root_.allowKeys({"settings", "gravity", "tracks", "elements", "bodies", "forces", "cuts", "sensors", "design"});
     root_.required("elements");
     root_.required("bodies");
   }
@@ -66,6 +67,7 @@ class SceneBuilder {
     for (const YAML::Node& node : list("cuts")) readCut(node);
     for (const YAML::Node& node : list("forces")) readForce(node);
     for (const YAML::Node& node : list("sensors")) readSensor(node);
+    if (root_.has("design")) result_.design = readDesign(MapReader(context_, root_.node()["design"], "design"), model());
     recordLocations();
     assembleInitialState();
     checkFirstEvaluation();
@@ -546,6 +548,12 @@ LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOver
   rejectAliases(context, root);
   applyOverrides(context, root, overrides);
   return SceneBuilder(context, root).build();
+}
+
+DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
+  LoadedScene loaded = loadScene(source, overrides);
+  if (!loaded.design) throw SceneError(source.path, 0, 0, "the scene has no 'design:' section");
+  return {std::move(loaded.scene), std::move(*loaded.design)};
 }
 
 std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source) {

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "problems/design_problem.hpp"
 #include "problems/scene.hpp"
 
 namespace mbsopt {
@@ -48,7 +49,11 @@ struct LoadedScene {
   Scene scene;
   std::vector<std::string> warnings;  ///< e.g. how far the initial state was moved to close the loops
   std::map<std::string, SceneLocation> locations;  ///< where each named entry is declared
+  std::optional<DesignDescription> design;         ///< the `design:` section, when the file has one
 };
+
+/// The scene and its `design:` section as a design problem; a SceneError when it has none.
+DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides = {});
 
 /// Reads a file; throws SceneError when it cannot be read.
 SceneSource readSceneFile(const std::string& path);

@@ -1,6 +1,7 @@
 #include "problems/tramway.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -101,6 +102,18 @@ Scene tramwayScene(const TramwayDesign& design, const TramwayOptions& options) {
   scene.settings.step = 1e-3;
   scene.settings.end_time = tramway::kEndTime;
   return scene;
+}
+
+DesignProblem tramwayDesignProblem(const TramwayDesign& design, const TramwayOptions& options) {
+  DesignProblem problem{tramwayScene(design, options), {}};
+  DesignDescription& d = problem.design;
+  for (const char* spring : {"front_secondary.k", "rear_secondary.k"}) d.variables.push_back({spring, 50e3, 1000e3, 1e3});
+  for (const char* damper : {"front_secondary.c", "rear_secondary.c"}) d.variables.push_back({damper, 5e3, 50e3, 1e3});
+  d.cost = {"a_lat", Extremum::MaxAbs};
+  d.artificial = {3.0, 0.0, 10.0, 1.0};
+  const double ten_degrees = 10.0 / 180.0 * std::numbers::pi;
+  d.constraints = {{"yaw_front", Extremum::MaxAbs, ten_degrees}, {"yaw_rear", Extremum::MaxAbs, ten_degrees}};
+  return problem;
 }
 
 }  // namespace mbsopt

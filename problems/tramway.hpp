@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "dynamics/track.hpp"
+#include "problems/design_problem.hpp"
 #include "problems/scene.hpp"
 
 namespace mbsopt {
@@ -56,5 +57,11 @@ std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options = {});
 /// [bogie-2 yaw, RelativeToTrack chart only], s₂ (cut curve slider); sensors a_lat, yaw_front,
 /// yaw_rear. Settings: h = 1 ms, 12 s.
 Scene tramwayScene(const TramwayDesign& design = {}, const TramwayOptions& options = {});
+
+/// The design problem of the spec (shared/specs/tramway.md, "Design problem"): b = (k_f, k_r, c_f,
+/// c_r) scaled to kN·m/rad and kN·m·s/rad, cost max |a_lat| through b5 (initially 3 m/s², bounds
+/// [0, 10]), |yaw_front|, |yaw_rear| ≤ 10°, the paper's ∫⟨φ⟩dt ≤ 0. The same as the `design:`
+/// section of problems/scenes/tramway.yaml.
+DesignProblem tramwayDesignProblem(const TramwayDesign& design = {}, const TramwayOptions& options = {});
 
 }  // namespace mbsopt

@@ -1,0 +1,86 @@
+#include "problems/design_file.hpp"
+
+#include <algorithm>
+
+#include "problems/scene_text.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+Extremum readExtremum(const MapReader& entry) {
+  return entry.choice("of", {"max_abs", "max"}, "max_abs") == "max" ? Extremum::Max : Extremum::MaxAbs;
+}
+
+std::string readSensor(const MapReader& entry, const Model& model) {
+  const std::string name = entry.name("sensor");
+  std::vector<std::string> names;
+  for (const Sensor& s : model.sensors()) {
+    if (s.name == name) return name;
+    names.push_back(s.name);
+  }
+  entry.fail("sensor", "sensor '" + name + "' does not exist" + suggestion(name, names));
+}
+
+/// lower ≤ upper, scale > 0; `value` (the starting point) inside the bounds.
+void readRange(const MapReader& entry, double value, double& lower, double& upper, double& scale) {
+  lower = entry.number("lower");
+  upper = entry.number("upper");
+  if (!(lower <= upper)) entry.fail("upper", "upper must not be below lower");
+  scale = entry.has("scale") ? entry.positive("scale") : 1.0;
+  if (value < lower || value > upper)
+    entry.fail("lower", "the starting value " + formatNumber(value) + " lies outside [lower, upper]");
+}
+
+}  // namespace
+
+DesignDescription readDesign(const MapReader& design, const Model& model) {
+  const YamlContext& context = design.context();
+  design.allowKeys({"variables", "cost", "artificial", "constraints", "transcription"});
+  DesignDescription out;
+  const std::vector<std::string> parameters = model.parameterNames();
+  for (const YAML::Node& node : readList(context, design.required("variables"), "design.variables")) {
+    const MapReader v(context, node, "design variable");
+    v.allowKeys({"parameter", "lower", "upper", "scale"});
+    DesignVariable variable;
+    const YAML::Node name = v.required("parameter");
+    variable.parameter = name.IsScalar() ? name.Scalar() : "";
+    if (std::find(parameters.begin(), parameters.end(), variable.parameter) == parameters.end())
+      v.fail("parameter", "parameter " + quoted(variable.parameter) + " is not a model parameter" +
+                              suggestion(variable.parameter, parameters) + " ('mbsopt parameters' lists them)");
+    readRange(v, model.parameter(variable.parameter), variable.lower, variable.upper, variable.scale);
+    out.variables.push_back(variable);
+  }
+  if (out.variables.empty()) design.fail("variables", "a design problem needs at least one variable");
+
+  const MapReader cost(context, design.required("cost"), "design.cost");
+  cost.allowKeys({"sensor", "of"});
+  out.cost = {readSensor(cost, model), readExtremum(cost)};
+
+  const MapReader artificial(context, design.required("artificial"), "design.artificial");
+  artificial.allowKeys({"initial", "lower", "upper", "scale"});
+  out.artificial.initial = artificial.number("initial");
+  readRange(artificial, out.artificial.initial, out.artificial.lower, out.artificial.upper, out.artificial.scale);
+
+  for (const YAML::Node& node : readList(context, design.node()["constraints"], "design.constraints")) {
+    const MapReader c(context, node, "design constraint");
+    c.allowKeys({"sensor", "of", "bound"});
+    out.constraints.push_back({readSensor(c, model), readExtremum(c), c.number("bound")});
+  }
+
+  if (design.has("transcription")) {
+    const MapReader t(context, design.node()["transcription"], "design.transcription");
+    t.allowKeys({"measure", "tolerance", "rho"});
+    const std::string measure = t.choice("measure", {"positive_part", "squared_positive_part", "ks", "grid_max"},
+                                         "positive_part");
+    out.transcription.measure = measure == "positive_part"           ? TimeMeasure::PositivePart
+                                : measure == "squared_positive_part" ? TimeMeasure::SquaredPositivePart
+                                : measure == "ks"                    ? TimeMeasure::KsAggregate
+                                                                     : TimeMeasure::GridMax;
+    out.transcription.tolerance = t.nonNegative("tolerance", 0.0);
+    if (t.has("rho")) out.transcription.rho = t.positive("rho");
+  }
+  return out;
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,78 @@
+#include "problems/design_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mbsopt {
+
+namespace {
+
+int sensorIndex(const Model& model, const std::string& name) {
+  for (std::size_t s = 0; s < model.sensors().size(); ++s)
+    if (model.sensors()[s].name == name) return static_cast<int>(s);
+  throw std::invalid_argument("design: no sensor named '" + name + "'");
+}
+
+void checkRange(const std::string& what, double lower, double upper, double scale) {
+  if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower <= upper))
+    throw std::invalid_argument(what + ": the bounds must be finite with lower <= upper");
+  if (!(scale > 0.0) || !std::isfinite(scale)) throw std::invalid_argument(what + ": the scale must be positive");
+}
+
+}  // namespace
+
+std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
+  const Model& model = problem.scene.model;
+  std::vector<ConstraintFunctional> functionals;
+  const auto add = [&](const std::string& sensor, Extremum of, double bound, bool artificial) {
+    const int index = sensorIndex(model, sensor);
+    functionals.push_back({sensor + "_above", index, 1.0, bound, artificial});  // y − bound (− b) ≤ 0
+    if (of == Extremum::MaxAbs) functionals.push_back({sensor + "_below", index, -1.0, bound, artificial});
+  };
+  add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true);  // (17)-(19): ±y − b_{k+1} ≤ 0
+  for (const ResponseConstraint& c : problem.design.constraints) add(c.sensor, c.of, c.bound, false);
+  return functionals;
+}
+
+Eigen::VectorXd initialPoint(const DesignProblem& problem) {
+  Eigen::VectorXd x(optimisationSize(problem));
+  for (std::size_t i = 0; i < problem.design.variables.size(); ++i) {
+    const DesignVariable& v = problem.design.variables[i];
+    x[static_cast<Eigen::Index>(i)] = problem.scene.model.parameter(v.parameter) / v.scale;
+  }
+  x[x.size() - 1] = problem.design.artificial.initial / problem.design.artificial.scale;
+  return x;
+}
+
+double applyDesign(const DesignProblem& problem, const Eigen::VectorXd& x, Model& model) {
+  if (x.size() != optimisationSize(problem))
+    throw std::invalid_argument("design: " + std::to_string(x.size()) + " values for " +
+                                std::to_string(optimisationSize(problem)) + " variables");
+  for (std::size_t i = 0; i < problem.design.variables.size(); ++i) {
+    const DesignVariable& v = problem.design.variables[i];
+    model.setParameter(v.parameter, x[static_cast<Eigen::Index>(i)] * v.scale);
+  }
+  return x[x.size() - 1] * problem.design.artificial.scale;
+}
+
+void validate(const DesignProblem& problem) {
+  const std::vector<std::string> names = problem.scene.model.parameterNames();
+  for (const DesignVariable& v : problem.design.variables) {
+    if (std::find(names.begin(), names.end(), v.parameter) == names.end())
+      throw std::invalid_argument("design variable '" + v.parameter + "' is not a model parameter");
+    checkRange("design variable '" + v.parameter + "'", v.lower, v.upper, v.scale);
+    const double value = problem.scene.model.parameter(v.parameter);
+    if (value < v.lower || value > v.upper)
+      throw std::invalid_argument("design variable '" + v.parameter + "' starts outside its bounds");
+  }
+  const ArtificialVariable& a = problem.design.artificial;
+  checkRange("the artificial variable", a.lower, a.upper, a.scale);
+  if (a.initial < a.lower || a.initial > a.upper)
+    throw std::invalid_argument("the artificial variable starts outside its bounds");
+  if (!(problem.design.transcription.tolerance >= 0.0)) throw std::invalid_argument("the tolerance must not be negative");
+  if (!(problem.design.transcription.rho > 0.0)) throw std::invalid_argument("rho must be positive");
+  transcribe(problem);  // every sensor exists
+}
+
+}  // namespace mbsopt

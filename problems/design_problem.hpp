@@ -1,0 +1,96 @@
+// A design problem (DESIGN.md §4, paper §3): a scene, design variables that are named model
+// parameters with bounds and scales, a cost and constraints on responses over time. The paper's
+// formulation is the default: the max-over-time cost becomes an artificial design variable
+// b_{k+1} (17)-(19), and every "max over t ≤ bound" a constraint on a time functional of
+// φ(t) = ±y(t) − bound (15)-(16). The transcription chooses that functional (the paper's ∫⟨φ⟩dt,
+// or a better-behaved one) and its tolerance.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "problems/scene.hpp"
+#include "sensitivity/time_functional.hpp"
+
+namespace mbsopt {
+
+/// A model parameter by its dotted name (Model::parameterNames()), its bounds [SI] and the scale in
+/// which the optimizers see it: x = value / scale, so that every x is of order 1-100.
+struct DesignVariable {
+  std::string parameter;
+  double lower = 0.0, upper = 0.0, scale = 1.0;
+};
+
+/// The artificial variable b_{k+1} that carries a max-over-time cost (17)-(19).
+struct ArtificialVariable {
+  double initial = 0.0, lower = 0.0, upper = 0.0, scale = 1.0;
+};
+
+/// Which extreme of a response over time: max |y| or max y.
+enum class Extremum { MaxAbs, Max };
+
+/// Minimise the extreme of a sensor over time.
+struct ResponseCost {
+  std::string sensor;
+  Extremum of = Extremum::MaxAbs;
+};
+
+/// Keep the extreme of a sensor over time below a bound.
+struct ResponseConstraint {
+  std::string sensor;
+  Extremum of = Extremum::MaxAbs;
+  double bound = 0.0;
+};
+
+/// How each "max over t of φ ≤ 0" becomes one number: measure(φ) ≤ tolerance.
+struct Transcription {
+  TimeMeasure measure = TimeMeasure::PositivePart;  ///< the paper's ∫⟨φ⟩dt by default
+  double tolerance = 0.0;  ///< ε ≥ 0 (a small ε > 0 gives the constraint a strictly feasible interior)
+  double rho = 50.0;       ///< KS sharpness [1 / units of φ]
+};
+
+/// What a scene file's `design:` section says.
+struct DesignDescription {
+  std::vector<DesignVariable> variables;
+  ResponseCost cost;
+  ArtificialVariable artificial;
+  std::vector<ResponseConstraint> constraints;
+  Transcription transcription;
+};
+
+struct DesignProblem {
+  Scene scene;
+  DesignDescription design;
+};
+
+/// One transcribed constraint: measure(φ) − tolerance ≤ 0 with
+/// φ(t) = sign · y(t) − offset − (uses_artificial ? b_{k+1} : 0).
+struct ConstraintFunctional {
+  std::string name;  ///< "a_lat_above", "yaw_front_below", ...
+  int sensor = 0;    ///< index into the model's sensors
+  double sign = 1.0;
+  double offset = 0.0;
+  bool uses_artificial = false;
+};
+
+/// The constraints of the problem in the order the optimizers see them: those of the cost (with the
+/// artificial variable), then those of each constraint, each MaxAbs giving two (y above, −y above).
+/// Throws std::invalid_argument naming an unknown sensor.
+std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem);
+
+/// Number of optimisation variables: the design variables and the artificial one.
+inline Eigen::Index optimisationSize(const DesignProblem& problem) {
+  return static_cast<Eigen::Index>(problem.design.variables.size()) + 1;
+}
+
+/// The scaled starting point: each design variable's value in the scene, then b_{k+1}.
+Eigen::VectorXd initialPoint(const DesignProblem& problem);
+
+/// Sets the design variables of x (scaled) on `model`; returns b_{k+1} in SI units.
+double applyDesign(const DesignProblem& problem, const Eigen::VectorXd& x, Model& model);
+
+/// Checks names, bounds and scales; throws std::invalid_argument with what is wrong.
+void validate(const DesignProblem& problem);
+
+}  // namespace mbsopt

@@ -1,0 +1,73 @@
+#include "sensitivity/design_evaluation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "dynamics/sensors.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// φ(t_k) = sign · y(t_k) − offset − b_{k+1} (when the functional uses it), DesignProblem docs.
+Eigen::VectorXd violation(const ConstraintFunctional& f, const Eigen::MatrixXd& sensors, double artificial) {
+  return (f.sign * sensors.col(f.sensor).array() - f.offset - (f.uses_artificial ? artificial : 0.0)).matrix();
+}
+
+}  // namespace
+
+DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                              const Eigen::VectorXd& x) {
+  const Scene& scene = problem.scene;
+  Model model = scene.model;
+  DesignResponse out;
+  out.cost = applyDesign(problem, x, model);
+  out.trajectory = NewmarkIntegrator(model, scene.settings).simulate(scene.q0, scene.v0);
+  out.sensors = sensorHistory(model, out.trajectory);
+  out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
+  for (std::size_t j = 0; j < functionals.size(); ++j) {
+    const Transcription& t = problem.design.transcription;
+    out.functionals.push_back(evaluateTimeFunctional(
+        t.measure, out.trajectory.time, violation(functionals[j], out.sensors, out.cost), t.rho));
+    out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - t.tolerance;
+  }
+  return out;
+}
+
+Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                                 const DesignResponse& response) {
+  Eigen::VectorXd column = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(functionals.size()));
+  for (std::size_t j = 0; j < functionals.size(); ++j)
+    if (functionals[j].uses_artificial)  // ∂φ_k/∂b = −1 at every k
+      column[static_cast<Eigen::Index>(j)] = -response.functionals[j].gradient.sum() * problem.design.artificial.scale;
+  return column;
+}
+
+DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
+                                        const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
+                                        double relative_step, bool central) {
+  if (!(relative_step > 0.0)) throw std::invalid_argument("finite differences: the relative step must be positive");
+  const Eigen::Index n = x.size(), m = static_cast<Eigen::Index>(functionals.size());
+  DesignGradient out;
+  out.cost = Eigen::VectorXd::Zero(n);
+  out.cost[n - 1] = problem.design.artificial.scale;  // the cost is b_{k+1} = x_{k+1} · scale
+  out.constraints.resize(m, n);
+  const DesignResponse base = evaluateDesign(problem, functionals, x);
+  for (Eigen::Index i = 0; i + 1 < n; ++i) {
+    const double step = relative_step * std::max(std::abs(x[i]), 1.0);
+    Eigen::VectorXd up = x;
+    up[i] += step;
+    const Eigen::VectorXd above = evaluateDesign(problem, functionals, up).constraints;
+    if (central) {
+      Eigen::VectorXd down = x;
+      down[i] -= step;
+      out.constraints.col(i) = (above - evaluateDesign(problem, functionals, down).constraints) / (2.0 * step);
+    } else {
+      out.constraints.col(i) = (above - base.constraints) / step;
+    }
+  }
+  out.constraints.col(n - 1) = artificialColumn(problem, functionals, base);
+  return out;
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,45 @@
+// A design problem at one point: simulate, measure the transcribed constraints, and their
+// gradients by finite differences (the baseline every other gradient method is compared with).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "dynamics/newmark.hpp"
+#include "problems/design_problem.hpp"
+#include "sensitivity/time_functional.hpp"
+
+namespace mbsopt {
+
+struct DesignResponse {
+  double cost = 0.0;            ///< b_{k+1} [units of the cost sensor]
+  Eigen::VectorXd constraints;  ///< measure(φ_j) − tolerance, each ≤ 0 when feasible
+  Trajectory trajectory;
+  Eigen::MatrixXd sensors;  ///< sensorHistory of the trajectory
+  /// Per constraint: its value and ∂measure/∂φ_k at every time point (what the gradient methods
+  /// chain with ∂φ/∂(q, q̇, q̈)).
+  std::vector<TimeFunctionalValue> functionals;
+};
+
+/// Simulates the problem's scene at the scaled point x and measures every transcribed constraint.
+DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                              const Eigen::VectorXd& x);
+
+/// Gradients with respect to the scaled point x: the cost's, and one row per constraint.
+struct DesignGradient {
+  Eigen::VectorXd cost;
+  Eigen::MatrixXd constraints;
+};
+
+/// ∂/∂b_{k+1} of every constraint, exactly (φ depends on b_{k+1} only through −b_{k+1}); every
+/// gradient method shares this column. Scaled: ∂/∂x_{k+1}.
+Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                                 const DesignResponse& response);
+
+/// Forward (one simulation per variable) or central (two) differences in the design variables with
+/// step relative_step · max(|x_i|, 1); the artificial column is exact.
+DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
+                                        const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
+                                        double relative_step, bool central);
+
+}  // namespace mbsopt

@@ -1,0 +1,115 @@
+// Design problems: the tramway's from its file equals the C++ one, the transcription follows the
+// paper's (15)-(19), and on an undamped oscillator the constraint functional and its finite-
+// difference gradient match their closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "problems/scene_file.hpp"
+#include "problems/tramway.hpp"
+#include "sensitivity/design_evaluation.hpp"
+
+namespace mbsopt {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A unit mass on a spring of stiffness (2π)² N/m released from x = 1 m: one period per second.
+constexpr const char* kOscillator = R"(settings: {step: 1.0e-3, end_time: 1}
+elements:
+  - {name: x, type: prismatic, parent: ground, axis: [1, 0, 0], q0: 1}
+bodies:
+  - {name: mass, frame: x, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}
+forces:
+  - {name: spring, type: joint_spring_damper, joint: x, k: 39.478417604357434}
+sensors:
+  - {name: position, type: joint, joint: x, quantity: position}
+)";
+
+TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
+  const DesignProblem file =
+      loadDesignProblem(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/tramway.yaml"));
+  const DesignProblem cpp = tramwayDesignProblem();
+  ASSERT_EQ(file.design.variables.size(), cpp.design.variables.size());
+  for (std::size_t i = 0; i < cpp.design.variables.size(); ++i) {
+    EXPECT_EQ(file.design.variables[i].parameter, cpp.design.variables[i].parameter);
+    EXPECT_EQ(file.design.variables[i].lower, cpp.design.variables[i].lower);
+    EXPECT_EQ(file.design.variables[i].upper, cpp.design.variables[i].upper);
+    EXPECT_EQ(file.design.variables[i].scale, cpp.design.variables[i].scale);
+  }
+  EXPECT_EQ(initialPoint(file), initialPoint(cpp));
+  EXPECT_EQ(initialPoint(cpp), (Eigen::VectorXd(5) << 246, 246, 15, 15, 3).finished());  // the spec's b0, b5
+  ASSERT_EQ(file.design.constraints.size(), 2u);
+  EXPECT_EQ(file.design.constraints[1].bound, cpp.design.constraints[1].bound);
+  // (17)-(19) and (15)-(16): ±a_lat − b5, then ±yaw − 10° for each yaw: six constraints.
+  const std::vector<ConstraintFunctional> functionals = transcribe(cpp);
+  ASSERT_EQ(functionals.size(), 6u);
+  EXPECT_TRUE(functionals[0].uses_artificial && functionals[1].uses_artificial);
+  EXPECT_EQ(functionals[1].sign, -1.0);
+  EXPECT_FALSE(functionals[2].uses_artificial);
+  EXPECT_EQ(functionals[5].name, "yaw_rear_below");
+  EXPECT_NO_THROW(validate(cpp));
+}
+
+// x'' + ω² x = 0, x(0) = 1, ω = √k = 2π, over T = 1 s (one period); constraint Ψ = ∫⟨x − b⟩dt.
+// With F(Θ) = ∫₀^Θ ⟨cos θ − b⟩dθ: Ψ = F(ωT)/ω, F(2π) = 2(sin θ* − b θ*), θ* = arccos b, and
+// dΨ/dω = −F(ωT)/ω² + ⟨cos ωT − b⟩ T/ω, dω/dk = 1/(2ω); dΨ/db = −(time with x > b) = −2θ*/ω.
+// Newmark's period error (ωh)²/12 and the trapezoidal rule's O(h²) put the discrete value within
+// about 1e-4 relative of Ψ at h = 1 ms. Its derivative converges only at first order: where φ has
+// a kink at t* (slope jump G), the trapezoidal error in that cell is G h² s(1 − s)/2 with s the
+// kink's place in the cell, whose derivative in t* reaches G h/2. So the discrete dΨ/dk may differ
+// from the closed form by Σ (h/2) G_i |dt*_i/dk| (two kinks, θ* and 2π − θ*, t*_i = θ_i/ω), plus
+// O(h²) and the O(δ²) ≈ 1e-8 of central differences.
+TEST(DesignProblem, OscillatorConstraintAndGradientMatchClosedForms) {
+  const SceneSource source{"oscillator.yaml", std::string(kOscillator) + R"(
+design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: max}
+  artificial: {initial: 0.5, lower: -2, upper: 2}
+)"};
+  const DesignProblem problem = loadDesignProblem(source);
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  ASSERT_EQ(functionals.size(), 1u);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const double omega = 2.0 * kPi, b = 0.5, theta = std::acos(b);
+  const double F = 2.0 * (std::sin(theta) - b * theta);
+  const double psi = F / omega;
+  const double dpsi_domega = -F / (omega * omega) + (1.0 - b) / omega;
+  const double dpsi_dx = dpsi_domega / (2.0 * omega) * 10.0;  // x = k / 10
+
+  const DesignResponse response = evaluateDesign(problem, functionals, x);
+  EXPECT_NEAR(response.constraints[0], psi, 1e-4 * psi);
+  const DesignGradient central = finiteDifferenceGradient(problem, functionals, x, 1e-4, true);
+  const double h = 1e-3, slope = omega * std::sin(theta), dt_dk = 1.0 / (omega * omega) / (2.0 * omega);
+  const double kink_bound = 0.5 * h * slope * (theta + (2.0 * kPi - theta)) * dt_dk * 10.0;  // in x = k / 10
+  EXPECT_NEAR(central.constraints(0, 0), dpsi_dx, kink_bound + 1e-4 * std::abs(dpsi_dx));
+  EXPECT_NEAR(central.constraints(0, 1), -2.0 * theta / omega, 2e-3);  // the exceedance time, to ±h
+  EXPECT_EQ(central.cost, Eigen::Vector2d(0.0, 1.0));                  // the cost is b itself
+  // Forward differences carry an O(δ) error, central ones O(δ²): the forward gap is the larger.
+  const DesignGradient forward = finiteDifferenceGradient(problem, functionals, x, 1e-4, false);
+  EXPECT_GT(std::abs(forward.constraints(0, 0) - dpsi_dx), std::abs(central.constraints(0, 0) - dpsi_dx));
+  EXPECT_NEAR(forward.constraints(0, 0), dpsi_dx, kink_bound + 1e-2 * std::abs(dpsi_dx));
+}
+
+TEST(DesignProblem, BadDesignSectionsAreLocated) {
+  const std::string scene = std::string(kOscillator) + "design:\n";
+  const auto errorLine = [&](const std::string& design) {
+    try {
+      loadDesignProblem({"d.yaml", scene + design});
+    } catch (const SceneError& e) {
+      return e.line();
+    }
+    return -1;
+  };
+  const std::string cost = "  cost: {sensor: position}\n  artificial: {initial: 0, lower: -2, upper: 2}\n";
+  EXPECT_EQ(errorLine("  variables: [{parameter: spring.kk, lower: 1, upper: 100}]\n" + cost), 11);
+  EXPECT_EQ(errorLine("  variables: [{parameter: spring.k, lower: 50, upper: 100}]\n" + cost), 11);  // k = 39.5 ∉ [50, 100]
+  EXPECT_EQ(errorLine("  variables: [{parameter: spring.k, lower: 1, upper: 100}]\n  cost: {sensor: speed}\n"
+                      "  artificial: {initial: 0, lower: -2, upper: 2}\n"),
+            12);
+  EXPECT_THROW(loadDesignProblem({"d.yaml", scene.substr(0, scene.rfind("design:"))}), SceneError);  // none
+}
+
+}  // namespace
+}  // namespace mbsopt
