@@ -306,6 +306,10 @@ double* Model::parameterSlot(std::string_view dotted_name) {
   return found;
 }
 
+const double& Model::parameterReference(std::string_view dotted_name) const {
+  return *const_cast<Model*>(this)->parameterSlot(dotted_name);
+}
+
 double Model::parameter(std::string_view dotted_name) const {
   return *const_cast<Model*>(this)->parameterSlot(dotted_name);
 }

@@ -221,6 +221,9 @@ class Model {
 
   /// Named numeric parameters ("front_secondary.k", "carbody1.mass", "gravity.z", ...).
   double parameter(std::string_view dotted_name) const;
+  /// The storage of a named parameter, which the residual reads: what Workspace::parameter_seeds
+  /// points at to differentiate with respect to it. Valid while the model lives.
+  const double& parameterReference(std::string_view dotted_name) const;
   /// Sets a named parameter with the checks of the builder (finite; bodies keep a positive mass and a
   /// positive-definite inertia); throws std::invalid_argument and leaves the model unchanged otherwise.
   void setParameter(std::string_view dotted_name, double value);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
@@ -11,19 +12,34 @@ namespace mbsopt {
 
 namespace {
 
+/// f(t), its constant term a parameter (a spring's rest value, a constant actuation).
+template <class Scalar>
+Scalar timeValue(const Workspace<Scalar>& ws, const TimeFunction& f, double t) {
+  if constexpr (std::is_same_v<Scalar, double>) {
+    return f.value(t);
+  } else {
+    const double& c0 = f.constantTerm();
+    return Scalar(f.value(t) - c0) + parameter(ws, c0);
+  }
+}
+
 /// Inertia and gravity of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
 template <class Scalar>
 void addBodyWrenches(const Model& model, Workspace<Scalar>& ws) {
-  const Vector3<Scalar> g = model.gravity().template cast<Scalar>();
+  const Eigen::Vector3d& gravity = model.gravity();
+  const Vector3<Scalar> g(parameter(ws, gravity.x()), parameter(ws, gravity.y()), parameter(ws, gravity.z()));
   for (const Body& body : model.bodies()) {
     const auto k = static_cast<std::size_t>(body.frame);
     const Matrix3<Scalar>& R = ws.rotation[k];
     const Vector3<Scalar>& w = ws.angular_velocity[k];
     const Vector3<Scalar>& alpha = ws.angular_acceleration[k];
-    const Vector3<Scalar> c = R * body.centre_of_mass.template cast<Scalar>();
-    const Matrix3<Scalar> inertia = R * body.inertia.template cast<Scalar>() * R.transpose();
+    const Eigen::Vector3d& com = body.centre_of_mass;
+    const Vector3<Scalar> c = R * Vector3<Scalar>(parameter(ws, com.x()), parameter(ws, com.y()), parameter(ws, com.z()));
+    Matrix3<Scalar> body_inertia = body.inertia.template cast<Scalar>();
+    for (int i = 0; i < 3; ++i) body_inertia(i, i) = parameter(ws, body.inertia(i, i));
+    const Matrix3<Scalar> inertia = R * body_inertia * R.transpose();
     const Vector3<Scalar> a_c = ws.acceleration[k] + alpha.cross(c) + w.cross(w.cross(c));
-    const Vector3<Scalar> force = Scalar(body.mass) * (a_c - g);
+    const Vector3<Scalar> force = parameter(ws, body.mass) * (a_c - g);
     ws.force[k] += force;
     ws.moment[k] += inertia * alpha + w.cross(inertia * w) + c.cross(force);
   }
@@ -43,7 +59,8 @@ void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
   if (!(valueOf(length) > 1e-12 * (1.0 + std::abs(s.rest_length))))
     throw DegenerateElementError(s.name, "point spring-damper '" + s.name + "': its two points coincide, so its direction is undefined");
   const Vector3<Scalar> u = d / length;
-  const Scalar tension = Scalar(s.stiffness) * (length - Scalar(s.rest_length)) + Scalar(s.damping) * u.dot(d_rate);
+  const Scalar tension = parameter(ws, s.stiffness) * (length - parameter(ws, s.rest_length)) +
+                         parameter(ws, s.damping) * u.dot(d_rate);
   const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched
   ws.force[a] -= on_a;
   ws.moment[a] -= ra.cross(on_a);
@@ -71,7 +88,7 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
   const Vector3<Scalar> binormal = ws.rotation[base].col(2);
   const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
-  const Scalar torque = -Scalar(g.stiffness) * deviation - Scalar(g.damping) * deviation_rate;
+  const Scalar torque = -parameter(ws, g.stiffness) * deviation - parameter(ws, g.damping) * deviation_rate;
   ws.moment[frame] -= torque * binormal;  // applied on the frame
   ws.moment[base] += torque * binormal;   // reaction on the track
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
@@ -96,11 +113,13 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
   for (const ForceElement& element : model.forces()) {
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
                             const auto i = static_cast<Eigen::Index>(s.coordinate);
-                            f[i] += Scalar(s.stiffness) * (q[i] - Scalar(s.rest.value(t))) +
-                                    Scalar(s.damping) * (v[i] - Scalar(s.rest.rate(t)));
+                            f[i] += parameter(ws, s.stiffness) * (q[i] - timeValue(ws, s.rest, t)) +
+                                    parameter(ws, s.damping) * (v[i] - Scalar(s.rest.rate(t)));
                           },
                           [&](const PointSpringDamper& s) { addPointSpringWrenches(s, ws); },
-                          [&](const JointActuation& s) { f[static_cast<Eigen::Index>(s.coordinate)] -= Scalar(s.force.value(t)); },
+                          [&](const JointActuation& s) {
+                            f[static_cast<Eigen::Index>(s.coordinate)] -= timeValue(ws, s.force, t);
+                          },
                           [&](const TrackGuidance& g) { addTrackGuidance(model, g, ws, q, v, f); }},
                element);
   }

@@ -5,11 +5,7 @@
 
 namespace mbsopt {
 
-TimeFunction TimeFunction::polynomial(std::vector<double> coefficients) {
-  TimeFunction f;
-  f.coefficients_ = std::move(coefficients);
-  return f;
-}
+TimeFunction TimeFunction::polynomial(std::vector<double> coefficients) { return {std::move(coefficients), {}}; }
 
 TimeFunction TimeFunction::harmonic(double amplitude, double angular_frequency, double phase, double offset) {
   TimeFunction f = constant(offset);
@@ -39,10 +35,5 @@ double TimeFunction::derivative(double t, int order) const {
 }
 
 bool TimeFunction::isConstant() const { return coefficients_.size() <= 1 && harmonics_.empty(); }
-
-double& TimeFunction::constantTerm() {
-  if (coefficients_.empty()) coefficients_.push_back(0.0);
-  return coefficients_.front();
-}
 
 }  // namespace mbsopt

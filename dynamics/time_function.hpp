@@ -18,7 +18,9 @@ class TimeFunction {
 
   TimeFunction() = default;
   TimeFunction(std::vector<double> coefficients, std::vector<Harmonic> harmonics)
-      : coefficients_(std::move(coefficients)), harmonics_(std::move(harmonics)) {}
+      : coefficients_(std::move(coefficients)), harmonics_(std::move(harmonics)) {
+    if (coefficients_.empty()) coefficients_.push_back(0.0);
+  }
   static TimeFunction constant(double value) { return polynomial({value}); }
   static TimeFunction polynomial(std::vector<double> coefficients);
   static TimeFunction harmonic(double amplitude, double angular_frequency, double phase = 0.0, double offset = 0.0);
@@ -30,11 +32,12 @@ class TimeFunction {
   double derivative(double t, int order) const;
 
   bool isConstant() const;
-  /// The constant term c_0 (a spring's rest value, a driver's initial offset).
-  double& constantTerm();
+  /// The constant term c_0 (a spring's rest value, a driver's initial offset), always stored.
+  double& constantTerm() { return coefficients_.front(); }
+  const double& constantTerm() const { return coefficients_.front(); }
 
  private:
-  std::vector<double> coefficients_;
+  std::vector<double> coefficients_{0.0};
   std::vector<Harmonic> harmonics_;
 };
 

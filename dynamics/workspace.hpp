@@ -2,6 +2,8 @@
 // workspace per thread: evaluations on separate workspaces may run in parallel.
 #pragma once
 
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "dynamics/model.hpp"
@@ -34,6 +36,21 @@ struct Workspace {
   // not proportional to q̈, per q̇² (a curve slider's κ n and κ' z).
   std::vector<Vector3<Scalar>> motion_angular, motion_linear;
   std::vector<Vector3<Scalar>> bias_angular, bias_linear;
+  /// Model parameters differentiated in this evaluation (AdScalar only): the address of the
+  /// parameter's storage in the Model and the AD direction it is seeded in. Empty: none.
+  std::vector<std::pair<const double*, int>> parameter_seeds;
 };
+
+/// A model parameter read into the evaluation's scalar: with a unit derivative in its direction
+/// when ws.parameter_seeds names it (∂/∂b by forward AD of the same code), a constant otherwise.
+template <class Scalar>
+Scalar parameter(const Workspace<Scalar>& ws, const double& value) {
+  Scalar out(value);
+  if constexpr (!std::is_same_v<Scalar, double>) {
+    for (const auto& [address, direction] : ws.parameter_seeds)
+      if (address == &value) out.derivatives()[direction] = 1.0;
+  }
+  return out;
+}
 
 }  // namespace mbsopt

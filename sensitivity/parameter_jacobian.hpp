@@ -1,0 +1,21 @@
+// ∂f/∂b: the derivative of the residual f = M q̈ + h − Q + Bᵀλ (24) with respect to named model
+// parameters at one state, the ∂f/∂b of the paper's sensitivity equations (49)-(50). Forward AD of
+// the residual itself, the parameters seeded through Workspace::parameter_seeds, so exact and
+// always consistent with the dynamics.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "dynamics/workspace.hpp"
+
+namespace mbsopt {
+
+/// n × p, one column per parameter (every coordinate's row, driven ones included).
+Eigen::MatrixXd parameterJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
+                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
+                                  double t, const std::vector<std::string>& parameters);
+
+}  // namespace mbsopt
