@@ -9,23 +9,13 @@
 #include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
 #include "sensitivity/design_evaluation.hpp"
+#include "tests/oscillator_scene.hpp"
 
 namespace mbsopt {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// A unit mass on a spring of stiffness (2π)² N/m released from x = 1 m: one period per second.
-constexpr const char* kOscillator = R"(settings: {step: 1.0e-3, end_time: 1}
-elements:
-  - {name: x, type: prismatic, parent: ground, axis: [1, 0, 0], q0: 1}
-bodies:
-  - {name: mass, frame: x, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}
-forces:
-  - {name: spring, type: joint_spring_damper, joint: x, k: 39.478417604357434}
-sensors:
-  - {name: position, type: joint, joint: x, quantity: position}
-)";
 
 TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
   const DesignProblem file =
@@ -62,12 +52,7 @@ TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
 // from the closed form by Σ (h/2) G_i |dt*_i/dk| (two kinks, θ* and 2π − θ*, t*_i = θ_i/ω), plus
 // O(h²) and the O(δ²) ≈ 1e-8 of central differences.
 TEST(DesignProblem, OscillatorConstraintAndGradientMatchClosedForms) {
-  const SceneSource source{"oscillator.yaml", std::string(kOscillator) + R"(
-design:
-  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
-  cost: {sensor: position, of: max}
-  artificial: {initial: 0.5, lower: -2, upper: 2}
-)"};
+  const SceneSource source{"oscillator.yaml", std::string(test::kOscillator) + test::kOscillatorDesign};
   const DesignProblem problem = loadDesignProblem(source);
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
   ASSERT_EQ(functionals.size(), 1u);
@@ -93,7 +78,7 @@ design:
 }
 
 TEST(DesignProblem, BadDesignSectionsAreLocated) {
-  const std::string scene = std::string(kOscillator) + "design:\n";
+  const std::string scene = std::string(test::kOscillator) + "design:\n";
   const auto errorLine = [&](const std::string& design) {
     try {
       loadDesignProblem({"d.yaml", scene + design});

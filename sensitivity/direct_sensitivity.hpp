@@ -1,0 +1,17 @@
+// The `direct` gradient method (DESIGN.md §4): forward sensitivities S = d(q, q̇, q̈)/db carried
+// through every Newmark step (32)-(33), one extra right-hand side per design variable per step,
+// then chained with the time functionals' sample gradients and the response Jacobians. The exact
+// derivative of the discrete map for open trees (steps 1-3 of "The discrete map" in
+// sensitivity/README.md); closed loops are not supported yet.
+#pragma once
+
+#include "sensitivity/design_evaluation.hpp"
+
+namespace mbsopt {
+
+/// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
+/// Throws std::invalid_argument for a scene with cut joints.
+DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                              const Eigen::VectorXd& x);
+
+}  // namespace mbsopt
