@@ -9,7 +9,7 @@
 #include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
 #include "sensitivity/design_evaluation.hpp"
-#include "tests/oscillator_scene.hpp"
+#include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
 namespace {

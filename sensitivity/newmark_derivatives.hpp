@@ -1,0 +1,55 @@
+// What the exact gradient methods (`direct`, `adjoint`) share: a design problem simulated at one
+// point, and at any time point of its trajectory the derivatives of the Newmark step (33) — the
+// free blocks of M, C_T, K_T and the rows of ∂f/∂b — and the seeds ∂Ψ/∂(q, q̇, q̈) of every
+// transcribed constraint. Open trees only (sensitivity/README.md, "The discrete map").
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "sensitivity/design_evaluation.hpp"
+
+namespace mbsopt {
+
+/// The step derivatives at one converged state, free coordinates only.
+struct StepDerivatives {
+  Eigen::MatrixXd mass, damping, stiffness;  ///< M, C_T, K_T
+  Eigen::MatrixXd parameters;                ///< ∂f/∂b, one column per design variable
+};
+
+/// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates.
+struct ResponseSeeds {
+  Eigen::MatrixXd position, velocity, acceleration;
+};
+
+class TrajectoryDerivatives {
+ public:
+  /// Simulates at x; throws std::invalid_argument for scenes with cut joints.
+  TrajectoryDerivatives(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                        const Eigen::VectorXd& x);
+
+  Eigen::Index timePoints() const { return response_.trajectory.time.size(); }
+  Eigen::Index freeCount() const { return static_cast<Eigen::Index>(model_.freeCoordinates().size()); }
+  Eigen::Index variableCount() const { return static_cast<Eigen::Index>(parameters_.size()); }
+  Eigen::Index functionalCount() const { return static_cast<Eigen::Index>(functionals_.size()); }
+  const NewmarkSettings& settings() const { return problem_.scene.settings; }
+
+  StepDerivatives step(Eigen::Index k);
+  ResponseSeeds seeds(Eigen::Index k);
+
+  /// The gradients in the scaled variables from dΨ/db (functionals × design variables, SI): the
+  /// variables' scales, the cost b_{k+1}, and the exact column of the artificial variable.
+  DesignGradient gradient(const Eigen::MatrixXd& dpsi_db) const;
+
+ private:
+  const DesignProblem& problem_;
+  const std::vector<ConstraintFunctional>& functionals_;
+  Eigen::VectorXd x_;
+  Model model_;
+  DesignResponse response_;
+  std::vector<std::string> parameters_;
+  Workspace<AdScalar> ws_;
+};
+
+}  // namespace mbsopt

@@ -1,0 +1,85 @@
+// The exact gradient methods, `direct` and the discrete `adjoint`, are derivatives of the same
+// discrete map: they agree with each other to round-off (≤ 1e-9 relative) for every kind of
+// functional, with central differences of the simulation to the latter's error (O(δ²) plus the
+// Newton tolerance over δ), and with closed forms to the discretisation error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "problems/scene_file.hpp"
+#include "sensitivity/direct_sensitivity.hpp"
+#include "sensitivity/discrete_adjoint.hpp"
+#include "tests/sensitivity_scenes.hpp"
+
+namespace mbsopt {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// max |a − b| relative to the largest entry of b.
+double relativeGap(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+}
+
+DesignProblem oscillator() {
+  return loadDesignProblem({"oscillator.yaml", std::string(test::kOscillator) + test::kOscillatorDesign});
+}
+
+// dΨ/dk of Ψ = ∫⟨x − ½⟩dt for x'' + k x = 0 (the closed form and its kink bound are derived in
+// test_design_problem.cpp). Both exact methods differentiate the same discrete functional as the
+// finite differences, so they agree far more closely with those than with the closed form.
+TEST(ExactGradients, OscillatorMatchesFiniteDifferencesAndTheClosedForm) {
+  const DesignProblem problem = oscillator();
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient direct = directGradient(problem, functionals, x);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  const DesignGradient central = finiteDifferenceGradient(problem, functionals, x, 1e-5, true);
+  EXPECT_LE(relativeGap(direct.constraints, central.constraints), 1e-6);
+  EXPECT_LE(relativeGap(adjoint.constraints, direct.constraints), 1e-9);
+  EXPECT_EQ(adjoint.cost, direct.cost);
+  const double omega = 2.0 * kPi, b = 0.5, theta = std::acos(b);
+  const double F = 2.0 * (std::sin(theta) - b * theta);
+  const double dpsi_dx = (-F / (omega * omega) + (1.0 - b) / omega) / (2.0 * omega) * 10.0;
+  const double kink_bound = 0.5 * 1e-3 * omega * std::sin(theta) * 2.0 * kPi / (2.0 * omega * omega * omega) * 10.0;
+  EXPECT_NEAR(direct.constraints(0, 0), dpsi_dx, kink_bound + 1e-4 * std::abs(dpsi_dx));
+}
+
+// The paper's equivalent constraint with the artificial max (positive_part), its square, a KS
+// aggregate and the grid maximum, on a cost that depends on accelerations.
+TEST(ExactGradients, OpenChainAdjointEqualsDirectForEveryTranscription) {
+  DesignProblem problem = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
+  problem.design.artificial.initial = 4.0;  // below max |tip acceleration|: the ⟨⟩ forms are active
+  const Eigen::VectorXd x = initialPoint(problem);
+  for (const TimeMeasure measure : {TimeMeasure::PositivePart, TimeMeasure::SquaredPositivePart,
+                                    TimeMeasure::KsAggregate, TimeMeasure::GridMax}) {
+    problem.design.transcription.measure = measure;
+    const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+    const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+    const DesignGradient direct = directGradient(problem, functionals, x);
+    EXPECT_GT(direct.constraints.cwiseAbs().maxCoeff(), 0.0) << static_cast<int>(measure);
+    EXPECT_LE(relativeGap(adjoint.constraints, direct.constraints), 1e-9) << static_cast<int>(measure);
+  }
+}
+
+// Against central differences of the simulation itself (KS: smooth, so the differences converge).
+TEST(ExactGradients, OpenChainMatchesCentralDifferences) {
+  const DesignProblem problem = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient central = finiteDifferenceGradient(problem, functionals, x, 1e-5, true);
+  EXPECT_LE(relativeGap(directGradient(problem, functionals, x).constraints, central.constraints), 1e-6);
+  EXPECT_LE(relativeGap(adjointGradient(problem, functionals, x).constraints, central.constraints), 1e-6);
+}
+
+// Both exact methods refuse what they cannot differentiate yet, rather than return a wrong gradient.
+TEST(ExactGradients, RefuseClosedLoopsForNow) {
+  const DesignProblem problem =
+      loadDesignProblem(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/tramway.yaml"));
+  EXPECT_THROW(adjointGradient(problem, transcribe(problem), initialPoint(problem)), std::invalid_argument);
+  EXPECT_THROW(directGradient(problem, transcribe(problem), initialPoint(problem)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mbsopt
