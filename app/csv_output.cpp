@@ -1,21 +1,12 @@
 #include "app/csv_output.hpp"
 
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <stdexcept>
-
+#include "app/atomic_file.hpp"
 
 namespace mbsopt {
 
 void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory,
                         const Eigen::MatrixXd& sensors) {
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial);
-    if (!out) throw std::runtime_error("cannot write '" + partial + "': " + std::strerror(errno));
+  writeAtomically(path, [&](std::ostream& out) {
     out.precision(17);
     out << 't';
     for (const Coordinate& c : model.coordinates()) out << ',' << c.name;
@@ -27,17 +18,7 @@ void writeTrajectoryCsv(const std::string& path, const Model& model, const Traje
       for (Eigen::Index s = 0; s < sensors.cols(); ++s) out << ',' << sensors(k, s);
       out << '\n';
     }
-    if (!out.flush()) {
-      std::remove(partial.c_str());
-      throw std::runtime_error("writing '" + path + "' failed");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(partial, path, error);
-  if (error) {
-    std::remove(partial.c_str());
-    throw std::runtime_error("cannot replace '" + path + "': " + error.message());
-  }
+  });
 }
 
 }  // namespace mbsopt

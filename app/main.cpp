@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 
+#include "app/gradcheck_command.hpp"
 #include "app/parameters_command.hpp"
 #include "app/simulate_command.hpp"
 #include "problems/scene_file.hpp"
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   mbsopt::registerSimulateCommand(app);
   mbsopt::registerParametersCommand(app);
+  mbsopt::registerGradcheckCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,166 @@
+#include "app/gradcheck_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "app/atomic_file.hpp"
+#include "app/scene_argument.hpp"
+#include "problems/scene_text.hpp"
+#include "sensitivity/direct_sensitivity.hpp"
+#include "sensitivity/discrete_adjoint.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+struct GradcheckOptions {
+  SceneArgument problem;
+  std::vector<double> design;  ///< SI values of the design variables
+  std::optional<double> artificial;
+  double fd_step = 1e-6;
+  std::string json;
+};
+
+/// One method's gradient, or why it has none.
+struct MethodResult {
+  std::string name;
+  std::optional<DesignGradient> gradient;
+  std::string unavailable;
+  double seconds = 0.0;
+};
+
+template <class Compute>
+MethodResult run(const std::string& name, Compute&& compute) {
+  MethodResult result{name, std::nullopt, "", 0.0};
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    result.gradient = compute();
+  } catch (const std::invalid_argument& e) {
+    result.unavailable = e.what();
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+/// Row r of a gradient: the cost's (r = 0) or constraint r − 1's.
+Eigen::VectorXd row(const DesignGradient& g, Eigen::Index r) {
+  return r == 0 ? g.cost : Eigen::VectorXd(g.constraints.row(r - 1).transpose());
+}
+
+double relativeError(const Eigen::VectorXd& g, const Eigen::VectorXd& reference) {
+  const double scale = reference.cwiseAbs().maxCoeff();
+  return (g - reference).cwiseAbs().maxCoeff() / (scale > 0.0 ? scale : 1.0);
+}
+
+std::vector<double> toVector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+void gradcheck(const GradcheckOptions& options) {
+  const SceneSource source = resolveScene(options.problem.scene);
+  const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  Eigen::VectorXd x = initialPoint(problem);
+  const auto& variables = problem.design.variables;
+  if (!options.design.empty()) {
+    if (options.design.size() != variables.size())
+      throw SceneError(source.path, 0, 0,
+                       "--design: " + std::to_string(options.design.size()) + " values for " +
+                           std::to_string(variables.size()) + " design variables");
+    for (std::size_t i = 0; i < variables.size(); ++i) x[static_cast<Eigen::Index>(i)] = options.design[i] / variables[i].scale;
+  }
+  if (options.artificial) x[x.size() - 1] = *options.artificial / problem.design.artificial.scale;
+
+  const auto start = std::chrono::steady_clock::now();
+  const DesignResponse response = evaluateDesign(problem, functionals, x);
+  const double simulation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<MethodResult> methods;
+  methods.push_back(run("adjoint", [&] { return adjointGradient(problem, functionals, x); }));
+  methods.push_back(run("continuous-adjoint", [&]() -> DesignGradient {
+    throw std::invalid_argument("not implemented yet (issue 4)");
+  }));
+  methods.push_back(run("direct", [&] { return directGradient(problem, functionals, x); }));
+  methods.push_back(run("fd_forward", [&] { return finiteDifferenceGradient(problem, functionals, x, options.fd_step, false); }));
+  methods.push_back(run("fd_central", [&] { return finiteDifferenceGradient(problem, functionals, x, options.fd_step, true); }));
+  const MethodResult& reference = methods[0].gradient ? methods[0] : methods[4];
+
+  std::vector<std::pair<double, DesignGradient>> sweep;
+  for (double step = 1e-2; step > 0.5e-9; step /= 10.0)
+    sweep.emplace_back(step, finiteDifferenceGradient(problem, functionals, x, step, true));
+
+  // Text report.
+  std::printf("gradcheck %s: %zu design variables + b_{k+1}, %zu constraints; one simulation %.3g s\n",
+              source.path.c_str(), variables.size(), functionals.size(), simulation);
+  for (const MethodResult& m : methods) {
+    if (!m.gradient) {
+      std::printf("  %-19s not available: %s\n", m.name.c_str(), m.unavailable.c_str());
+      continue;
+    }
+    double worst = 0.0;
+    for (Eigen::Index r = 0; r <= static_cast<Eigen::Index>(functionals.size()); ++r)
+      worst = std::max(worst, relativeError(row(*m.gradient, r), row(*reference.gradient, r)));
+    std::printf("  %-19s %8.3g s  max relative difference from %s %.2e\n", m.name.c_str(), m.seconds,
+                reference.name.c_str(), worst);
+  }
+  nlohmann::json json_functionals = nlohmann::json::array();
+  for (Eigen::Index r = 0; r <= static_cast<Eigen::Index>(functionals.size()); ++r) {
+    const std::string name = r == 0 ? "cost" : functionals[static_cast<std::size_t>(r - 1)].name;
+    const double value = r == 0 ? response.cost : response.constraints[r - 1];
+    std::printf("%s = %s\n", name.c_str(), formatNumber(value).c_str());
+    nlohmann::json gradients = nlohmann::json::object();
+    for (const MethodResult& m : methods) {
+      if (!m.gradient) continue;
+      const Eigen::VectorXd g = row(*m.gradient, r);
+      gradients[m.name] = toVector(g);
+      std::printf("  %-19s", m.name.c_str());
+      for (Eigen::Index i = 0; i < g.size(); ++i) std::printf(" %13.6e", g[i]);
+      std::printf("\n");
+    }
+    std::printf("  central differences, relative step: relative difference from %s\n   ", reference.name.c_str());
+    nlohmann::json json_sweep = nlohmann::json::array();
+    for (const auto& [step, g] : sweep) {
+      std::printf(" %.0e: %.1e", step, relativeError(row(g, r), row(*reference.gradient, r)));
+      json_sweep.push_back({{"relative_step", step}, {"gradient", toVector(row(g, r))}});
+    }
+    std::printf("\n");
+    json_functionals.push_back({{"name", name}, {"value", value}, {"gradients", gradients}, {"fd_sweep", json_sweep}});
+  }
+  if (!options.json.empty()) {
+    nlohmann::json timings = {{"simulation", simulation}};
+    for (const MethodResult& m : methods)
+      if (m.gradient && m.name != "fd_forward") timings[m.name] = m.seconds;
+    const nlohmann::json document = {{"problem", source.path},
+                                     {"design_point", toVector(x)},
+                                     {"functionals", json_functionals},
+                                     {"timings_s", timings}};
+    writeAtomically(options.json, [&](std::ostream& out) { out << document.dump(2) << '\n'; });
+  }
+}
+
+}  // namespace
+
+void registerGradcheckCommand(CLI::App& app) {
+  auto options = std::make_shared<GradcheckOptions>();
+  CLI::App* command = app.add_subcommand(
+      "gradcheck",
+      "At a design point, print each functional (the cost b_{k+1} and every transcribed constraint) and its "
+      "gradient with respect to the scaled design variables by every method (adjoint, continuous-adjoint, direct, "
+      "forward and central differences), their differences from the adjoint, a sweep of central-difference steps "
+      "from 1e-2 to 1e-9 (the V shape) and the time of each method");
+  addSceneArgument(*command, options->problem, true);
+  command->add_option("--design", options->design,
+                      "Design variables in SI units, in the problem's order (default: the scene's values)")
+      ->delimiter(',');
+  command->add_option("--artificial", options->artificial, "b_{k+1} in the cost's units (default: the problem's)");
+  command->add_option("--fd-step", options->fd_step, "Relative step of the forward and central differences")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--json", options->json,
+                      "Write the results as JSON: functionals[{name, value, gradients{method: [..]}, "
+                      "fd_sweep[{relative_step, gradient}]}], timings_s{simulation, method: seconds}");
+  command->callback([options] { gradcheck(*options); });
+}
+
+}  // namespace mbsopt
