@@ -200,6 +200,8 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += da_[static_cast<Eigen::Index>(k)];
   lambda_ += dlambda_;
   J_.resize(0, 0);  // the first step evaluates the tangent matrices
+  v_unprojected_ = v_;
+  a_unprojected_ = a_;
   measureClosure();
 }
 
@@ -346,6 +348,8 @@ void NewmarkIntegrator::step() {
   a_newton_previous_ = a_newton_;
   a_newton_ = a_;
   ++newton_history_;
+  v_unprojected_ = v_;
+  a_unprojected_ = a_;
   if (settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0) {
     // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
     updateConstraintPartition();
@@ -373,6 +377,8 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
   out.v.resize(n, steps + 1);
   out.a.resize(n, steps + 1);
   out.lambda.resize(model_.constraintCount(), steps + 1);
+  out.v_unprojected.resize(n, steps + 1);
+  out.a_unprojected.resize(n, steps + 1);
   out.closure_error.resize(steps + 1);
   out.newton_iterations.resize(steps + 1);
   auto store = [&](long k, int iterations) {
@@ -381,6 +387,8 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
     out.v.col(k) = v_;
     out.a.col(k) = a_;
     out.lambda.col(k) = lambda_;
+    out.v_unprojected.col(k) = v_unprojected_;
+    out.a_unprojected.col(k) = a_unprojected_;
     out.closure_error[k] = closure_error_;
     out.newton_iterations[k] = iterations;
   };

@@ -81,6 +81,9 @@ struct IntegratorStatistics {
 struct Trajectory {
   Eigen::VectorXd time;                   ///< one entry per stored point (t₀ and every step)
   Eigen::MatrixXd q, v, a, lambda;        ///< one column per time point
+  /// q̇ and q̈ as Newton left them, before the projections onto the velocity and acceleration
+  /// constraints (equal to v, a without cut joints): the state the exact gradients linearise about.
+  Eigen::MatrixXd v_unprojected, a_unprojected;
   Eigen::VectorXd closure_error;          ///< ‖b(q)‖∞ per time point
   Eigen::VectorXi newton_iterations;      ///< per time point (0 at t₀)
   IntegratorStatistics statistics;
@@ -144,6 +147,7 @@ class NewmarkIntegrator {
   double t_ = 0.0;
   long step_count_ = 0;
   Eigen::VectorXd q_, v_, a_, lambda_;
+  Eigen::VectorXd v_unprojected_, a_unprojected_;  ///< q̇, q̈ before this step's projections
   Eigen::VectorXd q_pred_, v_pred_;  // full-size predictors q̃, ṽ
   Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
   Eigen::VectorXd a_newton_, a_newton_previous_, a_newton_before_;  ///< converged Newton accelerations before projection

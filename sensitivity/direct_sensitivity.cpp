@@ -1,37 +1,81 @@
 #include "sensitivity/direct_sensitivity.hpp"
 
-#include <Eigen/LU>
+#include <stdexcept>
 
+#include "dynamics/svd_partition.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 
+namespace {
+
+/// X from [J Bᵀ; B 0][X; Y] = [top; bottom], column by column, through the SVD partition (43)-(48)
+/// the integrator uses, so redundant closure equations drop out the same way.
+Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
+                               const Eigen::MatrixXd& bottom, double threshold) {
+  SvdPartition partition(threshold);
+  partition.setConstraintJacobian(B);
+  if (!partition.setIterationMatrix(J)) throw std::runtime_error("direct: singular step matrix");
+  Eigen::MatrixXd X(top.rows(), top.cols());
+  Eigen::VectorXd dx, dmu;
+  for (Eigen::Index c = 0; c < top.cols(); ++c) {
+    partition.solve(-top.col(c), -bottom.col(c), dx, dmu);  // it solves for −[r; g]
+    X.col(c) = dx;
+  }
+  return X;
+}
+
+}  // namespace
+
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x) {
   TrajectoryDerivatives d(problem, functionals, x);
-  const double h = d.settings().step, beta = d.settings().beta, gamma = d.settings().gamma;
-  Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), d.variableCount());
+  const NewmarkSettings& settings = d.settings();
+  const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
+  const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();
+  Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), p);
   const auto accumulate = [&](Eigen::Index k, const Eigen::MatrixXd& Sq, const Eigen::MatrixXd& Sv,
                               const Eigen::MatrixXd& Sa) {
     const ResponseSeeds s = d.seeds(k);
     dpsi_db += s.position * Sq + s.velocity * Sv + s.acceleration * Sa;
   };
-  // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀; b) = 0 gives M S_a = −∂f/∂b.
-  const Eigen::Index nf = d.freeCount(), p = d.variableCount();
+  const auto jacobian = [&](Eigen::Index k) {
+    return m > 0 ? d.closure(k).jacobian : Eigen::MatrixXd(0, nf);
+  };
+  // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀, λ₀; b) = 0 with b̈ = 0 gives
+  // [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b; 0].
   Eigen::MatrixXd Sq = Eigen::MatrixXd::Zero(nf, p), Sv = Eigen::MatrixXd::Zero(nf, p);
   StepDerivatives s = d.step(0);
-  Eigen::MatrixXd Sa = s.mass.partialPivLu().solve(-s.parameters);
+  Eigen::MatrixXd Sa = solveAugmented(s.mass, jacobian(0), -s.parameters, Eigen::MatrixXd::Zero(m, p),
+                                      settings.svd_threshold);
   accumulate(0, Sq, Sv, Sa);
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
-    // (32): the parts known at tₙ; (33) differentiated at the converged state of step k:
-    // (M + γh C_T + βh² K_T) S_a = −(∂f/∂b + K_T S_q̃ + C_T S_ṽ).
+    // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
+    // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],
+    // A = M + γh C_T + βh² K_T.
     const Eigen::MatrixXd Sq_pred = Sq + h * Sv + (0.5 - beta) * h * h * Sa;
     const Eigen::MatrixXd Sv_pred = Sv + (1.0 - gamma) * h * Sa;
     s = d.step(k);
     const Eigen::MatrixXd iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
-    Sa = iteration.partialPivLu().solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred));
-    Sq = Sq_pred + beta * h * h * Sa;
-    Sv = Sv_pred + gamma * h * Sa;
+    if (m == 0) {
+      Sa = solveAugmented(iteration, Eigen::MatrixXd(0, nf), -(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred),
+                          Eigen::MatrixXd(0, p), settings.svd_threshold);
+      Sq = Sq_pred + beta * h * h * Sa;
+      Sv = Sv_pred + gamma * h * Sa;
+    } else {
+      const ClosureDerivatives c = d.closure(k);
+      const Eigen::MatrixXd Sa_newton =
+          solveAugmented(iteration, c.jacobian, -(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred),
+                         -c.jacobian * Sq_pred / (beta * h * h), settings.svd_threshold);
+      Sq = Sq_pred + beta * h * h * Sa_newton;
+      const Eigen::MatrixXd Sv_newton = Sv_pred + gamma * h * Sa_newton;
+      // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
+      // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q; −∂ḃ/∂q S_q], then the same for q̈ with ∂b̈/∂(q, q̇).
+      Sv = solveAugmented(s.mass, c.jacobian, s.mass * Sv_newton - c.velocity_projection * Sq, -c.velocity_q * Sq,
+                          settings.svd_threshold);
+      Sa = solveAugmented(s.mass, c.jacobian, s.mass * Sa_newton - c.acceleration_projection * Sq,
+                          -(c.acceleration_q * Sq + c.acceleration_v * Sv), settings.svd_threshold);
+    }
     accumulate(k, Sq, Sv, Sa);
   }
   return d.gradient(dpsi_db);

@@ -8,6 +8,8 @@ namespace mbsopt {
 
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                const Eigen::VectorXd& x) {
+  if (problem.scene.model.constraintCount() > 0)
+    throw std::invalid_argument("adjoint: scenes with cut joints are not supported yet (use direct or fd)");
   TrajectoryDerivatives d(problem, functionals, x);
   const double h = d.settings().step, beta = d.settings().beta, gamma = d.settings().gamma;
   const Eigen::Index N = d.timePoints() - 1;

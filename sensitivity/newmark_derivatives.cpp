@@ -2,6 +2,11 @@
 
 #include <stdexcept>
 
+#include <Eigen/SVD>
+#include <algorithm>
+
+#include "dynamics/closure.hpp"
+#include "dynamics/kinematics.hpp"
 #include "dynamics/tangent.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
 #include "sensitivity/response_jacobian.hpp"
@@ -11,8 +16,8 @@ namespace mbsopt {
 namespace {
 
 Model checkedModel(const DesignProblem& problem, const Eigen::VectorXd& x) {
-  if (problem.scene.model.constraintCount() > 0)
-    throw std::invalid_argument("exact gradients: scenes with cut joints are not supported yet (use fd)");
+  if (problem.scene.model.constraintCount() > 0 && problem.scene.settings.closure != ClosureLevel::Position)
+    throw std::invalid_argument("exact gradients: loops closed at acceleration level are not supported (use fd)");
   Model model = problem.scene.model;
   applyDesign(problem, x, model);
   return model;
@@ -35,12 +40,63 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
 StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
-  const Eigen::VectorXd no_lambda;
   TangentMatrices tangent;
-  tangentMatrices(model_, ws_, tr.q.col(k), tr.v.col(k), tr.a.col(k), no_lambda, tr.time[k], tangent);
-  const Eigen::MatrixXd dfdb =
-      parameterJacobian(model_, ws_, tr.q.col(k), tr.v.col(k), tr.a.col(k), no_lambda, tr.time[k], parameters_);
+  const Eigen::VectorXd q = tr.q.col(k), v = tr.v_unprojected.col(k), a = tr.a_unprojected.col(k);
+  const Eigen::VectorXd lambda = tr.lambda.col(k);
+  tangentMatrices(model_, ws_, q, v, a, lambda, tr.time[k], tangent);
+  const Eigen::MatrixXd dfdb = parameterJacobian(model_, ws_, q, v, a, lambda, tr.time[k], parameters_);
   return {tangent.mass(free, free), tangent.damping(free, free), tangent.stiffness(free, free), dfdb(free, Eigen::all)};
+}
+
+namespace {
+
+/// ∂c/∂x of the closure equations at `level`, x = q (which = 0) or q̇ (which = 1), all columns.
+Eigen::MatrixXd closureJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v, const Eigen::VectorXd& a, Derivative level, int which) {
+  const Eigen::Index n = model.coordinateCount();
+  Eigen::MatrixXd out(model.constraintCount(), n);
+  const KinematicsLevel kinematics = level == Derivative::Position   ? KinematicsLevel::Position
+                                     : level == Derivative::Velocity ? KinematicsLevel::Velocity
+                                                                     : KinematicsLevel::Acceleration;
+  VectorX<AdScalar> c;
+  for (Eigen::Index first = 0; first < n; first += kMaxAdDirections) {
+    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, n - first);
+    const VectorX<AdScalar> q_ad = seededVector(q, which == 0 ? 0 : n, first, count);
+    const VectorX<AdScalar> v_ad = seededVector(v, which == 1 ? 0 : n, first, count);
+    const VectorX<AdScalar> a_ad = seededVector(a, n, first, count);  // never seeded
+    forwardKinematics(model, ws, q_ad, v_ad, a_ad, kinematics);
+    closureEquations(model, ws, level, c);
+    for (Eigen::Index i = 0; i < c.size(); ++i) out.row(i).segment(first, count) = c[i].derivatives().head(count);
+  }
+  return out;
+}
+
+}  // namespace
+
+ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
+  const Trajectory& tr = response_.trajectory;
+  const std::vector<int>& free = model_.freeCoordinates();
+  const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount();
+  const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k), zero = Eigen::VectorXd::Zero(n);
+  ClosureDerivatives out;
+  out.jacobian = closureJacobian(model_, ws_, q, zero, zero, Derivative::Velocity, 1)(Eigen::all, free);
+  out.velocity_q = closureJacobian(model_, ws_, q, v, zero, Derivative::Velocity, 0)(Eigen::all, free);
+  out.acceleration_q = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 0)(Eigen::all, free);
+  out.acceleration_v = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 1)(Eigen::all, free);
+  // G = ∂(M Δ + Bᵀμ)/∂q = K_T(q, 0, Δ, μ) − K_T(q, 0, 0, 0): f(q, 0, Δ, μ) − f(q, 0, 0, 0) = M Δ + Bᵀμ.
+  TangentMatrices base, shifted;
+  tangentMatrices(model_, ws_, q, zero, zero, Eigen::VectorXd::Zero(m), tr.time[k], base);
+  const Eigen::MatrixXd mass = base.mass(free, free);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const auto projectionG = [&](const Eigen::VectorXd& correction) {
+    // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
+    const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
+    tangentMatrices(model_, ws_, q, zero, correction, mu, tr.time[k], shifted);
+    return Eigen::MatrixXd((shifted.stiffness - base.stiffness)(free, free));
+  };
+  out.velocity_projection = projectionG(v - tr.v_unprojected.col(k));
+  out.acceleration_projection = projectionG(a - tr.a_unprojected.col(k));
+  return out;
 }
 
 ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {

@@ -1,7 +1,8 @@
 // What the exact gradient methods (`direct`, `adjoint`) share: a design problem simulated at one
 // point, and at any time point of its trajectory the derivatives of the Newmark step (33) — the
-// free blocks of M, C_T, K_T and the rows of ∂f/∂b — and the seeds ∂Ψ/∂(q, q̇, q̈) of every
-// transcribed constraint. Open trees only (sensitivity/README.md, "The discrete map").
+// free blocks of M, C_T, K_T and the rows of ∂f/∂b, and with cut joints the derivatives of the
+// closure and of the two projections — and the seeds ∂Ψ/∂(q, q̇, q̈) of every transcribed
+// constraint (sensitivity/README.md, "The discrete map").
 #pragma once
 
 #include <Eigen/Core>
@@ -18,6 +19,17 @@ struct StepDerivatives {
   Eigen::MatrixXd parameters;                ///< ∂f/∂b, one column per design variable
 };
 
+/// The constraint side of a step with cut joints, free coordinates (m closure equations):
+/// B = ∂b/∂q; the derivatives in q (and q̇) of the velocity and acceleration closures at the
+/// projected state; and G = ∂(M(q)Δ + B(q)ᵀμ)/∂q for each projection (Δ its correction, μ its
+/// minimum-norm multipliers), which carries the projections' dependence on q through M and B.
+struct ClosureDerivatives {
+  Eigen::MatrixXd jacobian;                        ///< B
+  Eigen::MatrixXd velocity_q;                      ///< ∂ḃ/∂q at (q_k, q̇_k)
+  Eigen::MatrixXd acceleration_q, acceleration_v;  ///< ∂b̈/∂q, ∂b̈/∂q̇ at (q_k, q̇_k, q̈_k)
+  Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
+};
+
 /// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates.
 struct ResponseSeeds {
   Eigen::MatrixXd position, velocity, acceleration;
@@ -25,7 +37,7 @@ struct ResponseSeeds {
 
 class TrajectoryDerivatives {
  public:
-  /// Simulates at x; throws std::invalid_argument for scenes with cut joints.
+  /// Simulates at x; throws std::invalid_argument for cut joints closed at acceleration level.
   TrajectoryDerivatives(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                         const Eigen::VectorXd& x);
 
@@ -35,7 +47,12 @@ class TrajectoryDerivatives {
   Eigen::Index functionalCount() const { return static_cast<Eigen::Index>(functionals_.size()); }
   const NewmarkSettings& settings() const { return problem_.scene.settings; }
 
+  Eigen::Index constraintCount() const { return model_.constraintCount(); }
+
+  /// At the state Newton converged to at time point k (before the projections).
   StepDerivatives step(Eigen::Index k);
+  /// Needs constraintCount() > 0.
+  ClosureDerivatives closure(Eigen::Index k);
   ResponseSeeds seeds(Eigen::Index k);
 
   /// The gradients in the scaled variables from dΨ/db (functionals × design variables, SI): the
