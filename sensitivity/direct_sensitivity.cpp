@@ -1,31 +1,9 @@
 #include "sensitivity/direct_sensitivity.hpp"
 
-#include <stdexcept>
-
-#include "dynamics/svd_partition.hpp"
+#include "sensitivity/augmented_solve.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
-
-namespace {
-
-/// X from [J Bᵀ; B 0][X; Y] = [top; bottom], column by column, through the SVD partition (43)-(48)
-/// the integrator uses, so redundant closure equations drop out the same way.
-Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
-                               const Eigen::MatrixXd& bottom, double threshold) {
-  SvdPartition partition(threshold);
-  partition.setConstraintJacobian(B);
-  if (!partition.setIterationMatrix(J)) throw std::runtime_error("direct: singular step matrix");
-  Eigen::MatrixXd X(top.rows(), top.cols());
-  Eigen::VectorXd dx, dmu;
-  for (Eigen::Index c = 0; c < top.cols(); ++c) {
-    partition.solve(-top.col(c), -bottom.col(c), dx, dmu);  // it solves for −[r; g]
-    X.col(c) = dx;
-  }
-  return X;
-}
-
-}  // namespace
 
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x) {

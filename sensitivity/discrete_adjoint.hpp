@@ -1,7 +1,7 @@
 // The `adjoint` gradient method (DESIGN.md §4, the default): the discrete adjoint of the Newmark
 // steps, i.e. the transpose of the `direct` recursion swept backward in time. One sweep serves every
 // constraint (one adjoint row each) whatever the number of design variables, and gives the exact
-// gradient of the discretised functionals. Open trees for now, as `direct`.
+// gradient of the discretised functionals, closed loops included.
 #pragma once
 
 #include "sensitivity/design_evaluation.hpp"
@@ -9,7 +9,7 @@
 namespace mbsopt {
 
 /// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
-/// Throws std::invalid_argument for a scene with cut joints.
+/// Throws std::invalid_argument for loops closed at acceleration level.
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                const Eigen::VectorXd& x);
 
