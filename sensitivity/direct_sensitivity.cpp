@@ -17,14 +17,11 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     const ResponseSeeds s = d.seeds(k);
     dpsi_db += s.position * Sq + s.velocity * Sv + s.acceleration * Sa;
   };
-  const auto jacobian = [&](Eigen::Index k) {
-    return m > 0 ? d.closure(k).jacobian : Eigen::MatrixXd(0, nf);
-  };
   // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀, λ₀; b) = 0 with b̈ = 0 gives
   // [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b; 0].
   Eigen::MatrixXd Sq = Eigen::MatrixXd::Zero(nf, p), Sv = Eigen::MatrixXd::Zero(nf, p);
   StepDerivatives s = d.step(0);
-  Eigen::MatrixXd Sa = solveAugmented(s.mass, jacobian(0), -s.parameters, Eigen::MatrixXd::Zero(m, p),
+  Eigen::MatrixXd Sa = solveAugmented(s.mass, d.constraintJacobian(0), -s.parameters, Eigen::MatrixXd::Zero(m, p),
                                       settings.svd_threshold);
   accumulate(0, Sq, Sv, Sa);
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
@@ -35,21 +32,19 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     const Eigen::MatrixXd Sv_pred = Sv + (1.0 - gamma) * h * Sa;
     s = d.step(k);
     const Eigen::MatrixXd iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
-    if (m == 0) {
-      Sa = solveAugmented(iteration, Eigen::MatrixXd(0, nf), -(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred),
-                          Eigen::MatrixXd(0, p), settings.svd_threshold);
-      Sq = Sq_pred + beta * h * h * Sa;
-      Sv = Sv_pred + gamma * h * Sa;
-    } else {
-      const ClosureDerivatives c = d.closure(k);
-      const Eigen::MatrixXd Sa_newton =
-          solveAugmented(iteration, c.jacobian, -(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred),
-                         -c.jacobian * Sq_pred / (beta * h * h), settings.svd_threshold);
-      Sq = Sq_pred + beta * h * h * Sa_newton;
-      const Eigen::MatrixXd Sv_newton = Sv_pred + gamma * h * Sa_newton;
+    ClosureDerivatives c;
+    c.jacobian.resize(0, nf);
+    if (m > 0) c = d.closure(k);
+    const Eigen::MatrixXd Sa_newton =
+        solveAugmented(iteration, c.jacobian, -(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred),
+                       -c.jacobian * Sq_pred / (beta * h * h), settings.svd_threshold);
+    Sq = Sq_pred + beta * h * h * Sa_newton;
+    Sv = Sv_pred + gamma * h * Sa_newton;
+    Sa = Sa_newton;
+    if (m > 0) {
       // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
       // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q; −∂ḃ/∂q S_q], then the same for q̈ with ∂b̈/∂(q, q̇).
-      Sv = solveAugmented(s.mass, c.jacobian, s.mass * Sv_newton - c.velocity_projection * Sq, -c.velocity_q * Sq,
+      Sv = solveAugmented(s.mass, c.jacobian, s.mass * Sv - c.velocity_projection * Sq, -c.velocity_q * Sq,
                           settings.svd_threshold);
       Sa = solveAugmented(s.mass, c.jacobian, s.mass * Sa_newton - c.acceleration_projection * Sq,
                           -(c.acceleration_q * Sq + c.acceleration_v * Sv), settings.svd_threshold);

@@ -49,8 +49,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   }
   // t₀: q₀, q̇₀ do not depend on b; q̈₀ = L(−∂f/∂b, 0) with J = M.
   const StepDerivatives s = d.step(0);
-  solveAugmentedTransposed(s.mass, m > 0 ? d.closure(0).jacobian : Eigen::MatrixXd(0, nf), bar.acceleration,
-                           threshold, tbar, bbar);
+  solveAugmentedTransposed(s.mass, d.constraintJacobian(0), bar.acceleration, threshold, tbar, bbar);
   dpsi_db -= tbar * s.parameters;
   return d.gradient(dpsi_db);
 }

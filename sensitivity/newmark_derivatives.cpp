@@ -1,5 +1,6 @@
 #include "sensitivity/newmark_derivatives.hpp"
 
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/SVD>
@@ -73,13 +74,21 @@ Eigen::MatrixXd closureJacobian(const Model& model, Workspace<AdScalar>& ws, con
 
 }  // namespace
 
+Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
+  const std::vector<int>& free = model_.freeCoordinates();
+  if (model_.constraintCount() == 0) return Eigen::MatrixXd(0, freeCount());
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model_.coordinateCount());
+  return closureJacobian(model_, ws_, response_.trajectory.q.col(k), zero, zero, Derivative::Velocity, 1)(Eigen::all,
+                                                                                                        free);
+}
+
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount();
   const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k), zero = Eigen::VectorXd::Zero(n);
   ClosureDerivatives out;
-  out.jacobian = closureJacobian(model_, ws_, q, zero, zero, Derivative::Velocity, 1)(Eigen::all, free);
+  out.jacobian = constraintJacobian(k);
   out.velocity_q = closureJacobian(model_, ws_, q, v, zero, Derivative::Velocity, 0)(Eigen::all, free);
   out.acceleration_q = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 0)(Eigen::all, free);
   out.acceleration_v = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 1)(Eigen::all, free);
@@ -104,12 +113,16 @@ ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index m = functionalCount(), nf = freeCount();
   ResponseSeeds out{Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf)};
+  std::vector<std::optional<ResponseJacobian>> jacobians(model_.sensors().size());  // ±y share one
   for (Eigen::Index j = 0; j < m; ++j) {
     const ConstraintFunctional& f = functionals_[static_cast<std::size_t>(j)];
     const double weight = f.sign * response_.functionals[static_cast<std::size_t>(j)].gradient[k];  // ∂Ψ/∂φ_k ∂φ/∂y
     if (weight == 0.0) continue;
-    const ResponseJacobian J = responseJacobian(model_, ws_, model_.sensors()[static_cast<std::size_t>(f.sensor)],
-                                                tr.q.col(k), tr.v.col(k), tr.a.col(k));
+    auto& cached = jacobians[static_cast<std::size_t>(f.sensor)];
+    if (!cached)
+      cached = responseJacobian(model_, ws_, model_.sensors()[static_cast<std::size_t>(f.sensor)], tr.q.col(k),
+                                tr.v.col(k), tr.a.col(k));
+    const ResponseJacobian& J = *cached;
     out.position.row(j) = weight * J.position(free);
     out.velocity.row(j) = weight * J.velocity(free);
     out.acceleration.row(j) = weight * J.acceleration(free);

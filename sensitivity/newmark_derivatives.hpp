@@ -51,6 +51,8 @@ class TrajectoryDerivatives {
 
   /// At the state Newton converged to at time point k (before the projections).
   StepDerivatives step(Eigen::Index k);
+  /// B = ∂b/∂q at q_k, free columns (no rows without cut joints).
+  Eigen::MatrixXd constraintJacobian(Eigen::Index k);
   /// Needs constraintCount() > 0.
   ClosureDerivatives closure(Eigen::Index k);
   ResponseSeeds seeds(Eigen::Index k);
