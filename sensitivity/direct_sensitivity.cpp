@@ -43,10 +43,12 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     Sa = Sa_newton;
     if (m > 0) {
       // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
-      // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q; −∂ḃ/∂q S_q], then the same for q̈ with ∂b̈/∂(q, q̇).
-      Sv = solveAugmented(s.mass, c.jacobian, s.mass * Sv - c.velocity_projection * Sq, -c.velocity_q * Sq,
-                          settings.svd_threshold);
-      Sa = solveAugmented(s.mass, c.jacobian, s.mass * Sa_newton - c.acceleration_projection * Sq,
+      // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q], then the same for q̈ with
+      // ∂b̈/∂(q, q̇).
+      Sv = solveAugmented(s.mass, c.jacobian, s.mass * Sv - c.velocity_projection * Sq - c.velocity_projection_parameters,
+                          -c.velocity_q * Sq, settings.svd_threshold);
+      Sa = solveAugmented(s.mass, c.jacobian,
+                          s.mass * Sa_newton - c.acceleration_projection * Sq - c.acceleration_projection_parameters,
                           -(c.acceleration_q * Sq + c.acceleration_v * Sv), settings.svd_threshold);
     }
     accumulate(k, Sq, Sv, Sa);

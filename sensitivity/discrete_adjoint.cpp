@@ -21,17 +21,19 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
     Eigen::MatrixXd q_total = bar.position, a_newton = bar.acceleration, v_newton = bar.velocity;
     Eigen::MatrixXd jacobian(0, nf);
     if (m > 0) {
-      // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
-      // q̇ₖ = L(M q̇* − G_v qₖ, −∂ḃ/∂q qₖ).
+      // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
+      // q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ).
       const ClosureDerivatives c = d.closure(k);
       jacobian = c.jacobian;
       solveAugmentedTransposed(s.mass, jacobian, bar.acceleration, threshold, tbar, bbar);
       a_newton = tbar * s.mass;
       q_total -= tbar * c.acceleration_projection + bbar * c.acceleration_q;
+      dpsi_db -= tbar * c.acceleration_projection_parameters;
       const Eigen::MatrixXd v_total = bar.velocity - bbar * c.acceleration_v;
       solveAugmentedTransposed(s.mass, jacobian, v_total, threshold, tbar, bbar);
       v_newton = tbar * s.mass;
       q_total -= tbar * c.velocity_projection + bbar * c.velocity_q;
+      dpsi_db -= tbar * c.velocity_projection_parameters;
     }
     // Back through qₖ = q̃ + βh² q̈*, q̇* = ṽ + γh q̈* and Newton's system
     // q̈* = L(−(∂f/∂b + K_T q̃ + C_T ṽ), −B q̃ / (βh²)) with A = M + γh C_T + βh² K_T.

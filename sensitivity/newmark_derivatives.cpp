@@ -92,19 +92,23 @@ ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
   out.velocity_q = closureJacobian(model_, ws_, q, v, zero, Derivative::Velocity, 0)(Eigen::all, free);
   out.acceleration_q = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 0)(Eigen::all, free);
   out.acceleration_v = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 1)(Eigen::all, free);
-  // G = ∂(M Δ + Bᵀμ)/∂q = K_T(q, 0, Δ, μ) − K_T(q, 0, 0, 0): f(q, 0, Δ, μ) − f(q, 0, 0, 0) = M Δ + Bᵀμ.
+  // f(q, 0, Δ, μ) − f(q, 0, 0, 0) = M Δ + Bᵀμ, so G = K_T(q, 0, Δ, μ) − K_T(q, 0, 0, 0) and
+  // P = ∂f/∂b(q, 0, Δ, μ) − ∂f/∂b(q, 0, 0, 0).
+  const Eigen::VectorXd no_multipliers = Eigen::VectorXd::Zero(m);
   TangentMatrices base, shifted;
-  tangentMatrices(model_, ws_, q, zero, zero, Eigen::VectorXd::Zero(m), tr.time[k], base);
+  tangentMatrices(model_, ws_, q, zero, zero, no_multipliers, tr.time[k], base);
+  const Eigen::MatrixXd base_parameters = parameterJacobian(model_, ws_, q, zero, zero, no_multipliers, tr.time[k], parameters_);
   const Eigen::MatrixXd mass = base.mass(free, free);
   const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const auto projectionG = [&](const Eigen::VectorXd& correction) {
+  const auto linearize = [&](const Eigen::VectorXd& correction, Eigen::MatrixXd& G, Eigen::MatrixXd& P) {
     // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
     const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
     tangentMatrices(model_, ws_, q, zero, correction, mu, tr.time[k], shifted);
-    return Eigen::MatrixXd((shifted.stiffness - base.stiffness)(free, free));
+    G = (shifted.stiffness - base.stiffness)(free, free);
+    P = (parameterJacobian(model_, ws_, q, zero, correction, mu, tr.time[k], parameters_) - base_parameters)(free, Eigen::all);
   };
-  out.velocity_projection = projectionG(v - tr.v_unprojected.col(k));
-  out.acceleration_projection = projectionG(a - tr.a_unprojected.col(k));
+  linearize(v - tr.v_unprojected.col(k), out.velocity_projection, out.velocity_projection_parameters);
+  linearize(a - tr.a_unprojected.col(k), out.acceleration_projection, out.acceleration_projection_parameters);
   return out;
 }
 

@@ -21,13 +21,15 @@ struct StepDerivatives {
 
 /// The constraint side of a step with cut joints, free coordinates (m closure equations):
 /// B = ∂b/∂q; the derivatives in q (and q̇) of the velocity and acceleration closures at the
-/// projected state; and G = ∂(M(q)Δ + B(q)ᵀμ)/∂q for each projection (Δ its correction, μ its
-/// minimum-norm multipliers), which carries the projections' dependence on q through M and B.
+/// projected state; and for each projection (Δ its correction, μ its minimum-norm multipliers)
+/// G = ∂(M(q)Δ + B(q)ᵀμ)/∂q and P = ∂(M Δ + Bᵀμ)/∂b, which carry its dependence on q and on the
+/// design variables through M and B.
 struct ClosureDerivatives {
   Eigen::MatrixXd jacobian;                        ///< B
   Eigen::MatrixXd velocity_q;                      ///< ∂ḃ/∂q at (q_k, q̇_k)
   Eigen::MatrixXd acceleration_q, acceleration_v;  ///< ∂b̈/∂q, ∂b̈/∂q̇ at (q_k, q̇_k, q̈_k)
   Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
+  Eigen::MatrixXd velocity_projection_parameters, acceleration_projection_parameters;  ///< P of each
 };
 
 /// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates.
