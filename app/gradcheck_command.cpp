@@ -10,6 +10,7 @@
 #include "app/atomic_file.hpp"
 #include "app/scene_argument.hpp"
 #include "problems/scene_text.hpp"
+#include "sensitivity/continuous_adjoint.hpp"
 #include "sensitivity/direct_sensitivity.hpp"
 #include "sensitivity/discrete_adjoint.hpp"
 
@@ -79,9 +80,7 @@ void gradcheck(const GradcheckOptions& options) {
 
   std::vector<MethodResult> methods;
   methods.push_back(run("adjoint", [&] { return adjointGradient(problem, functionals, x); }));
-  methods.push_back(run("continuous-adjoint", [&]() -> DesignGradient {
-    throw std::invalid_argument("not implemented yet (issue 4)");
-  }));
+  methods.push_back(run("continuous-adjoint", [&] { return continuousAdjointGradient(problem, functionals, x); }));
   methods.push_back(run("direct", [&] { return directGradient(problem, functionals, x); }));
   methods.push_back(run("fd_forward", [&] { return finiteDifferenceGradient(problem, functionals, x, options.fd_step, false); }));
   methods.push_back(run("fd_central", [&] { return finiteDifferenceGradient(problem, functionals, x, options.fd_step, true); }));

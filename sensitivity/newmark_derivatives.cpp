@@ -8,6 +8,7 @@
 
 #include "dynamics/closure.hpp"
 #include "dynamics/kinematics.hpp"
+#include "dynamics/residual.hpp"
 #include "dynamics/tangent.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
 #include "sensitivity/response_jacobian.hpp"
@@ -34,19 +35,38 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       x_(x),
       model_(checkedModel(problem, x)),
       response_(evaluateDesign(problem, functionals, x)),
-      ws_(model_) {
+      ws_(model_),
+      ws_double_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
+}
+
+StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                                                     const Eigen::VectorXd& lambda) {
+  const Trajectory& tr = response_.trajectory;
+  const std::vector<int>& free = model_.freeCoordinates();
+  const Eigen::VectorXd q = tr.q.col(k);
+  TangentMatrices tangent;
+  tangentMatrices(model_, ws_, q, v, a, lambda, tr.time[k], tangent);
+  const Eigen::MatrixXd dfdb = parameterJacobian(model_, ws_, q, v, a, lambda, tr.time[k], parameters_);
+  return {tangent.mass(free, free), tangent.damping(free, free), tangent.stiffness(free, free), dfdb(free, Eigen::all)};
 }
 
 StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
-  const std::vector<int>& free = model_.freeCoordinates();
-  TangentMatrices tangent;
-  const Eigen::VectorXd q = tr.q.col(k), v = tr.v_unprojected.col(k), a = tr.a_unprojected.col(k);
-  const Eigen::VectorXd lambda = tr.lambda.col(k);
-  tangentMatrices(model_, ws_, q, v, a, lambda, tr.time[k], tangent);
-  const Eigen::MatrixXd dfdb = parameterJacobian(model_, ws_, q, v, a, lambda, tr.time[k], parameters_);
-  return {tangent.mass(free, free), tangent.damping(free, free), tangent.stiffness(free, free), dfdb(free, Eigen::all)};
+  return derivativesAt(k, tr.v_unprojected.col(k), tr.a_unprojected.col(k), tr.lambda.col(k));
+}
+
+StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
+  const Trajectory& tr = response_.trajectory;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(model_.constraintCount());
+  if (model_.constraintCount() > 0) {  // Bᵀλ = −f(q, q̇, q̈, 0) on the free rows, least squares
+    const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k);
+    Eigen::VectorXd f;
+    residual(model_, ws_double_, q, v, a, lambda, tr.time[k], f);
+    const Eigen::MatrixXd transposed = constraintJacobian(k).transpose();
+    lambda = transposed.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(-f(model_.freeCoordinates()));
+  }
+  return derivativesAt(k, tr.v.col(k), tr.a.col(k), lambda);
 }
 
 namespace {

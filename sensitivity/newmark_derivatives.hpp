@@ -53,6 +53,10 @@ class TrajectoryDerivatives {
 
   /// At the state Newton converged to at time point k (before the projections).
   StepDerivatives step(Eigen::Index k);
+  /// At the projected state of time point k, with the multipliers that fit it best (the least-squares
+  /// λ of f(q, q̇, q̈, λ) = 0): the state of the continuous motion to O(h²), where Newton's q̈* and λ
+  /// are off the acceleration closure by O(h).
+  StepDerivatives projectedStep(Eigen::Index k);
   /// B = ∂b/∂q at q_k, free columns (no rows without cut joints).
   Eigen::MatrixXd constraintJacobian(Eigen::Index k);
   /// Needs constraintCount() > 0.
@@ -71,6 +75,11 @@ class TrajectoryDerivatives {
   DesignResponse response_;
   std::vector<std::string> parameters_;
   Workspace<AdScalar> ws_;
+  Workspace<double> ws_double_;
+
+  /// The step derivatives at q_k with the given rates and multipliers.
+  StepDerivatives derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                                const Eigen::VectorXd& lambda);
 };
 
 }  // namespace mbsopt

@@ -51,4 +51,19 @@ design:
   transcription: {measure: ks, rho: 20}
 )";
 
+/// A design section for the shipped four-bar (problems/scenes/four_bar.yaml): masses and a centre of
+/// mass, which the projections' metric M depends on; the paper's ⟨⟩ functionals on a position and
+/// an angle, both active over the first second. Append a `transcription:` line for another measure.
+inline constexpr const char* kFourBarDesign = R"(
+design:
+  variables:
+    - {parameter: coupler_bar.mass, lower: 0.5, upper: 5}
+    - {parameter: rocker_bar.com.x, lower: 0.1, upper: 0.7}
+    - {parameter: crank_bar.mass, lower: 0.1, upper: 5}
+  cost: {sensor: joint_c_y, of: max_abs}
+  artificial: {initial: 1.0, lower: 0, upper: 2}
+  constraints:
+    - {sensor: coupler_angle, of: max_abs, bound: 0.5}
+)";
+
 }  // namespace mbsopt::test

@@ -145,23 +145,9 @@ TEST(ExactGradients, TramwayAdjointEqualsDirect) {
 // an angle, both active: adjoint = direct to round-off, and both = central differences at the best
 // step to 1e-6 (measured 7e-10). The masses enter the projections' metric M, so this fails without
 // the projections' ∂(MΔ)/∂b (P in sensitivity/README.md): by 2e-3 before it was found.
-std::string fourBarDesign() {
-  return R"(
-design:
-  variables:
-    - {parameter: coupler_bar.mass, lower: 0.5, upper: 5}
-    - {parameter: rocker_bar.com.x, lower: 0.1, upper: 0.7}
-    - {parameter: crank_bar.mass, lower: 0.1, upper: 5}
-  cost: {sensor: joint_c_y, of: max_abs}
-  artificial: {initial: 1.0, lower: 0, upper: 2}
-  constraints:
-    - {sensor: coupler_angle, of: max_abs, bound: 0.5}
-)";
-}
-
 TEST(ExactGradients, FourBarAdjointEqualsDirectAndCentralDifferences) {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
-  source.text += fourBarDesign();
+  source.text += test::kFourBarDesign;
   const DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 1.0}});
   expectAdjointEqualsDirect(problem, 3);
   expectAdjointMatchesCentralDifferencesAtTheBestStep(problem, 1e-6);
@@ -170,7 +156,7 @@ TEST(ExactGradients, FourBarAdjointEqualsDirectAndCentralDifferences) {
 // The same with the KS aggregate (smooth in b): measured 7e-12 over 0.3 s.
 TEST(ExactGradients, FourBarKsAggregateMatchesCentralDifferences) {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
-  source.text += fourBarDesign() + "  transcription: {measure: ks, rho: 5}\n";
+  source.text += std::string(test::kFourBarDesign) + "  transcription: {measure: ks, rho: 5}\n";
   expectAdjointMatchesCentralDifferencesAtTheBestStep(loadDesignProblem(source, {{"settings.end_time", 0.3}}), 1e-8);
 }
 

@@ -42,11 +42,12 @@ TEST(GradcheckCommand, WritesEveryMethodUnderTheDocumentedKeys) {
     EXPECT_LE(relativeGap(g["direct"].get<std::vector<double>>(), adjoint), 1e-9) << f["name"];
     EXPECT_LE(relativeGap(g["fd_central"].get<std::vector<double>>(), adjoint), 1e-6) << f["name"];
     EXPECT_TRUE(g.contains("fd_forward"));
-    EXPECT_FALSE(g.contains("continuous-adjoint"));  // not implemented yet: absent, not made up
-    EXPECT_EQ(f["fd_sweep"].size(), 8u);             // relative steps 1e-2 … 1e-9
+    // A discretisation error of O(h²) (2.8e-3 measured at this h; its order in test_continuous_adjoint).
+    EXPECT_LE(relativeGap(g["continuous-adjoint"].get<std::vector<double>>(), adjoint), 1e-2) << f["name"];
+    EXPECT_EQ(f["fd_sweep"].size(), 8u);  // relative steps 1e-2 … 1e-9
     EXPECT_EQ(f["fd_sweep"][0]["relative_step"].get<double>(), 1e-2);
   }
-  for (const char* key : {"simulation", "adjoint", "direct", "fd_central"})
+  for (const char* key : {"simulation", "adjoint", "continuous-adjoint", "direct", "fd_central"})
     EXPECT_GT(document["timings_s"][key].get<double>(), 0.0) << key;
   std::filesystem::remove_all(directory);
 }

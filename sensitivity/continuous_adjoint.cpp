@@ -1,0 +1,108 @@
+#include "sensitivity/continuous_adjoint.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include "sensitivity/augmented_solve.hpp"
+#include "sensitivity/newmark_derivatives.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// One time point's adjoint sources, per unit of time and halved (the trapezoidal rule's h/2 g_k),
+/// after the acceleration responses are substituted (paper (59)-(63), with the loop closure):
+/// q̈ = L(−(C q̇ + K q + ∂f/∂b), −(∂b̈/∂q q + ∂b̈/∂q̇ q̇)) linearised, so a seed ḡ_a on q̈ becomes
+/// −t̄ K − b̄ ∂b̈/∂q on q, −t̄ C − b̄ ∂b̈/∂q̇ on q̇ and −t̄ ∂f/∂b directly on b, (t̄, b̄) its transposed solve.
+struct HalfSources {
+  Eigen::MatrixXd position, velocity;
+};
+
+HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, const StepDerivatives& s,
+                                    double half_over_weight, Eigen::MatrixXd& dpsi_db) {
+  ResponseSeeds seeds = d.seeds(k);
+  if (seeds.acceleration.cwiseAbs().maxCoeff() > 0.0) {
+    Eigen::MatrixXd tbar, bbar;
+    const Eigen::MatrixXd jacobian = d.constraintJacobian(k);
+    solveAugmentedTransposed(s.mass, jacobian, seeds.acceleration, d.settings().svd_threshold, tbar, bbar);
+    seeds.position -= tbar * s.stiffness;
+    seeds.velocity -= tbar * s.damping;
+    if (d.constraintCount() > 0) {
+      const ClosureDerivatives c = d.closure(k);
+      seeds.position -= bbar * c.acceleration_q;
+      seeds.velocity -= bbar * c.acceleration_v;
+    }
+    dpsi_db -= tbar * s.parameters;
+  }
+  return {half_over_weight * seeds.position, half_over_weight * seeds.velocity};
+}
+
+/// An orthonormal basis of the null space of B (the paper's V₂, (43)-(47)): the right singular
+/// vectors whose singular values are at most `threshold` times the largest, as in the integrator.
+Eigen::MatrixXd independentDirections(const Eigen::MatrixXd& B, double threshold) {
+  if (B.rows() == 0) return Eigen::MatrixXd::Identity(B.cols(), B.cols());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  Eigen::Index rank = 0;
+  while (rank < sigma.size() && sigma[rank] > threshold * sigma[0] && sigma[0] > 0.0) ++rank;
+  return svd.matrixV().rightCols(B.cols() - rank);
+}
+
+}  // namespace
+
+DesignGradient continuousAdjointGradient(const DesignProblem& problem,
+                                         const std::vector<ConstraintFunctional>& functionals,
+                                         const Eigen::VectorXd& x) {
+  // The sensitivity equations of the loop-closed motion, first order in (s, u) = d(q, q̇)/db:
+  //   M u̇ + C u + K s + Bᵀσ + ∂f/∂b = 0,  ṡ − u = 0,  B s = 0,   s(0) = u(0) = 0,
+  // with K including the loop forces' geometric stiffness (the paper's (58) with (57)'s closure).
+  // With adjoints (w, p, ν) of the three, integration by parts as in (50)-(52) gives, for
+  // Ψ = ∫ (g_q s + g_q̇ u) dt,
+  //   d(M w)/dt = Cᵀw − p + g_q̇ᵀ,  dp/dt = Kᵀw + Bᵀν + g_qᵀ,  B w = 0,  w(τ) = p(τ) = 0   (53)/(64)
+  //   dΨ/db = ∫ wᵀ ∂f/∂b dt                                                           (56)/(65)
+  // (w is the paper's λ up to sign). Instead of reducing the equations to (57)'s independent
+  // directions V₂, whose time derivative that reduction would need, the closure stays as B w = 0
+  // with the multiplier ν. The trapezoidal rule backward from t_{k+1} to t_k, rows = constraints:
+  //   w_k M_k = w_{k+1} M_{k+1} − h/2 (F_k + F_{k+1}),  F = w C − p + g_q̇,
+  //   p_k = p_{k+1} − h/2 (w_k K_k + g_q,k + w_{k+1} K_{k+1} + g_q,k+1) − ν̄ B̄,  B_k w_kᵀ = 0,
+  // with ν̄ = ∫ν dt over the step and B̄ = ½(B_k + B_{k+1}), the midpoint rule for ∫Bᵀν dt (B_k
+  // alone would make it first order). Eliminating p_k: w_k A + ½h ν̄ B̄ = R with A = M + ½h C + ¼h² K,
+  // the transposed trapezoidal Newmark matrix. So w_k = ξ V₂ᵀ with V₂ the independent directions of
+  // B_k, and ν̄ drops out against those of B̄: ξ (V₂ᵀ Aᵀ V̄₂) = R V̄₂.
+  TrajectoryDerivatives d(problem, functionals, x);
+  const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;
+  const Eigen::Index N = d.timePoints() - 1, rows = d.functionalCount(), nf = d.freeCount();
+  // The trapezoidal rule's weights on the uniform grid: h/2 at both ends, h inside.
+  const auto weight = [&](Eigen::Index k) { return k == 0 || k == N ? half : h; };
+  Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(rows, d.variableCount());
+  // At t_{k+1}: w M, h/2 F, p and h/2 (w K + g_q), starting from w(τ) = p(τ) = 0.
+  Eigen::MatrixXd momentum = Eigen::MatrixXd::Zero(rows, nf), half_flux, p = Eigen::MatrixXd::Zero(rows, nf);
+  Eigen::MatrixXd half_force;
+  Eigen::MatrixXd later_jacobian = d.constraintJacobian(N);
+  StepDerivatives s = d.projectedStep(N);
+  HalfSources g = substituteAccelerations(d, N, s, half / weight(N), dpsi_db);
+  half_flux = g.velocity;
+  half_force = g.position;
+  for (Eigen::Index k = N - 1; k >= 0; --k) {
+    s = d.projectedStep(k);
+    g = substituteAccelerations(d, k, s, half / weight(k), dpsi_db);
+    const Eigen::MatrixXd A = s.mass + half * s.damping + half * half * s.stiffness;
+    // w A + ½h ν̄ B = w_{k+1}M_{k+1} − h/2 F_{k+1} − h/2 g_q̇,k + ½h (p_{k+1} − h/2 (w_{k+1}K_{k+1} + g_q,k+1) − h/2 g_q,k)
+    const Eigen::MatrixXd rhs = momentum - half_flux - g.velocity + half * (p - half_force - g.position);
+    const Eigen::MatrixXd jacobian = d.constraintJacobian(k);
+    const Eigen::MatrixXd V2 = independentDirections(jacobian, threshold);
+    const Eigen::MatrixXd V2_mean = independentDirections(0.5 * (jacobian + later_jacobian), threshold);
+    const Eigen::MatrixXd reduced = V2_mean.transpose() * A.transpose() * V2;  // V̄₂ᵀ Aᵀ V₂ ξᵀ = V̄₂ᵀ Rᵀ
+    const Eigen::MatrixXd w = reduced.partialPivLu().solve(V2_mean.transpose() * rhs.transpose()).transpose() * V2.transpose();
+    later_jacobian = jacobian;
+    const Eigen::MatrixXd wM = w * s.mass, wC = w * s.damping;
+    p = (wM + half * wC + g.velocity - momentum + half_flux) / half;  // the first equation solved for p_k
+    momentum = wM;
+    half_flux = half * (wC - p) + g.velocity;
+    half_force = half * (w * s.stiffness) + g.position;
+    dpsi_db += weight(k) * (w * s.parameters);
+  }
+  return d.gradient(dpsi_db);
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,19 @@
+// The `continuous-adjoint` gradient method: the paper's adjoint variable method (49)-(65),
+// optimise-then-discretise. The adjoint equations are derived from the continuous equations of
+// motion, then integrated backward on the simulation's grid with the trapezoidal rule; the
+// gradient therefore differs from the discrete adjoint's (the exact derivative of the computed
+// functional) by a discretisation error that vanishes as the step shrinks (sensitivity/README.md,
+// "The continuous adjoint").
+#pragma once
+
+#include "sensitivity/design_evaluation.hpp"
+
+namespace mbsopt {
+
+/// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
+/// Throws std::invalid_argument for loops closed at acceleration level.
+DesignGradient continuousAdjointGradient(const DesignProblem& problem,
+                                         const std::vector<ConstraintFunctional>& functionals,
+                                         const Eigen::VectorXd& x);
+
+}  // namespace mbsopt
