@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "problems/tramway.hpp"
+#include "sensitivity/continuous_adjoint.hpp"
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/direct_sensitivity.hpp"
 #include "sensitivity/discrete_adjoint.hpp"
@@ -26,7 +27,7 @@ struct TramwayProblem {
     functionals = transcribe(problem);
     x = initialPoint(problem);
     simulation_seconds = 1e300;
-    for (int run = 0; run < 3; ++run) {
+    for (int run = 0; run < 5; ++run) {
       const auto start = std::chrono::steady_clock::now();
       benchmark::DoNotOptimize(evaluateDesign(problem, functionals, x));
       const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
@@ -65,6 +66,11 @@ void BM_TramwayGradientAdjoint(benchmark::State& state) {
   timeGradient(state, [](const TramwayProblem& t) { return adjointGradient(t.problem, t.functionals, t.x); });
 }
 BENCHMARK(BM_TramwayGradientAdjoint)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+void BM_TramwayGradientContinuousAdjoint(benchmark::State& state) {
+  timeGradient(state, [](const TramwayProblem& t) { return continuousAdjointGradient(t.problem, t.functionals, t.x); });
+}
+BENCHMARK(BM_TramwayGradientContinuousAdjoint)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 void BM_TramwayGradientDirect(benchmark::State& state) {
   timeGradient(state, [](const TramwayProblem& t) { return directGradient(t.problem, t.functionals, t.x); });
