@@ -8,8 +8,13 @@ namespace mbsopt {
 
 namespace {
 
-Extremum readExtremum(const MapReader& entry) {
-  return entry.choice("of", {"max_abs", "max"}, "max_abs") == "max" ? Extremum::Max : Extremum::MaxAbs;
+/// `of:` among `choices` (max_abs, max, and for constraints integral, final).
+ResponseMeasure readMeasure(const MapReader& entry, std::initializer_list<const char*> choices) {
+  const std::string of = entry.choice("of", choices, "max_abs");
+  return of == "max"        ? ResponseMeasure::Max
+         : of == "integral" ? ResponseMeasure::Integral
+         : of == "final"    ? ResponseMeasure::FinalValue
+                            : ResponseMeasure::MaxAbs;
 }
 
 std::string readSensor(const MapReader& entry, const Model& model) {
@@ -55,7 +60,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
 
   const MapReader cost(context, design.required("cost"), "design.cost");
   cost.allowKeys({"sensor", "of"});
-  out.cost = {readSensor(cost, model), readExtremum(cost)};
+  out.cost = {readSensor(cost, model), readMeasure(cost, {"max_abs", "max"})};
 
   const MapReader artificial(context, design.required("artificial"), "design.artificial");
   artificial.allowKeys({"initial", "lower", "upper", "scale"});
@@ -65,7 +70,8 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   for (const YAML::Node& node : readList(context, design.node()["constraints"], "design.constraints")) {
     const MapReader c(context, node, "design constraint");
     c.allowKeys({"sensor", "of", "bound"});
-    out.constraints.push_back({readSensor(c, model), readExtremum(c), c.number("bound")});
+    out.constraints.push_back(
+        {readSensor(c, model), readMeasure(c, {"max_abs", "max", "integral", "final"}), c.number("bound")});
   }
 
   if (design.has("transcription")) {

@@ -25,10 +25,19 @@ void checkRange(const std::string& what, double lower, double upper, double scal
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   const Model& model = problem.scene.model;
   std::vector<ConstraintFunctional> functionals;
-  const auto add = [&](const std::string& sensor, Extremum of, double bound, bool artificial) {
+  const Transcription& t = problem.design.transcription;
+  const double duration = problem.scene.settings.end_time;
+  const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial) {
     const int index = sensorIndex(model, sensor);
-    functionals.push_back({sensor + "_above", index, 1.0, bound, artificial});  // y − bound (− b) ≤ 0
-    if (of == Extremum::MaxAbs) functionals.push_back({sensor + "_below", index, -1.0, bound, artificial});
+    if (of == ResponseMeasure::Integral) {
+      functionals.push_back({sensor + "_integral", index, 1.0, bound / duration, false, TimeMeasure::Integral, 0.0});
+    } else if (of == ResponseMeasure::FinalValue) {
+      functionals.push_back({sensor + "_final", index, 1.0, bound, false, TimeMeasure::FinalValue, 0.0});
+    } else {  // y − bound (− b) ≤ 0, and −y − bound (− b) ≤ 0 for MaxAbs
+      functionals.push_back({sensor + "_above", index, 1.0, bound, artificial, t.measure, t.tolerance});
+      if (of == ResponseMeasure::MaxAbs)
+        functionals.push_back({sensor + "_below", index, -1.0, bound, artificial, t.measure, t.tolerance});
+    }
   };
   add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true);  // (17)-(19): ±y − b_{k+1} ≤ 0
   for (const ResponseConstraint& c : problem.design.constraints) add(c.sensor, c.of, c.bound, false);
@@ -57,6 +66,8 @@ double applyDesign(const DesignProblem& problem, const Eigen::VectorXd& x, Model
 }
 
 void validate(const DesignProblem& problem) {
+  if (problem.design.cost.of != ResponseMeasure::MaxAbs && problem.design.cost.of != ResponseMeasure::Max)
+    throw std::invalid_argument("the cost is the extreme of a sensor over time (max_abs or max)");
   const std::vector<std::string> names = problem.scene.model.parameterNames();
   for (const DesignVariable& v : problem.design.variables) {
     if (std::find(names.begin(), names.end(), v.parameter) == names.end())

@@ -27,19 +27,21 @@ struct ArtificialVariable {
   double initial = 0.0, lower = 0.0, upper = 0.0, scale = 1.0;
 };
 
-/// Which extreme of a response over time: max |y| or max y.
-enum class Extremum { MaxAbs, Max };
+/// What of a response over time a cost or constraint is about: its extreme, max |y| or max y (through
+/// the transcription), or, for constraints only, its integral ∫₀^τ y dt or its final value y(τ)
+/// (exact functionals, not transcribed).
+enum class ResponseMeasure { MaxAbs, Max, Integral, FinalValue };
 
-/// Minimise the extreme of a sensor over time.
+/// Minimise the extreme of a sensor over time (MaxAbs or Max).
 struct ResponseCost {
   std::string sensor;
-  Extremum of = Extremum::MaxAbs;
+  ResponseMeasure of = ResponseMeasure::MaxAbs;
 };
 
-/// Keep the extreme of a sensor over time below a bound.
+/// Keep the extreme, the integral or the final value of a sensor below a bound.
 struct ResponseConstraint {
   std::string sensor;
-  Extremum of = Extremum::MaxAbs;
+  ResponseMeasure of = ResponseMeasure::MaxAbs;
   double bound = 0.0;
 };
 
@@ -67,15 +69,18 @@ struct DesignProblem {
 /// One transcribed constraint: measure(φ) − tolerance ≤ 0 with
 /// φ(t) = sign · y(t) − offset − (uses_artificial ? b_{k+1} : 0).
 struct ConstraintFunctional {
-  std::string name;  ///< "a_lat_above", "yaw_front_below", ...
+  std::string name;  ///< "a_lat_above", "yaw_front_below", "drift_integral", ...
   int sensor = 0;    ///< index into the model's sensors
   double sign = 1.0;
   double offset = 0.0;
   bool uses_artificial = false;
+  TimeMeasure measure = TimeMeasure::PositivePart;  ///< the transcription's, or Integral / FinalValue
+  double tolerance = 0.0;
 };
 
 /// The constraints of the problem in the order the optimizers see them: those of the cost (with the
 /// artificial variable), then those of each constraint, each MaxAbs giving two (y above, −y above).
+/// An integral constraint ∫y dt ≤ bound is ∫(y − bound/τ) dt ≤ 0; a final value y(τ) − bound ≤ 0.
 /// Throws std::invalid_argument naming an unknown sensor.
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem);
 

@@ -109,10 +109,10 @@ DesignProblem tramwayDesignProblem(const TramwayDesign& design, const TramwayOpt
   DesignDescription& d = problem.design;
   for (const char* spring : {"front_secondary.k", "rear_secondary.k"}) d.variables.push_back({spring, 50e3, 1000e3, 1e3});
   for (const char* damper : {"front_secondary.c", "rear_secondary.c"}) d.variables.push_back({damper, 5e3, 50e3, 1e3});
-  d.cost = {"a_lat", Extremum::MaxAbs};
+  d.cost = {"a_lat", ResponseMeasure::MaxAbs};
   d.artificial = {3.0, 0.0, 10.0, 1.0};
   const double ten_degrees = 10.0 / 180.0 * std::numbers::pi;
-  d.constraints = {{"yaw_front", Extremum::MaxAbs, ten_degrees}, {"yaw_rear", Extremum::MaxAbs, ten_degrees}};
+  d.constraints = {{"yaw_front", ResponseMeasure::MaxAbs, ten_degrees}, {"yaw_rear", ResponseMeasure::MaxAbs, ten_degrees}};
   return problem;
 }
 

@@ -26,10 +26,10 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
   out.sensors = sensorHistory(model, out.trajectory);
   out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
   for (std::size_t j = 0; j < functionals.size(); ++j) {
-    const Transcription& t = problem.design.transcription;
-    out.functionals.push_back(evaluateTimeFunctional(
-        t.measure, out.trajectory.time, violation(functionals[j], out.sensors, out.cost), t.rho));
-    out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - t.tolerance;
+    const ConstraintFunctional& f = functionals[j];
+    out.functionals.push_back(evaluateTimeFunctional(f.measure, out.trajectory.time, violation(f, out.sensors, out.cost),
+                                                     problem.design.transcription.rho));
+    out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - f.tolerance;
   }
   return out;
 }

@@ -1,6 +1,6 @@
 // Design problems: the tramway's from its file equals the C++ one, the transcription follows the
-// paper's (15)-(19), and on an undamped oscillator the constraint functional and its finite-
-// difference gradient match their closed forms.
+// paper's (15)-(19), and on an undamped oscillator the constraint functionals (the paper's, an
+// integral, a final value) and their gradients match their closed forms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,10 @@
 
 #include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
+#include "sensitivity/continuous_adjoint.hpp"
 #include "sensitivity/design_evaluation.hpp"
+#include "sensitivity/direct_sensitivity.hpp"
+#include "sensitivity/discrete_adjoint.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -77,6 +80,49 @@ TEST(DesignProblem, OscillatorConstraintAndGradientMatchClosedForms) {
   EXPECT_NEAR(forward.constraints(0, 0), dpsi_dx, kink_bound + 1e-2 * std::abs(dpsi_dx));
 }
 
+// ∫₀^τ x dt ≤ 0.1 and x(τ) ≤ 0.5 for x = cos(ωt), ω = √k = 2π, τ = 0.8 s: ∫x dt = sin(ωτ)/ω and
+// x(τ) = cos(ωτ), and their k-derivatives through dω/dk = 1/(2ω). Every gradient method matches
+// these; the error is the trapezoidal Newmark's phase error (ω_h = ω(1 − ω²h²/12 + …)), a relative
+// ω²h²/12 · ωτ = 1.7e-5 here, so 2e-4 of the largest term bounds it with a tenfold margin. The
+// continuous adjoint takes the final value's point source as a density over the last half step, so
+// its derivative is that of x at a time up to h earlier: within h |d²x/dτdk|.
+TEST(DesignProblem, OscillatorIntegralAndFinalValueMatchClosedFormsByEveryMethod) {
+  const std::string design = R"(design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: max}
+  artificial: {initial: 2, lower: -2, upper: 2}
+  constraints:
+    - {sensor: position, of: integral, bound: 0.1}
+    - {sensor: position, of: final, bound: 0.5}
+)";
+  const DesignProblem problem = loadDesignProblem({"o.yaml", std::string(test::kOscillator) + design}, {{"settings.end_time", 0.8}});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  ASSERT_EQ(functionals.size(), 3u);  // the cost's, the integral, the final value
+  EXPECT_EQ(functionals[1].name, "position_integral");
+  EXPECT_EQ(functionals[2].name, "position_final");
+  const double omega = 2.0 * kPi, tau = 0.8, dk_dx = 10.0, domega_dk = 1.0 / (2.0 * omega);
+  const Eigen::Vector2d value(std::sin(omega * tau) / omega - 0.1, std::cos(omega * tau) - 0.5);
+  const Eigen::Vector2d dvalue_dx =
+      Eigen::Vector2d(tau * std::cos(omega * tau) / omega - std::sin(omega * tau) / (omega * omega),
+                      -tau * std::sin(omega * tau)) * domega_dk * dk_dx;
+  const double h = 1e-3, ddvalue_dtaudx = -(std::sin(omega * tau) + omega * tau * std::cos(omega * tau)) * domega_dk * dk_dx;
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignResponse response = evaluateDesign(problem, functionals, x);
+  const double tolerance = 2e-4 * std::max(value.cwiseAbs().maxCoeff(), dvalue_dx.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(response.constraints[1], value[0], tolerance);
+  EXPECT_NEAR(response.constraints[2], value[1], tolerance);
+  for (const auto& [name, gradient] :
+       {std::pair{"adjoint", adjointGradient(problem, functionals, x)},
+        std::pair{"continuous-adjoint", continuousAdjointGradient(problem, functionals, x)},
+        std::pair{"direct", directGradient(problem, functionals, x)},
+        std::pair{"fd_central", finiteDifferenceGradient(problem, functionals, x, 1e-5, true)}}) {
+    EXPECT_NEAR(gradient.constraints(1, 0), dvalue_dx[0], tolerance) << name;
+    const double shift = name == std::string("continuous-adjoint") ? h * std::abs(ddvalue_dtaudx) : 0.0;
+    EXPECT_NEAR(gradient.constraints(2, 0), dvalue_dx[1], tolerance + shift) << name;
+    EXPECT_EQ(gradient.constraints(1, 1), 0.0) << name;  // b_{k+1} is the cost's alone
+  }
+}
+
 TEST(DesignProblem, BadDesignSectionsAreLocated) {
   const std::string scene = std::string(test::kOscillator) + "design:\n";
   const auto errorLine = [&](const std::string& design) {
@@ -93,6 +139,9 @@ TEST(DesignProblem, BadDesignSectionsAreLocated) {
   EXPECT_EQ(errorLine("  variables: [{parameter: spring.k, lower: 1, upper: 100}]\n  cost: {sensor: speed}\n"
                       "  artificial: {initial: 0, lower: -2, upper: 2}\n"),
             12);
+  EXPECT_EQ(errorLine("  variables: [{parameter: spring.k, lower: 1, upper: 100}]\n  cost: {sensor: position, of: final}\n"
+                      "  artificial: {initial: 0, lower: -2, upper: 2}\n"),
+            12);  // a cost is an extreme over time
   EXPECT_THROW(loadDesignProblem({"d.yaml", scene.substr(0, scene.rfind("design:"))}), SceneError);  // none
 }
 
