@@ -52,18 +52,26 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eige
   ws.parameter_seeds.clear();
 }
 
+Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                           const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
+                           const std::vector<const double*>& parameters, Eigen::Index rows,
+                           const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate) {
+  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(inputs.size()));
+  VectorX<AdScalar> g;
+  forEachAdPass(ws, q, v, a, inputs, parameters, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
+    evaluate(s, g);
+    for (Eigen::Index i = 0; i < rows; ++i) out.row(i).segment(first, count) = g[i].derivatives().head(count);
+  });
+  return out;
+}
+
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                  double t, const std::vector<AdInput>& inputs,
                                  const std::vector<const double*>& parameters) {
-  Eigen::MatrixXd out(model.coordinateCount(), static_cast<Eigen::Index>(inputs.size()));
   const VectorX<AdScalar> lambda_ad = seededVector(lambda, 0, 0, 0);  // constant
-  VectorX<AdScalar> f;
-  forEachAdPass(ws, q, v, a, inputs, parameters, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
-    residual(model, ws, s.q, s.v, s.a, lambda_ad, t, f);
-    for (Eigen::Index i = 0; i < f.size(); ++i) out.row(i).segment(first, count) = f[i].derivatives().head(count);
-  });
-  return out;
+  return adJacobian(ws, q, v, a, inputs, parameters, model.coordinateCount(),
+                    [&](const SeededState& s, VectorX<AdScalar>& f) { residual(model, ws, s.q, s.v, s.a, lambda_ad, t, f); });
 }
 
 }  // namespace mbsopt

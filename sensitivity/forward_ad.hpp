@@ -41,6 +41,13 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eige
                    const std::vector<const double*>& parameters,
                    const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate);
 
+/// ∂g/∂(inputs) of g = evaluate(state) (`rows` entries, evaluate writing them into its second
+/// argument) at (q, q̇, q̈): one column per input.
+Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                           const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
+                           const std::vector<const double*>& parameters, Eigen::Index rows,
+                           const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate);
+
 /// ∂f/∂(inputs) at (q, q̇, q̈, λ, t): coordinateCount() rows, one column per input.
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,

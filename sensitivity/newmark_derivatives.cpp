@@ -6,6 +6,7 @@
 #include "dynamics/closure.hpp"
 #include "dynamics/kinematics.hpp"
 #include "dynamics/mass_matrix.hpp"
+#include "dynamics/residual.hpp"
 #include "dynamics/tangent.hpp"
 #include "sensitivity/forward_ad.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
@@ -74,27 +75,42 @@ StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
 
 namespace {
 
-/// ∂ḃ/∂q, ∂b̈/∂q and ∂b̈/∂q̇ on `columns` at (q, q̇, q̈): the closure rates of one kinematics
+/// ∂ḃ/∂q, ∂b̈/∂q and ∂b̈/∂q̇ on `columns` at (q, q̇, q̈): the closure rates [ḃ; b̈] of one kinematics
 /// evaluation per AD pass, seeded in q and q̇ on those columns (ḃ does not depend on q̈).
 void closureRateJacobians(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                           const Eigen::VectorXd& v, const Eigen::VectorXd& a, const std::vector<int>& columns,
                           ClosureDerivatives& out) {
   const auto nc = static_cast<Eigen::Index>(columns.size());
-  Eigen::MatrixXd velocity(model.constraintCount(), 2 * nc), acceleration(model.constraintCount(), 2 * nc);
+  const Eigen::Index m = model.constraintCount();
   const std::vector<AdInput> inputs =
       adInputs({adInputs(AdInput::Kind::Position, columns), adInputs(AdInput::Kind::Velocity, columns)});
-  VectorX<AdScalar> rate;
-  forEachAdPass(ws, q, v, a, inputs, {}, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
+  VectorX<AdScalar> velocity, acceleration;
+  const Eigen::MatrixXd rates = adJacobian(ws, q, v, a, inputs, {}, 2 * m, [&](const SeededState& s, VectorX<AdScalar>& g) {
     forwardKinematics(model, ws, s.q, s.v, s.a, KinematicsLevel::Acceleration);
-    closureEquations(model, ws, Derivative::Velocity, rate);
-    for (Eigen::Index i = 0; i < rate.size(); ++i) velocity.row(i).segment(first, count) = rate[i].derivatives().head(count);
-    closureEquations(model, ws, Derivative::Acceleration, rate);
-    for (Eigen::Index i = 0; i < rate.size(); ++i)
-      acceleration.row(i).segment(first, count) = rate[i].derivatives().head(count);
+    closureEquations(model, ws, Derivative::Velocity, velocity);
+    closureEquations(model, ws, Derivative::Acceleration, acceleration);
+    g.resize(2 * m);
+    g << velocity, acceleration;
   });
-  out.velocity_q = velocity.leftCols(nc);
-  out.acceleration_q = acceleration.leftCols(nc);
-  out.acceleration_v = acceleration.rightCols(nc);
+  out.velocity_q = rates.topLeftCorner(m, nc);
+  out.acceleration_q = rates.bottomLeftCorner(m, nc);
+  out.acceleration_v = rates.bottomRightCorner(m, nc);
+}
+
+/// [G P] = ∂(M(q)Δ + B(q)ᵀμ)/∂(q, b) on the free q and the design parameters: one projection's
+/// dependence on q and b through M and B (Δ its correction, μ its multipliers), free rows.
+Eigen::MatrixXd projectionJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
+                                   const Eigen::VectorXd& correction, const Eigen::VectorXd& mu,
+                                   const std::vector<const double*>& parameters) {
+  const std::vector<AdInput> inputs =
+      adInputs({freeInputs(model, AdInput::Kind::Position), parameterInputs(parameters.size())});
+  const VectorX<AdScalar> mu_ad = seededVector(mu, 0, 0, 0);  // constant
+  const Eigen::VectorXd unused_rates = Eigen::VectorXd::Zero(q.size());  // M Δ + Bᵀμ is taken at q̇ = 0
+  const Eigen::MatrixXd out = adJacobian(ws, q, unused_rates, correction, inputs, parameters, model.coordinateCount(),
+                                         [&](const SeededState& s, VectorX<AdScalar>& f) {
+                                           inertialAndLoopForces(model, ws, s.q, s.a, mu_ad, f);
+                                         });
+  return out(model.freeCoordinates(), Eigen::all);
 }
 
 }  // namespace
@@ -110,28 +126,18 @@ Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
-  const Eigen::Index n = model_.coordinateCount(), nf = freeCount();
-  const Eigen::VectorXd q = tr.q.col(k), zero = Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd q = tr.q.col(k);
   ClosureDerivatives out;
   out.jacobian = constraintJacobian(k);
   closureRateJacobians(model_, ws_, q, tr.v.col(k), tr.a.col(k), free, out);
-  // f(q, 0, Δ, μ) − f(q, 0, 0, 0) = M Δ + Bᵀμ, so [G P] = ∂f/∂(q, b)(q, 0, Δ, μ) − ∂f/∂(q, b)(q, 0, 0, 0),
-  // seeded in the free q and the design parameters only.
-  const std::vector<AdInput> inputs =
-      adInputs({freeInputs(model_, AdInput::Kind::Position), parameterInputs(parameters_.size())});
-  const auto projectionDerivatives = [&](const Eigen::VectorXd& correction, const Eigen::VectorXd& mu) {
-    return Eigen::MatrixXd(
-        residualJacobian(model_, ws_, q, zero, correction, mu, tr.time[k], inputs, parameter_addresses_)(free, Eigen::all));
-  };
-  const Eigen::MatrixXd base = projectionDerivatives(zero, Eigen::VectorXd::Zero(model_.constraintCount()));
   const Eigen::MatrixXd mass = freeMassMatrix(k);
   const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
   const auto linearize = [&](const Eigen::VectorXd& correction, Eigen::MatrixXd& G, Eigen::MatrixXd& P) {
     // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
     const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
-    const Eigen::MatrixXd difference = projectionDerivatives(correction, mu) - base;
-    G = difference.leftCols(nf);
-    P = difference.rightCols(variableCount());
+    const Eigen::MatrixXd derivatives = projectionJacobian(model_, ws_, q, correction, mu, parameter_addresses_);
+    G = derivatives.leftCols(freeCount());
+    P = derivatives.rightCols(variableCount());
   };
   linearize(tr.v.col(k) - tr.v_unprojected.col(k), out.velocity_projection, out.velocity_projection_parameters);
   linearize(tr.a.col(k) - tr.a_unprojected.col(k), out.acceleration_projection, out.acceleration_projection_parameters);
