@@ -23,11 +23,9 @@ Scalar timeValue(const Workspace<Scalar>& ws, const TimeFunction& f, double t) {
   }
 }
 
-/// Inertia and gravity of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
+/// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
 template <class Scalar>
-void addBodyWrenches(const Model& model, Workspace<Scalar>& ws) {
-  const Eigen::Vector3d& gravity = model.gravity();
-  const Vector3<Scalar> g(parameter(ws, gravity.x()), parameter(ws, gravity.y()), parameter(ws, gravity.z()));
+void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g) {
   for (const Body& body : model.bodies()) {
     const auto k = static_cast<std::size_t>(body.frame);
     const Matrix3<Scalar>& R = ws.rotation[k];
@@ -94,6 +92,33 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
+/// The kinematics at (q, q̇, q̈) and the body wrenches with gravity g, every other wrench cleared.
+template <class Scalar>
+void startWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, const VectorX<Scalar>& v,
+                   const VectorX<Scalar>& a, const Vector3<Scalar>& g) {
+  forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
+  for (std::size_t k = 0; k < ws.force.size(); ++k) {
+    ws.force[k].setZero();
+    ws.moment[k].setZero();
+  }
+  addBodyWrenches(model, ws, g);
+}
+
+/// Backward recursion (22)-(23) and the residual of each active element (24), added to f.
+template <class Scalar>
+void addElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<Scalar>& f) {
+  const auto& elements = model.elements();
+  for (std::size_t k = elements.size(); k-- > 0;) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    if (element.coordinate >= 0)
+      f[element.coordinate] += ws.motion_linear[k].dot(ws.force[s]) + ws.motion_angular[k].dot(ws.moment[s]);
+    ws.force[e] += ws.force[s];
+    ws.moment[e] += ws.moment[s] + (ws.position[s] - ws.position[e]).cross(ws.force[s]);
+  }
+}
+
 }  // namespace
 
 template <class Scalar>
@@ -103,12 +128,9 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
   if (q.size() != n || v.size() != n || a.size() != n || (lambda.size() != 0 && lambda.size() != model.constraintCount()))
     throw std::invalid_argument("residual: q, q̇, q̈ need " + std::to_string(n) + " entries and λ 0 or " +
                                 std::to_string(model.constraintCount()));
-  forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
-  for (std::size_t k = 0; k < ws.force.size(); ++k) {
-    ws.force[k].setZero();
-    ws.moment[k].setZero();
-  }
-  addBodyWrenches(model, ws);
+  const Eigen::Vector3d& gravity = model.gravity();
+  startWrenches(model, ws, q, v, a,
+                Vector3<Scalar>(parameter(ws, gravity.x()), parameter(ws, gravity.y()), parameter(ws, gravity.z())));
   f.setZero(model.coordinateCount());
   for (const ForceElement& element : model.forces()) {
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
@@ -124,18 +146,20 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
                element);
   }
   if (model.constraintCount() > 0 && lambda.size() > 0) addConstraintWrenches(model, ws, lambda);
+  addElementResiduals(model, ws, f);
+}
 
-  // Backward recursion (22)-(23) and the residual of each active element (24).
-  const auto& elements = model.elements();
-  for (std::size_t k = elements.size(); k-- > 0;) {
-    const KinematicElement& element = elements[k];
-    const auto e = static_cast<std::size_t>(element.entry);
-    const auto s = static_cast<std::size_t>(element.exit);
-    if (element.coordinate >= 0)
-      f[element.coordinate] += ws.motion_linear[k].dot(ws.force[s]) + ws.motion_angular[k].dot(ws.moment[s]);
-    ws.force[e] += ws.force[s];
-    ws.moment[e] += ws.moment[s] + (ws.position[s] - ws.position[e]).cross(ws.force[s]);
-  }
+template <class Scalar>
+void inertialAndLoopForces(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                           const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, VectorX<Scalar>& f) {
+  const Eigen::Index n = model.coordinateCount();
+  if (q.size() != n || a.size() != n || lambda.size() != model.constraintCount())
+    throw std::invalid_argument("inertialAndLoopForces: q, q̈ need " + std::to_string(n) + " entries and λ " +
+                                std::to_string(model.constraintCount()));
+  startWrenches(model, ws, q, VectorX<Scalar>(VectorX<Scalar>::Zero(n)), a, Vector3<Scalar>(Vector3<Scalar>::Zero()));
+  f.setZero(n);
+  if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
+  addElementResiduals(model, ws, f);
 }
 
 template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,
@@ -143,5 +167,8 @@ template void residual<double>(const Model&, Workspace<double>&, const VectorX<d
 template void residual<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                  const VectorX<AdScalar>&, const VectorX<AdScalar>&, const VectorX<AdScalar>&,
                                  double, VectorX<AdScalar>&);
+template void inertialAndLoopForces<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                              const VectorX<AdScalar>&, const VectorX<AdScalar>&,
+                                              VectorX<AdScalar>&);
 
 }  // namespace mbsopt

@@ -1,15 +1,14 @@
 #include "sensitivity/newmark_derivatives.hpp"
 
-#include <optional>
-#include <stdexcept>
-
 #include <Eigen/SVD>
-#include <algorithm>
+#include <stdexcept>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/kinematics.hpp"
+#include "dynamics/mass_matrix.hpp"
 #include "dynamics/residual.hpp"
 #include "dynamics/tangent.hpp"
+#include "sensitivity/forward_ad.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
 #include "sensitivity/response_jacobian.hpp"
 
@@ -36,19 +35,43 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       model_(checkedModel(problem, x)),
       response_(evaluateDesign(problem, functionals, x)),
       ws_(model_),
-      ws_double_(model_) {
+      plain_ws_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
+  parameter_addresses_ = parameterAddresses(model_, parameters_);
+}
+
+namespace {
+
+/// The inputs of one kind on every free coordinate.
+std::vector<AdInput> freeInputs(const Model& model, AdInput::Kind kind) {
+  return adInputs(kind, model.freeCoordinates());
+}
+
+}  // namespace
+
+Eigen::MatrixXd TrajectoryDerivatives::freeMassMatrix(Eigen::Index k) {
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model_.coordinateCount());
+  forwardKinematics(model_, plain_ws_, Eigen::VectorXd(response_.trajectory.q.col(k)), rest, rest,
+                    KinematicsLevel::Velocity);  // rotations, positions and joint axes at q_k
+  Eigen::MatrixXd mass;
+  massMatrix(model_, plain_ws_, model_.freeCoordinates(), mass);
+  return mass;
 }
 
 StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                                                      const Eigen::VectorXd& lambda) {
+  // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes seeded in the free q̇, the free
+  // q and the design parameters only.
   const Trajectory& tr = response_.trajectory;
-  const std::vector<int>& free = model_.freeCoordinates();
-  const Eigen::VectorXd q = tr.q.col(k);
-  TangentMatrices tangent;
-  tangentMatrices(model_, ws_, q, v, a, lambda, tr.time[k], tangent);
-  const Eigen::MatrixXd dfdb = parameterJacobian(model_, ws_, q, v, a, lambda, tr.time[k], parameters_);
-  return {tangent.mass(free, free), tangent.damping(free, free), tangent.stiffness(free, free), dfdb(free, Eigen::all)};
+  const Eigen::Index nf = freeCount();
+  const std::vector<AdInput> inputs = adInputs({freeInputs(model_, AdInput::Kind::Velocity),
+                                                freeInputs(model_, AdInput::Kind::Position),
+                                                parameterInputs(parameters_.size())});
+  const Eigen::MatrixXd derivatives =
+      residualJacobian(model_, ws_, tr.q.col(k), v, a, lambda, tr.time[k], inputs,
+                       parameter_addresses_)(model_.freeCoordinates(), Eigen::all);
+  return {freeMassMatrix(k), derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
+          derivatives.rightCols(variableCount())};
 }
 
 StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
@@ -62,7 +85,7 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   if (model_.constraintCount() > 0) {  // Bᵀλ = −f(q, q̇, q̈, 0) on the free rows, least squares
     const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k);
     Eigen::VectorXd f;
-    residual(model_, ws_double_, q, v, a, lambda, tr.time[k], f);
+    residual(model_, plain_ws_, q, v, a, lambda, tr.time[k], f);
     const Eigen::MatrixXd transposed = constraintJacobian(k).transpose();
     lambda = transposed.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(-f(model_.freeCoordinates()));
   }
@@ -71,85 +94,102 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
 
 namespace {
 
-/// ∂c/∂x of the closure equations at `level`, x = q (which = 0) or q̇ (which = 1), all columns.
-Eigen::MatrixXd closureJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
-                                const Eigen::VectorXd& v, const Eigen::VectorXd& a, Derivative level, int which) {
-  const Eigen::Index n = model.coordinateCount();
-  Eigen::MatrixXd out(model.constraintCount(), n);
-  const KinematicsLevel kinematics = level == Derivative::Position   ? KinematicsLevel::Position
-                                     : level == Derivative::Velocity ? KinematicsLevel::Velocity
-                                                                     : KinematicsLevel::Acceleration;
-  VectorX<AdScalar> c;
-  for (Eigen::Index first = 0; first < n; first += kMaxAdDirections) {
-    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, n - first);
-    const VectorX<AdScalar> q_ad = seededVector(q, which == 0 ? 0 : n, first, count);
-    const VectorX<AdScalar> v_ad = seededVector(v, which == 1 ? 0 : n, first, count);
-    const VectorX<AdScalar> a_ad = seededVector(a, n, first, count);  // never seeded
-    forwardKinematics(model, ws, q_ad, v_ad, a_ad, kinematics);
-    closureEquations(model, ws, level, c);
-    for (Eigen::Index i = 0; i < c.size(); ++i) out.row(i).segment(first, count) = c[i].derivatives().head(count);
-  }
-  return out;
+/// ∂ḃ/∂q, ∂b̈/∂q and ∂b̈/∂q̇ on `columns` at (q, q̇, q̈): the closure rates [ḃ; b̈] of one kinematics
+/// evaluation per AD pass, seeded in q and q̇ on those columns (ḃ does not depend on q̈).
+void closureRateJacobians(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
+                          const Eigen::VectorXd& v, const Eigen::VectorXd& a, const std::vector<int>& columns,
+                          ClosureDerivatives& out) {
+  const auto nc = static_cast<Eigen::Index>(columns.size());
+  const Eigen::Index m = model.constraintCount();
+  const std::vector<AdInput> inputs =
+      adInputs({adInputs(AdInput::Kind::Position, columns), adInputs(AdInput::Kind::Velocity, columns)});
+  VectorX<AdScalar> velocity, acceleration;
+  const Eigen::MatrixXd rates = adJacobian(ws, q, v, a, inputs, {}, 2 * m, [&](const SeededState& s, VectorX<AdScalar>& g) {
+    forwardKinematics(model, ws, s.q, s.v, s.a, KinematicsLevel::Acceleration);
+    closureEquations(model, ws, Derivative::Velocity, velocity);
+    closureEquations(model, ws, Derivative::Acceleration, acceleration);
+    g.resize(2 * m);
+    g << velocity, acceleration;
+  });
+  out.velocity_q = rates.topLeftCorner(m, nc);
+  out.acceleration_q = rates.bottomLeftCorner(m, nc);
+  out.acceleration_v = rates.bottomRightCorner(m, nc);
+}
+
+/// [G P] = ∂(M(q)Δ + B(q)ᵀμ)/∂(q, b) on the free q and the design parameters: one projection's
+/// dependence on q and b through M and B (Δ its correction, μ its multipliers), free rows.
+Eigen::MatrixXd projectionJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
+                                   const Eigen::VectorXd& correction, const Eigen::VectorXd& mu,
+                                   const std::vector<const double*>& parameters) {
+  const std::vector<AdInput> inputs =
+      adInputs({freeInputs(model, AdInput::Kind::Position), parameterInputs(parameters.size())});
+  const VectorX<AdScalar> mu_ad = seededVector(mu, 0, 0, 0);  // constant
+  const Eigen::VectorXd unused_rates = Eigen::VectorXd::Zero(q.size());  // M Δ + Bᵀμ is taken at q̇ = 0
+  const Eigen::MatrixXd out = adJacobian(ws, q, unused_rates, correction, inputs, parameters, model.coordinateCount(),
+                                         [&](const SeededState& s, VectorX<AdScalar>& f) {
+                                           inertialAndLoopForces(model, ws, s.q, s.a, mu_ad, f);
+                                         });
+  return out(model.freeCoordinates(), Eigen::all);
 }
 
 }  // namespace
 
 Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
-  const std::vector<int>& free = model_.freeCoordinates();
   if (model_.constraintCount() == 0) return Eigen::MatrixXd(0, freeCount());
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model_.coordinateCount());
-  return closureJacobian(model_, ws_, response_.trajectory.q.col(k), zero, zero, Derivative::Velocity, 1)(Eigen::all,
-                                                                                                        free);
+  Eigen::VectorXd closure;
+  Eigen::MatrixXd B;
+  mbsopt::constraintJacobian(model_, plain_ws_, response_.trajectory.q.col(k), model_.freeCoordinates(), closure, B);
+  return B;
 }
 
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
-  const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount();
-  const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k), zero = Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd q = tr.q.col(k);
   ClosureDerivatives out;
   out.jacobian = constraintJacobian(k);
-  out.velocity_q = closureJacobian(model_, ws_, q, v, zero, Derivative::Velocity, 0)(Eigen::all, free);
-  out.acceleration_q = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 0)(Eigen::all, free);
-  out.acceleration_v = closureJacobian(model_, ws_, q, v, a, Derivative::Acceleration, 1)(Eigen::all, free);
-  // f(q, 0, Δ, μ) − f(q, 0, 0, 0) = M Δ + Bᵀμ, so G = K_T(q, 0, Δ, μ) − K_T(q, 0, 0, 0) and
-  // P = ∂f/∂b(q, 0, Δ, μ) − ∂f/∂b(q, 0, 0, 0).
-  const Eigen::VectorXd no_multipliers = Eigen::VectorXd::Zero(m);
-  TangentMatrices base, shifted;
-  tangentMatrices(model_, ws_, q, zero, zero, no_multipliers, tr.time[k], base);
-  const Eigen::MatrixXd base_parameters = parameterJacobian(model_, ws_, q, zero, zero, no_multipliers, tr.time[k], parameters_);
-  const Eigen::MatrixXd mass = base.mass(free, free);
+  closureRateJacobians(model_, ws_, q, tr.v.col(k), tr.a.col(k), free, out);
+  const Eigen::MatrixXd mass = freeMassMatrix(k);
   const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
   const auto linearize = [&](const Eigen::VectorXd& correction, Eigen::MatrixXd& G, Eigen::MatrixXd& P) {
     // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
     const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
-    tangentMatrices(model_, ws_, q, zero, correction, mu, tr.time[k], shifted);
-    G = (shifted.stiffness - base.stiffness)(free, free);
-    P = (parameterJacobian(model_, ws_, q, zero, correction, mu, tr.time[k], parameters_) - base_parameters)(free, Eigen::all);
+    const Eigen::MatrixXd derivatives = projectionJacobian(model_, ws_, q, correction, mu, parameter_addresses_);
+    G = derivatives.leftCols(freeCount());
+    P = derivatives.rightCols(variableCount());
   };
-  linearize(v - tr.v_unprojected.col(k), out.velocity_projection, out.velocity_projection_parameters);
-  linearize(a - tr.a_unprojected.col(k), out.acceleration_projection, out.acceleration_projection_parameters);
+  linearize(tr.v.col(k) - tr.v_unprojected.col(k), out.velocity_projection, out.velocity_projection_parameters);
+  linearize(tr.a.col(k) - tr.a_unprojected.col(k), out.acceleration_projection, out.acceleration_projection_parameters);
   return out;
 }
 
 ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
-  const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index m = functionalCount(), nf = freeCount();
   ResponseSeeds out{Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf)};
-  std::vector<std::optional<ResponseJacobian>> jacobians(model_.sensors().size());  // ±y share one
+  const auto weight = [&](Eigen::Index j) {  // ∂Ψ/∂φ_k ∂φ/∂y
+    const auto f = static_cast<std::size_t>(j);
+    return functionals_[f].sign * response_.functionals[f].gradient[k];
+  };
+  // The sensors some constraint is sensitive to at k, each once (±y share one), in one set of passes.
+  std::vector<int> slot(model_.sensors().size(), -1);
+  std::vector<const Sensor*> sensors;
   for (Eigen::Index j = 0; j < m; ++j) {
-    const ConstraintFunctional& f = functionals_[static_cast<std::size_t>(j)];
-    const double weight = f.sign * response_.functionals[static_cast<std::size_t>(j)].gradient[k];  // ∂Ψ/∂φ_k ∂φ/∂y
-    if (weight == 0.0) continue;
-    auto& cached = jacobians[static_cast<std::size_t>(f.sensor)];
-    if (!cached)
-      cached = responseJacobian(model_, ws_, model_.sensors()[static_cast<std::size_t>(f.sensor)], tr.q.col(k),
-                                tr.v.col(k), tr.a.col(k));
-    const ResponseJacobian& J = *cached;
-    out.position.row(j) = weight * J.position(free);
-    out.velocity.row(j) = weight * J.velocity(free);
-    out.acceleration.row(j) = weight * J.acceleration(free);
+    const auto sensor = static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor);
+    if (weight(j) == 0.0 || slot[sensor] >= 0) continue;
+    slot[sensor] = static_cast<int>(sensors.size());
+    sensors.push_back(&model_.sensors()[sensor]);
+  }
+  if (sensors.empty()) return out;
+  const std::vector<ResponseJacobian> jacobians =
+      responseJacobians(model_, ws_, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates());
+  for (Eigen::Index j = 0; j < m; ++j) {
+    if (weight(j) == 0.0) continue;
+    const ResponseJacobian& J =
+        jacobians[static_cast<std::size_t>(slot[static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor)])];
+    out.position.row(j) = weight(j) * J.position;
+    out.velocity.row(j) = weight(j) * J.velocity;
+    out.acceleration.row(j) = weight(j) * J.acceleration;
   }
   return out;
 }

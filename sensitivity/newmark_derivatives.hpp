@@ -74,9 +74,12 @@ class TrajectoryDerivatives {
   Model model_;
   DesignResponse response_;
   std::vector<std::string> parameters_;
+  std::vector<const double*> parameter_addresses_;  ///< their storage in model_, for seeding
   Workspace<AdScalar> ws_;
-  Workspace<double> ws_double_;
+  Workspace<double> plain_ws_;  ///< for what needs no AD: M (composite rigid bodies) and B (velocity passes)
 
+  /// M(q_k) on the free coordinates, by the composite-rigid-body algorithm.
+  Eigen::MatrixXd freeMassMatrix(Eigen::Index k);
   /// The step derivatives at q_k with the given rates and multipliers.
   StepDerivatives derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                                 const Eigen::VectorXd& lambda);

@@ -1,36 +1,45 @@
 #include "sensitivity/response_jacobian.hpp"
 
-#include <algorithm>
-
 #include "dynamics/kinematics.hpp"
 #include "dynamics/sensors.hpp"
+#include "sensitivity/forward_ad.hpp"
 
 namespace mbsopt {
 
+std::vector<ResponseJacobian> responseJacobians(const Model& model, Workspace<AdScalar>& ws,
+                                                const std::vector<const Sensor*>& sensors, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                                                const std::vector<int>& columns) {
+  const auto nc = static_cast<Eigen::Index>(columns.size());
+  std::vector<ResponseJacobian> out(sensors.size());
+  for (ResponseJacobian& J : out) {
+    J.position.resize(nc);
+    J.velocity.resize(nc);
+    J.acceleration.resize(nc);
+  }
+  // Inputs ordered (q, q̇, q̈) on `columns`; one kinematics evaluation per pass serves every sensor.
+  const std::vector<AdInput> inputs = adInputs({adInputs(AdInput::Kind::Position, columns),
+                                                adInputs(AdInput::Kind::Velocity, columns),
+                                                adInputs(AdInput::Kind::Acceleration, columns)});
+  forEachAdPass(ws, q, v, a, inputs, {}, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
+    forwardKinematics(model, ws, s.q, s.v, s.a, KinematicsLevel::Acceleration);
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+      const AdScalar g = sensorValue(*sensors[i], ws, s.q, s.v, s.a);
+      out[i].value = g.value();
+      for (Eigen::Index j = 0; j < count; ++j) {
+        const Eigen::Index input = first + j;
+        if (input < nc) out[i].position[input] = g.derivatives()[j];
+        else if (input < 2 * nc) out[i].velocity[input - nc] = g.derivatives()[j];
+        else out[i].acceleration[input - 2 * nc] = g.derivatives()[j];
+      }
+    }
+  });
+  return out;
+}
+
 ResponseJacobian responseJacobian(const Model& model, Workspace<AdScalar>& ws, const Sensor& sensor,
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
-  const Eigen::Index n = model.coordinateCount();
-  ResponseJacobian out;
-  out.position.resize(n);
-  out.velocity.resize(n);
-  out.acceleration.resize(n);
-  // Inputs ordered (q, q̇, q̈); passes of at most kMaxAdDirections seeded directions each.
-  for (Eigen::Index first = 0; first < 3 * n; first += kMaxAdDirections) {
-    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, 3 * n - first);
-    const VectorX<AdScalar> q_ad = seededVector(q, 0, first, count);
-    const VectorX<AdScalar> v_ad = seededVector(v, n, first, count);
-    const VectorX<AdScalar> a_ad = seededVector(a, 2 * n, first, count);
-    forwardKinematics(model, ws, q_ad, v_ad, a_ad, KinematicsLevel::Acceleration);
-    const AdScalar g = sensorValue(sensor, ws, q_ad, v_ad, a_ad);
-    out.value = g.value();
-    for (Eigen::Index j = 0; j < count; ++j) {
-      const Eigen::Index input = first + j;
-      if (input < n) out.position[input] = g.derivatives()[j];
-      else if (input < 2 * n) out.velocity[input - n] = g.derivatives()[j];
-      else out.acceleration[input - 2 * n] = g.derivatives()[j];
-    }
-  }
-  return out;
+  return responseJacobians(model, ws, {&sensor}, q, v, a, allCoordinates(model)).front();
 }
 
 }  // namespace mbsopt

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "dynamics/model.hpp"
 #include "dynamics/workspace.hpp"
@@ -12,7 +13,7 @@ namespace mbsopt {
 
 struct ResponseJacobian {
   double value = 0.0;
-  Eigen::RowVectorXd position;      ///< ∂g/∂q, every coordinate (driven ones included)
+  Eigen::RowVectorXd position;      ///< ∂g/∂q, every coordinate (driven ones included) or the requested ones
   Eigen::RowVectorXd velocity;      ///< ∂g/∂q̇
   Eigen::RowVectorXd acceleration;  ///< ∂g/∂q̈
 };
@@ -20,5 +21,12 @@ struct ResponseJacobian {
 /// The value and the state derivatives of `sensor` at (q, q̇, q̈).
 ResponseJacobian responseJacobian(const Model& model, Workspace<AdScalar>& ws, const Sensor& sensor,
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a);
+
+/// The same for several sensors at once, over the coordinates `columns` only (entry j of each row
+/// is the derivative in coordinate columns[j]): one kinematics evaluation per AD pass serves them all.
+std::vector<ResponseJacobian> responseJacobians(const Model& model, Workspace<AdScalar>& ws,
+                                                const std::vector<const Sensor*>& sensors, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                                                const std::vector<int>& columns);
 
 }  // namespace mbsopt

@@ -1,0 +1,77 @@
+#include "sensitivity/forward_ad.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "dynamics/residual.hpp"
+
+namespace mbsopt {
+
+std::vector<AdInput> adInputs(AdInput::Kind kind, const std::vector<int>& indices) {
+  std::vector<AdInput> out;
+  out.reserve(indices.size());
+  for (int i : indices) out.push_back({kind, i});
+  return out;
+}
+
+std::vector<AdInput> parameterInputs(std::size_t count) {
+  std::vector<int> indices(count);
+  std::iota(indices.begin(), indices.end(), 0);
+  return adInputs(AdInput::Kind::Parameter, indices);
+}
+
+std::vector<AdInput> adInputs(std::initializer_list<std::vector<AdInput>> parts) {
+  std::vector<AdInput> out;
+  for (const std::vector<AdInput>& part : parts) out.insert(out.end(), part.begin(), part.end());
+  return out;
+}
+
+void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                   const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
+                   const std::vector<const double*>& parameters,
+                   const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate) {
+  const auto total = static_cast<Eigen::Index>(inputs.size());
+  for (Eigen::Index first = 0; first < total; first += kMaxAdDirections) {
+    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, total - first);
+    SeededState state{seededVector(q, 0, 0, 0), seededVector(v, 0, 0, 0), seededVector(a, 0, 0, 0)};
+    ws.parameter_seeds.clear();
+    for (Eigen::Index j = 0; j < count; ++j) {
+      const AdInput& input = inputs[static_cast<std::size_t>(first + j)];
+      const auto direction = static_cast<int>(j);
+      switch (input.kind) {
+        case AdInput::Kind::Position: state.q[input.index].derivatives()[direction] = 1.0; break;
+        case AdInput::Kind::Velocity: state.v[input.index].derivatives()[direction] = 1.0; break;
+        case AdInput::Kind::Acceleration: state.a[input.index].derivatives()[direction] = 1.0; break;
+        case AdInput::Kind::Parameter:
+          ws.parameter_seeds.emplace_back(parameters[static_cast<std::size_t>(input.index)], direction);
+          break;
+      }
+    }
+    evaluate(state, first, count);
+  }
+  ws.parameter_seeds.clear();
+}
+
+Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                           const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
+                           const std::vector<const double*>& parameters, Eigen::Index rows,
+                           const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate) {
+  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(inputs.size()));
+  VectorX<AdScalar> g;
+  forEachAdPass(ws, q, v, a, inputs, parameters, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
+    evaluate(s, g);
+    for (Eigen::Index i = 0; i < rows; ++i) out.row(i).segment(first, count) = g[i].derivatives().head(count);
+  });
+  return out;
+}
+
+Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
+                                 const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
+                                 double t, const std::vector<AdInput>& inputs,
+                                 const std::vector<const double*>& parameters) {
+  const VectorX<AdScalar> lambda_ad = seededVector(lambda, 0, 0, 0);  // constant
+  return adJacobian(ws, q, v, a, inputs, parameters, model.coordinateCount(),
+                    [&](const SeededState& s, VectorX<AdScalar>& f) { residual(model, ws, s.q, s.v, s.a, lambda_ad, t, f); });
+}
+
+}  // namespace mbsopt
