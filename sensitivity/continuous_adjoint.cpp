@@ -2,6 +2,8 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <stdexcept>
+#include <string>
 
 #include "sensitivity/augmented_solve.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
@@ -92,6 +94,9 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
     const Eigen::MatrixXd jacobian = d.constraintJacobian(k);
     const Eigen::MatrixXd V2 = independentDirections(jacobian, threshold);
     const Eigen::MatrixXd V2_mean = independentDirections(0.5 * (jacobian + later_jacobian), threshold);
+    if (V2.cols() != V2_mean.cols())
+      throw std::invalid_argument("continuous adjoint: the rank of the loop closure changes near t = " +
+                               std::to_string(d.time(k)) + " s (a singular configuration); use adjoint or direct");
     const Eigen::MatrixXd reduced = V2_mean.transpose() * A.transpose() * V2;  // V̄₂ᵀ Aᵀ V₂ ξᵀ = V̄₂ᵀ Rᵀ
     const Eigen::MatrixXd w = reduced.partialPivLu().solve(V2_mean.transpose() * rhs.transpose()).transpose() * V2.transpose();
     later_jacobian = jacobian;

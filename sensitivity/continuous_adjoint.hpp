@@ -11,7 +11,8 @@
 namespace mbsopt {
 
 /// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
-/// Throws std::invalid_argument for loops closed at acceleration level.
+/// Throws std::invalid_argument for loops closed at acceleration level, and where the rank of the
+/// closure changes within a step (a singular configuration), where the method does not apply.
 DesignGradient continuousAdjointGradient(const DesignProblem& problem,
                                          const std::vector<ConstraintFunctional>& functionals,
                                          const Eigen::VectorXd& x);

@@ -44,6 +44,7 @@ class TrajectoryDerivatives {
                         const Eigen::VectorXd& x);
 
   Eigen::Index timePoints() const { return response_.trajectory.time.size(); }
+  double time(Eigen::Index k) const { return response_.trajectory.time[k]; }
   Eigen::Index freeCount() const { return static_cast<Eigen::Index>(model_.freeCoordinates().size()); }
   Eigen::Index variableCount() const { return static_cast<Eigen::Index>(parameters_.size()); }
   Eigen::Index functionalCount() const { return static_cast<Eigen::Index>(functionals_.size()); }
