@@ -153,6 +153,49 @@ TEST(ExactGradients, FourBarAdjointEqualsDirectAndCentralDifferences) {
   expectAdjointMatchesCentralDifferencesAtTheBestStep(problem, 1e-6);
 }
 
+// The four-bar with a cost on an acceleration (paper §5.3), an integral and a final value beside the
+// extremes, in every transcription: adjoint = direct to round-off on a closed loop.
+TEST(ExactGradients, FourBarAdjointEqualsDirectForEveryFunctional) {
+  SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
+  const std::string sensors = "sensors:\n";
+  ASSERT_NE(source.text.find(sensors), std::string::npos);
+  source.text.insert(source.text.find(sensors) + sensors.size(),
+                     "  - {name: joint_c_ay, type: point, frame: coupler_tip, point: [0, 0, 0], quantity: acceleration, "
+                     "component: y}\n");
+  source.text += R"(
+design:
+  variables:
+    - {parameter: coupler_bar.mass, lower: 0.5, upper: 5}
+    - {parameter: rocker_bar.com.x, lower: 0.1, upper: 0.7}
+  cost: {sensor: joint_c_ay, of: max_abs}
+  artificial: {initial: 3, lower: 0, upper: 20}
+  constraints:
+    - {sensor: coupler_angle, of: max_abs, bound: 0.5}
+    - {sensor: joint_c_x, of: integral, bound: 0.5}
+    - {sensor: rocker_angle, of: final, bound: 1}
+)";
+  DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.5}});
+  for (const TimeMeasure measure : {TimeMeasure::PositivePart, TimeMeasure::SquaredPositivePart,
+                                    TimeMeasure::KsAggregate, TimeMeasure::GridMax}) {
+    problem.design.transcription.measure = measure;
+    const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+    ASSERT_EQ(functionals.size(), 6u);  // ±joint_c_ay, ±coupler_angle, the integral, the final value
+    EXPECT_EQ(functionals[4].name, "joint_c_x_integral");
+    const Eigen::VectorXd x = initialPoint(problem);
+    const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+    const DesignGradient direct = directGradient(problem, functionals, x);
+    for (Eigen::Index r = 0; r < direct.constraints.rows(); ++r) {  // each row, active or not
+      const double scale = direct.constraints.row(r).head(2).cwiseAbs().maxCoeff();
+      EXPECT_LE((adjoint.constraints.row(r) - direct.constraints.row(r)).head(2).cwiseAbs().maxCoeff(),
+                1e-9 * std::max(scale, 1e-300))
+          << functionals[static_cast<std::size_t>(r)].name << " " << static_cast<int>(measure);
+    }
+    EXPECT_GT(direct.constraints.topLeftCorner(1, 2).cwiseAbs().maxCoeff(), 1e-4);  // the acceleration cost is active
+    EXPECT_GT(direct.constraints.row(4).head(2).cwiseAbs().maxCoeff(), 1e-4);       // the integral
+    EXPECT_GT(direct.constraints.row(5).head(2).cwiseAbs().maxCoeff(), 1e-4);       // the final value
+  }
+}
+
 // The same with the KS aggregate (smooth in b): measured 7e-12 over 0.3 s.
 TEST(ExactGradients, FourBarKsAggregateMatchesCentralDifferences) {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
