@@ -14,6 +14,7 @@ packages=(
   libnlopt-cxx-dev          # SLSQP, MMA, CCSAQ
   coinor-libipopt-dev       # Ipopt 3.11
   gnuplot-nox               # plots
+  pkg-config                # finds Ipopt
 )
 
 missing=()

@@ -1,0 +1,80 @@
+#include "optimizers/evaluation_cache.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace mbsopt {
+
+namespace {
+constexpr std::size_t kCachedPoints = 8;
+}  // namespace
+
+double maxViolation(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& values) {
+  const Eigen::Index inequalities = problem.inequalityCount();
+  double violation = 0.0;
+  for (Eigen::Index i = 0; i < values.constraints.size(); ++i)
+    violation = std::max(violation, i < inequalities ? values.constraints[i] : std::abs(values.constraints[i]));
+  const Eigen::VectorXd lower = problem.lowerBounds(), upper = problem.upperBounds();
+  for (Eigen::Index j = 0; j < x.size(); ++j) violation = std::max({violation, lower[j] - x[j], x[j] - upper[j]});
+  return violation;
+}
+
+const NlpEvaluation& EvaluationCache::at(const Eigen::VectorXd& x, bool gradients) {
+  const auto hit = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.x == x; });
+  if (hit != entries_.end() && (hit->has_gradients || !gradients)) return hit->values;
+  if (hit != entries_.end()) entries_.erase(hit);
+  Entry entry{x, {}, gradients, 0.0};
+  problem_.evaluate(x, gradients, entry.values);
+  ++value_evaluations_;
+  if (gradients) ++gradient_evaluations_;
+  entry.violation = maxViolation(problem_, x, entry.values);
+  consider(entry);
+  entries_.push_front(std::move(entry));
+  if (entries_.size() > kCachedPoints) entries_.pop_back();
+  return entries_.front().values;
+}
+
+void EvaluationCache::consider(const Entry& entry) {
+  const double tolerance = options_.feasibility_tolerance;
+  const bool feasible = entry.violation <= tolerance, best_feasible = has_best_ && best_.violation <= tolerance;
+  const bool better = !has_best_ || (feasible && (!best_feasible || entry.values.cost < best_.values.cost)) ||
+                      (!feasible && !best_feasible && entry.violation < best_.violation);
+  if (better) {
+    best_ = entry;
+    has_best_ = true;
+  }
+}
+
+void EvaluationCache::recordIteration(const Eigen::VectorXd& x, OptimizerResult& result) {
+  const NlpEvaluation& values = at(x, false);
+  const double step = previous_iterate_.size() == x.size() ? (x - previous_iterate_).cwiseAbs().maxCoeff() : 0.0;
+  previous_iterate_ = x;
+  recordIteration(values.cost, maxViolation(problem_, x, values), step, result);
+}
+
+void EvaluationCache::recordIteration(double cost, double max_violation, double step, OptimizerResult& result) {
+  const IterationRecord record{static_cast<int>(result.history.size()), cost, max_violation, step, value_evaluations_,
+                               gradient_evaluations_};
+  result.history.push_back(record);
+  if (options_.on_iteration) options_.on_iteration(record);
+}
+
+void EvaluationCache::finish(OptimizerResult& result) const {
+  result.value_evaluations = value_evaluations_;
+  result.gradient_evaluations = gradient_evaluations_;
+  result.iterations = static_cast<int>(result.history.size());
+  if (!has_best_) return;
+  result.x = best_.x;
+  result.cost = best_.values.cost;
+  result.max_violation = best_.violation;
+}
+
+void rejectInfeasible(OptimizerResult& result, double feasibility_tolerance) {
+  if (result.status == OptimizerStatus::Failed || result.status == OptimizerStatus::Unsupported) return;
+  if (result.max_violation <= feasibility_tolerance) return;
+  result.status = OptimizerStatus::Failed;
+  result.message += "; no point it evaluated is feasible (max violation " + std::to_string(result.max_violation) + ")";
+}
+
+}  // namespace mbsopt

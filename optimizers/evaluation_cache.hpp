@@ -1,0 +1,56 @@
+// The adapters' shared bookkeeping: evaluations cached by design vector (NLopt's MMA and CCSAQ ask
+// for a point's gradient after its value, Ipopt asks for f, g, ∇f and the Jacobian separately; none
+// of them pays twice for a point), the evaluation counts, the best point seen, and the history.
+#pragma once
+
+#include <deque>
+
+#include "optimizers/nlp_problem.hpp"
+#include "optimizers/optimizer.hpp"
+
+namespace mbsopt {
+
+class EvaluationCache {
+ public:
+  EvaluationCache(NlpProblem& problem, const OptimizerOptions& options) : problem_(problem), options_(options) {}
+
+  NlpProblem& problem() { return problem_; }
+
+  /// The values at x (with gradients when asked), from the cache when x was evaluated before.
+  const NlpEvaluation& at(const Eigen::VectorXd& x, bool gradients);
+
+  /// Appends an iteration at x to `result.history` and reports it.
+  void recordIteration(const Eigen::VectorXd& x, OptimizerResult& result);
+  /// The same from the algorithm's own figures (Ipopt's callback does not hand over x).
+  void recordIteration(double cost, double max_violation, double step, OptimizerResult& result);
+
+  /// Fills the result's point, cost, violation and counts: the best point evaluated (feasible
+  /// within the options' tolerance with the lowest cost, else the least violation).
+  void finish(OptimizerResult& result) const;
+
+  long valueEvaluations() const { return value_evaluations_; }
+  long gradientEvaluations() const { return gradient_evaluations_; }
+
+ private:
+  struct Entry {
+    Eigen::VectorXd x;
+    NlpEvaluation values;
+    bool has_gradients = false;
+    double violation = 0.0;
+  };
+  void consider(const Entry& entry);
+
+  NlpProblem& problem_;
+  const OptimizerOptions& options_;
+  std::deque<Entry> entries_;  ///< the most recent points, newest first
+  long value_evaluations_ = 0, gradient_evaluations_ = 0;
+  bool has_best_ = false;
+  Entry best_;
+  Eigen::VectorXd previous_iterate_;
+};
+
+/// A result the algorithm called converged (or stopped by budget) whose best point is infeasible
+/// becomes a failure that says so.
+void rejectInfeasible(OptimizerResult& result, double feasibility_tolerance);
+
+}  // namespace mbsopt

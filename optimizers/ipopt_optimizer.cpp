@@ -1,0 +1,158 @@
+#include "optimizers/ipopt_optimizer.hpp"
+
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+#include <chrono>
+#include <string>
+
+#include "optimizers/evaluation_cache.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+constexpr Number kInfinity = 1e19;  // Ipopt's nlp_lower/upper_bound_inf
+
+/// The NlpProblem as Ipopt's TNLP: g(x) ≤ 0 as g ∈ [−∞, 0], h(x) = 0 as h ∈ [0, 0]; dense Jacobian.
+class ProblemAsTnlp : public Ipopt::TNLP {
+ public:
+  ProblemAsTnlp(EvaluationCache& cache, OptimizerResult& result) : cache_(cache), result_(result) {}
+
+  std::string error;           ///< the last evaluation's failure, if any
+  Ipopt::SolverReturn status = Ipopt::UNASSIGNED;
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& index_style) override {
+    n = static_cast<Index>(problem().variableCount());
+    m = static_cast<Index>(problem().inequalityCount() + problem().equalityCount());
+    nnz_jac_g = n * m;
+    nnz_h_lag = 0;  // limited-memory Hessian
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l, Number* g_u) override {
+    Eigen::Map<Eigen::VectorXd>(x_l, n) = problem().lowerBounds();
+    Eigen::Map<Eigen::VectorXd>(x_u, n) = problem().upperBounds();
+    for (Index i = 0; i < m; ++i) {
+      g_l[i] = i < problem().inequalityCount() ? -kInfinity : 0.0;
+      g_u[i] = 0.0;
+    }
+    return true;
+  }
+
+  bool get_starting_point(Index n, bool, Number* x, bool, Number*, Number*, Index, bool, Number*) override {
+    Eigen::Map<Eigen::VectorXd>(x, n) = problem().start();
+    return true;
+  }
+
+  bool eval_f(Index n, const Number* x, bool, Number& obj_value) override {
+    return evaluated(n, x, false, [&](const NlpEvaluation& e) { obj_value = e.cost; });
+  }
+
+  bool eval_grad_f(Index n, const Number* x, bool, Number* grad_f) override {
+    return evaluated(n, x, true, [&](const NlpEvaluation& e) { Eigen::Map<Eigen::VectorXd>(grad_f, n) = e.cost_gradient; });
+  }
+
+  bool eval_g(Index n, const Number* x, bool, Index m, Number* g) override {
+    return evaluated(n, x, false, [&](const NlpEvaluation& e) { Eigen::Map<Eigen::VectorXd>(g, m) = e.constraints; });
+  }
+
+  bool eval_jac_g(Index n, const Number* x, bool, Index m, Index, Index* iRow, Index* jCol, Number* values) override {
+    if (values == nullptr) {  // the structure: dense, row by row
+      for (Index i = 0; i < m; ++i)
+        for (Index j = 0; j < n; ++j) {
+          iRow[i * n + j] = i;
+          jCol[i * n + j] = j;
+        }
+      return true;
+    }
+    return evaluated(n, x, true, [&](const NlpEvaluation& e) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(values, m, n) =
+          e.constraint_jacobian;
+    });
+  }
+
+  void finalize_solution(Ipopt::SolverReturn solver_status, Index, const Number*, const Number*, const Number*, Index,
+                         const Number*, const Number*, Number, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    status = solver_status;
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number obj_value, Number inf_pr, Number, Number,
+                             Number d_norm, Number, Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    cache_.recordIteration(obj_value, inf_pr, d_norm, result_);
+    return true;  // never stop early (returning nothing here is Ipopt#661's undefined behaviour)
+  }
+
+ private:
+  NlpProblem& problem() { return cache_.problem(); }
+
+  /// Evaluates at x and hands the result over; a failed evaluation returns false, so that Ipopt
+  /// shortens its step instead of aborting.
+  template <class Use>
+  bool evaluated(Index n, const Number* x, bool gradients, Use&& use) {
+    try {
+      use(cache_.at(Eigen::Map<const Eigen::VectorXd>(x, n), gradients));
+      return true;
+    } catch (const std::exception& e) {
+      error = e.what();
+      return false;
+    }
+  }
+
+  EvaluationCache& cache_;
+  OptimizerResult& result_;
+};
+
+/// Ipopt's return, overruled where no feasible point was found.
+void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, OptimizerResult& result,
+           const OptimizerOptions& options) {
+  switch (code) {
+    case Ipopt::Solve_Succeeded:
+    case Ipopt::Solved_To_Acceptable_Level:
+      result.status = OptimizerStatus::Converged;
+      break;
+    case Ipopt::Maximum_Iterations_Exceeded:
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      result.status = OptimizerStatus::MaxIterations;
+      break;
+    default:
+      result.status = OptimizerStatus::Failed;
+  }
+  result.message = "Ipopt: return status " + std::to_string(static_cast<int>(code)) + ", solver status " +
+                   std::to_string(static_cast<int>(tnlp.status));
+  if (!tnlp.error.empty()) result.message += "; last failed evaluation: " + tnlp.error;
+  rejectInfeasible(result, options.feasibility_tolerance);
+}
+
+}  // namespace
+
+OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& options) {
+  const auto start_time = std::chrono::steady_clock::now();
+  OptimizerResult result;
+  result.optimizer = "Ipopt (L-BFGS Hessian)";
+  EvaluationCache cache(problem, options);
+  const Ipopt::SmartPtr<ProblemAsTnlp> tnlp = new ProblemAsTnlp(cache, result);
+  const Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  app->Options()->SetStringValue("hessian_approximation", "limited-memory");
+  app->Options()->SetStringValue("sb", "yes");  // no banner
+  app->Options()->SetIntegerValue("print_level", 0);
+  app->Options()->SetIntegerValue("max_iter", options.max_iterations);
+  app->Options()->SetNumericValue("tol", options.tolerance);
+  app->Options()->SetNumericValue("constr_viol_tol", options.feasibility_tolerance);
+  // Ipopt relaxes every bound by 1e-8 (relative) by default and evaluates there: a design problem's
+  // bounds can be physical (a mass > 0), and the best point must respect them.
+  app->Options()->SetNumericValue("bound_relax_factor", 0.0);
+  if (app->Initialize() != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt: initialisation failed");
+  const Ipopt::ApplicationReturnStatus code = app->OptimizeTNLP(tnlp);
+  cache.finish(result);
+  judge(code, *tnlp, result, options);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return result;
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,136 @@
+#include "optimizers/nlopt_optimizer.hpp"
+
+#include <chrono>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "optimizers/evaluation_cache.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// What the callbacks share: the cache, the result being built, and why a callback gave up.
+struct NloptContext {
+  EvaluationCache& cache;
+  OptimizerResult& result;
+  std::string error;
+};
+
+Eigen::VectorXd point(unsigned n, const double* x) { return Eigen::Map<const Eigen::VectorXd>(x, n); }
+
+/// Runs `body`; an exception becomes NLopt's forced stop, its message kept for the result.
+template <class Body>
+void guarded(NloptContext& context, Body&& body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    context.error = e.what();
+    throw nlopt::forced_stop();
+  }
+}
+
+double objective(unsigned n, const double* x, double* gradient, void* data) {
+  auto& context = *static_cast<NloptContext*>(data);
+  double value = 0.0;
+  guarded(context, [&] {
+    const Eigen::VectorXd at = point(n, x);
+    const NlpEvaluation& e = context.cache.at(at, gradient != nullptr);
+    value = e.cost;
+    if (gradient) Eigen::Map<Eigen::VectorXd>(gradient, n) = e.cost_gradient;
+    context.cache.recordIteration(at, context.result);
+  });
+  return value;
+}
+
+/// Constraints [first, first + m); NLopt's gradient layout is grad[i n + j] = ∂c_i/∂x_j.
+void constraintRows(Eigen::Index first, unsigned m, double* values, unsigned n, const double* x, double* gradient,
+                    NloptContext& context) {
+  guarded(context, [&] {
+    const NlpEvaluation& e = context.cache.at(point(n, x), gradient != nullptr);
+    Eigen::Map<Eigen::VectorXd>(values, m) = e.constraints.segment(first, m);
+    if (gradient)
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(gradient, m, n) =
+          e.constraint_jacobian.middleRows(first, m);
+  });
+}
+
+void inequalities(unsigned m, double* values, unsigned n, const double* x, double* gradient, void* data) {
+  constraintRows(0, m, values, n, x, gradient, *static_cast<NloptContext*>(data));
+}
+
+void equalities(unsigned m, double* values, unsigned n, const double* x, double* gradient, void* data) {
+  auto& context = *static_cast<NloptContext*>(data);
+  constraintRows(context.cache.problem().inequalityCount(), m, values, n, x, gradient, context);
+}
+
+std::vector<double> toStd(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+/// The status from NLopt's own return code, overruled where the point it returned is infeasible.
+void judge(nlopt::result code, const std::string& words, OptimizerResult& result, const OptimizerOptions& options) {
+  result.message = "NLopt: " + words;
+  if (code == nlopt::MAXEVAL_REACHED || code == nlopt::MAXTIME_REACHED) {
+    result.status = OptimizerStatus::MaxIterations;
+  } else if (code > 0 || code == nlopt::ROUNDOFF_LIMITED) {  // roundoff-limited: no further progress possible
+    result.status = OptimizerStatus::Converged;
+  } else {
+    result.status = OptimizerStatus::Failed;
+  }
+  rejectInfeasible(result, options.feasibility_tolerance);
+}
+
+}  // namespace
+
+OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& problem, const OptimizerOptions& options) {
+  const auto start_time = std::chrono::steady_clock::now();
+  OptimizerResult result;
+  const auto n = static_cast<unsigned>(problem.variableCount());
+  nlopt::opt opt(algorithm, n);
+  result.optimizer = opt.get_algorithm_name();
+  if (problem.equalityCount() > 0 && algorithm != nlopt::LD_SLSQP) {
+    result.status = OptimizerStatus::Unsupported;
+    result.message = result.optimizer + " takes inequality constraints only; this problem has " +
+                     std::to_string(problem.equalityCount()) + " equalities";
+    return result;
+  }
+  EvaluationCache cache(problem, options);
+  NloptContext context{cache, result, ""};
+  opt.set_lower_bounds(toStd(problem.lowerBounds()));
+  opt.set_upper_bounds(toStd(problem.upperBounds()));
+  opt.set_min_objective(objective, &context);
+  const double tolerance = options.feasibility_tolerance;
+  if (problem.inequalityCount() > 0)
+    opt.add_inequality_mconstraint(inequalities, &context,
+                                   std::vector<double>(static_cast<std::size_t>(problem.inequalityCount()), tolerance));
+  if (problem.equalityCount() > 0)
+    opt.add_equality_mconstraint(equalities, &context,
+                                 std::vector<double>(static_cast<std::size_t>(problem.equalityCount()), tolerance));
+  opt.set_xtol_rel(options.tolerance);
+  opt.set_ftol_rel(options.tolerance);
+  opt.set_maxeval(options.max_iterations);
+
+  std::vector<double> x = toStd(problem.start());
+  double cost = 0.0;
+  nlopt::result code = nlopt::FAILURE;
+  std::string words;
+  try {
+    code = opt.optimize(x, cost);
+    words = nlopt_result_to_string(static_cast<nlopt_result>(code));
+  } catch (const nlopt::roundoff_limited&) {
+    code = nlopt::ROUNDOFF_LIMITED;
+    words = "roundoff-limited";
+  } catch (const nlopt::forced_stop&) {
+    code = nlopt::FORCED_STOP;
+    words = "stopped: " + context.error;
+  } catch (const std::exception& e) {  // NLopt's failure and invalid-argument codes
+    code = opt.last_optimize_result();
+    words = e.what();
+  }
+  cache.finish(result);
+  judge(code, words, result, options);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return result;
+}
+
+}  // namespace mbsopt

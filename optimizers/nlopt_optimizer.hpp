@@ -1,0 +1,19 @@
+// NLopt's gradient-based local optimizers (Debian's 2.7.1): SLSQP, MMA, CCSAQ, behind the common
+// interface, with that version's traps handled (DESIGN.md §5, background notes): every stopping
+// criterion set (none is by default), ROUNDOFF_LIMITED and FORCED_STOP caught (the C++ API throws
+// them with x still holding the point), "success" re-checked for feasibility (SLSQP can claim it at
+// an infeasible point, nlopt#368, fixed only in 2.8), equality constraints refused cleanly by MMA
+// and CCSAQ, and evaluations cached (MMA and CCSAQ ask for gradients on inner iterations).
+#pragma once
+
+#include <nlopt.hpp>
+
+#include "optimizers/optimizer.hpp"
+
+namespace mbsopt {
+
+/// One NLopt run. An "iteration" is one objective evaluation the algorithm asks for (NLopt has no
+/// iteration callback), so `max_iterations` is NLopt's evaluation budget.
+OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& problem, const OptimizerOptions& options);
+
+}  // namespace mbsopt

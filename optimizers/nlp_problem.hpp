@@ -1,0 +1,46 @@
+// What every optimizer minimises (DESIGN.md §5): a smooth nonlinear program
+//   min f(x)  subject to  g(x) ≤ 0,  h(x) = 0,  lower ≤ x ≤ upper,
+// evaluated as one call that returns the values and, on request, the gradients (for the design
+// problems one call is one simulation, plus one gradient computation). The shape of Ipopt's TNLP
+// and of NLopt's objective callbacks, without either.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+namespace mbsopt {
+
+/// f, [g; h] and, when requested, ∇f and the Jacobian of [g; h] (one row per constraint).
+struct NlpEvaluation {
+  double cost = 0.0;
+  Eigen::VectorXd constraints;          ///< the inequalities g first, then the equalities h
+  Eigen::VectorXd cost_gradient;        ///< empty unless gradients were requested
+  Eigen::MatrixXd constraint_jacobian;  ///< empty unless gradients were requested
+};
+
+class NlpProblem {
+ public:
+  virtual ~NlpProblem() = default;
+
+  virtual Eigen::Index variableCount() const = 0;
+  virtual Eigen::Index inequalityCount() const = 0;  ///< g(x) ≤ 0
+  virtual Eigen::Index equalityCount() const { return 0; }  ///< h(x) = 0
+  virtual Eigen::VectorXd lowerBounds() const = 0;
+  virtual Eigen::VectorXd upperBounds() const = 0;
+  virtual Eigen::VectorXd start() const = 0;
+  /// A name for constraint i (0 ≤ i < inequalityCount() + equalityCount()), for reports.
+  virtual std::string constraintName(Eigen::Index i) const {
+    std::string name = "c";
+    name += std::to_string(i);
+    return name;
+  }
+
+  /// The values at x, and the gradients too when `gradients` is set. May throw; the optimizers
+  /// turn an exception into a failed result that says why.
+  virtual void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) = 0;
+};
+
+/// max(0, max g, max |h|, bound violations): how far x is from feasible.
+double maxViolation(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& values);
+
+}  // namespace mbsopt

@@ -1,0 +1,39 @@
+#include "optimizers/optimizer.hpp"
+
+#include <stdexcept>
+
+#include "optimizers/ipopt_optimizer.hpp"
+#include "optimizers/nlopt_optimizer.hpp"
+
+namespace mbsopt {
+
+std::string toString(OptimizerStatus status) {
+  switch (status) {
+    case OptimizerStatus::Converged:
+      return "converged";
+    case OptimizerStatus::MaxIterations:
+      return "max_iterations";
+    case OptimizerStatus::Failed:
+      return "failed";
+    case OptimizerStatus::Unsupported:
+      return "unsupported";
+  }
+  return "failed";
+}
+
+const std::vector<std::string>& optimizerNames() {
+  static const std::vector<std::string> names{"slsqp", "mma", "ccsaq", "ipopt"};
+  return names;
+}
+
+OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
+  if (optimizer == "slsqp") return minimizeWithNlopt(nlopt::LD_SLSQP, problem, options);
+  if (optimizer == "mma") return minimizeWithNlopt(nlopt::LD_MMA, problem, options);
+  if (optimizer == "ccsaq") return minimizeWithNlopt(nlopt::LD_CCSAQ, problem, options);
+  if (optimizer == "ipopt") return minimizeWithIpopt(problem, options);
+  std::string known;
+  for (const std::string& name : optimizerNames()) known += (known.empty() ? "" : ", ") + name;
+  throw std::invalid_argument("unknown optimizer '" + optimizer + "' (known: " + known + ")");
+}
+
+}  // namespace mbsopt

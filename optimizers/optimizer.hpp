@@ -1,0 +1,61 @@
+// One interface over every optimizer (DESIGN.md §5): minimize(name, problem, options) returns the
+// same record whichever algorithm ran, with a per-iteration history, and counts evaluations the way
+// the design problems pay for them (value evaluations = simulations, gradient evaluations).
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "optimizers/nlp_problem.hpp"
+
+namespace mbsopt {
+
+enum class OptimizerStatus {
+  Converged,      ///< the algorithm's own stopping test passed at a feasible point
+  MaxIterations,  ///< stopped by the iteration or evaluation budget
+  Failed,         ///< stopped elsewhere, or "converged" at an infeasible point: `message` says why
+  Unsupported     ///< the algorithm cannot take this problem (e.g. MMA and equality constraints)
+};
+
+std::string toString(OptimizerStatus status);
+
+struct IterationRecord {
+  int iteration = 0;
+  double cost = 0.0;
+  double max_violation = 0.0;
+  double step = 0.0;  ///< ‖x_k − x_{k−1}‖∞ (0 for the first record)
+  long value_evaluations = 0;
+  long gradient_evaluations = 0;
+};
+
+struct OptimizerOptions {
+  int max_iterations = 100;
+  double tolerance = 1e-6;              ///< relative, on x and on f (each algorithm's own test)
+  double feasibility_tolerance = 1e-6;  ///< max violation a converged point may have
+  /// Called after each recorded iteration (the command's progress table); may be empty.
+  std::function<void(const IterationRecord&)> on_iteration;
+};
+
+struct OptimizerResult {
+  std::string optimizer;
+  OptimizerStatus status = OptimizerStatus::Failed;
+  std::string message;  ///< the algorithm's own words, and ours where we overrule it
+  Eigen::VectorXd x;    ///< the best point found (feasible first, then lowest cost)
+  double cost = 0.0;
+  double max_violation = 0.0;
+  int iterations = 0;
+  long value_evaluations = 0;
+  long gradient_evaluations = 0;
+  double wall_time_s = 0.0;
+  std::vector<IterationRecord> history;
+};
+
+/// The optimizers by name: "sdcc", "slsqp", "mma", "ccsaq", "ipopt".
+const std::vector<std::string>& optimizerNames();
+
+/// Runs the named optimizer; throws std::invalid_argument for an unknown name.
+OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options);
+
+}  // namespace mbsopt

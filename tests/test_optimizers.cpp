@@ -1,0 +1,145 @@
+// Every optimizer behind the common interface on problems with known optima (DESIGN.md §5): it
+// reaches the optimum within its tolerance, or says cleanly why it cannot (MMA and CCSAQ take no
+// equality constraints); it never calls an infeasible point converged; it pays once per point.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include "optimizers/optimizer.hpp"
+#include "tests/analytic_problems.hpp"
+
+namespace mbsopt {
+namespace {
+
+/// Tight enough that each algorithm's own stopping test, not the budget, ends the runs below.
+OptimizerOptions tightOptions() {
+  OptimizerOptions options;
+  options.max_iterations = 1000;
+  options.tolerance = 1e-10;
+  options.feasibility_tolerance = 1e-8;
+  return options;
+}
+
+class EveryOptimizer : public testing::TestWithParam<std::string> {};
+
+TEST_P(EveryOptimizer, FindsTheBoundConstrainedMinimumOfAQuadratic) {
+  test::BoundedQuadratic problem;
+  const OptimizerResult r = minimize(GetParam(), problem, tightOptions());
+  EXPECT_EQ(r.status, OptimizerStatus::Converged) << r.message;
+  EXPECT_NEAR(r.x[0], 1.0, 1e-6);
+  EXPECT_NEAR(r.x[1], 0.5, 1e-4);  // |∂f/∂x₁| = 2|x₁ − ½|: a relative f tolerance of 1e-10 allows ~1e-5
+  EXPECT_NEAR(r.cost, 1.0, 1e-8);
+  EXPECT_FALSE(r.history.empty());
+  EXPECT_EQ(r.iterations, static_cast<int>(r.history.size()));
+}
+
+// The optimum satisfies the KKT conditions: g = 0 and ∇f = −μ∇g with μ ≥ 0. μ is the least-squares
+// multiplier at the returned point; the residual is relative to |∇f| ≈ 0.2 there.
+TEST_P(EveryOptimizer, FindsTheKktPointOfRosenbrockInTheUnitDisc) {
+  test::RosenbrockInDisc problem;
+  const OptimizerResult r = minimize(GetParam(), problem, tightOptions());
+  ASSERT_EQ(r.status, OptimizerStatus::Converged) << r.message;
+  NlpEvaluation e;
+  problem.evaluate(r.x, true, e);
+  EXPECT_NEAR(e.constraints[0], 0.0, 1e-6);
+  const Eigen::VectorXd grad_f = e.cost_gradient, grad_g = e.constraint_jacobian.row(0).transpose();
+  const double mu = -grad_f.dot(grad_g) / grad_g.squaredNorm();
+  EXPECT_GT(mu, 0.0);
+  EXPECT_LE((grad_f + mu * grad_g).norm(), 1e-4 * grad_f.norm());
+  EXPECT_NEAR(r.x[0], 0.7864, 1e-4);  // the published optimum (MATLAB's fmincon example), to its digits
+  EXPECT_NEAR(r.x[1], 0.6177, 1e-4);
+}
+
+TEST_P(EveryOptimizer, SolvesHockSchittkowski71OrSaysWhyNot) {
+  test::HockSchittkowski71 problem;
+  const OptimizerResult r = minimize(GetParam(), problem, tightOptions());
+  if (GetParam() == "mma" || GetParam() == "ccsaq") {  // NLopt's MMA and CCSAQ: inequalities only
+    EXPECT_EQ(r.status, OptimizerStatus::Unsupported);
+    EXPECT_NE(r.message.find("inequality constraints only"), std::string::npos) << r.message;
+    EXPECT_EQ(r.value_evaluations, 0);
+    return;
+  }
+  EXPECT_EQ(r.status, OptimizerStatus::Converged) << r.message;
+  EXPECT_NEAR(r.cost, test::HockSchittkowski71::kOptimalCost, 1e-6);
+  EXPECT_LE((r.x - test::HockSchittkowski71::optimum()).cwiseAbs().maxCoeff(), 1e-5);
+  EXPECT_LE(r.max_violation, 1e-8);
+}
+
+/// x ≥ 2 on [0, 1]: no feasible point exists.
+class Infeasible : public NlpProblem {
+ public:
+  Eigen::Index variableCount() const override { return 1; }
+  Eigen::Index inequalityCount() const override { return 1; }
+  Eigen::VectorXd lowerBounds() const override { return Eigen::VectorXd::Zero(1); }
+  Eigen::VectorXd upperBounds() const override { return Eigen::VectorXd::Ones(1); }
+  Eigen::VectorXd start() const override { return Eigen::VectorXd::Constant(1, 0.5); }
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    out.cost = x[0] * x[0];
+    out.constraints = Eigen::VectorXd::Constant(1, 2.0 - x[0]);
+    if (gradients) {
+      out.cost_gradient = Eigen::VectorXd::Constant(1, 2.0 * x[0]);
+      out.constraint_jacobian = Eigen::MatrixXd::Constant(1, 1, -1.0);
+    }
+  }
+};
+
+TEST_P(EveryOptimizer, NeverCallsAnInfeasiblePointConverged) {
+  Infeasible problem;
+  OptimizerOptions options = tightOptions();
+  options.max_iterations = 200;
+  const OptimizerResult r = minimize(GetParam(), problem, options);
+  EXPECT_NE(r.status, OptimizerStatus::Converged) << r.message;
+  EXPECT_GE(r.max_violation, 1.0 - 1e-9);  // the best it can do is x = 1
+}
+
+/// The quadratic, remembering every point it is evaluated at and failing beyond x₀ = 0.9.
+class Recording : public test::BoundedQuadratic {
+ public:
+  std::vector<std::pair<Eigen::VectorXd, bool>> calls;
+  bool fail_beyond = false;
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    calls.emplace_back(x, gradients);
+    if (fail_beyond && x[0] > 0.9) throw std::runtime_error("simulation diverged at x0 = " + std::to_string(x[0]));
+    BoundedQuadratic::evaluate(x, gradients, out);
+  }
+};
+
+TEST_P(EveryOptimizer, EvaluatesNoPointTwice) {
+  Recording problem;
+  const OptimizerResult r = minimize(GetParam(), problem, tightOptions());
+  std::set<std::pair<std::vector<double>, bool>> seen;
+  for (const auto& [x, gradients] : problem.calls)
+    EXPECT_TRUE(seen.insert({std::vector<double>(x.data(), x.data() + x.size()), gradients}).second);
+  EXPECT_EQ(r.value_evaluations, static_cast<long>(problem.calls.size()));
+}
+
+TEST_P(EveryOptimizer, ReportsAFailedEvaluationWithItsReason) {
+  Recording problem;
+  problem.fail_beyond = true;
+  OptimizerOptions options = tightOptions();
+  options.max_iterations = 100;
+  const OptimizerResult r = minimize(GetParam(), problem, options);
+  // NLopt stops at the failure; Ipopt shortens its steps and keeps pressing against x₀ = 0.9.
+  if (r.status != OptimizerStatus::Converged) {
+    EXPECT_NE(r.message.find("simulation diverged"), std::string::npos) << r.message;
+  }
+  EXPECT_LE(r.x[0], 0.9);  // the best point is one that was evaluated successfully
+}
+
+INSTANTIATE_TEST_SUITE_P(Optimizers, EveryOptimizer, testing::ValuesIn(optimizerNames()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(Optimizers, AnUnknownNameIsAnErrorThatListsTheKnownOnes) {
+  test::BoundedQuadratic problem;
+  try {
+    minimize("bfgs", problem, {});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("slsqp"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace mbsopt
