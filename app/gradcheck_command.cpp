@@ -10,9 +10,7 @@
 #include "app/atomic_file.hpp"
 #include "app/scene_argument.hpp"
 #include "problems/scene_text.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
+#include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 
@@ -79,12 +77,9 @@ void gradcheck(const GradcheckOptions& options) {
   const double simulation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<MethodResult> methods;
-  methods.push_back(run("adjoint", [&] { return adjointGradient(problem, functionals, x); }));
-  methods.push_back(run("continuous-adjoint", [&] { return continuousAdjointGradient(problem, functionals, x); }));
-  methods.push_back(run("direct", [&] { return directGradient(problem, functionals, x); }));
-  methods.push_back(run("fd_forward", [&] { return finiteDifferenceGradient(problem, functionals, x, options.fd_step, false); }));
-  methods.push_back(run("fd_central", [&] { return finiteDifferenceGradient(problem, functionals, x, options.fd_step, true); }));
-  const MethodResult& reference = methods[0].gradient ? methods[0] : methods[4];
+  for (const std::string& name : gradientMethodNames())
+    methods.push_back(run(name, [&] { return designGradient(name, problem, functionals, x, options.fd_step); }));
+  const MethodResult& reference = methods[0].gradient ? methods[0] : methods.back();  // adjoint, else fd_central
 
   // A step that leaves the model invalid (a mass or an inertia out of range) is left out of the sweep.
   std::vector<std::pair<double, DesignGradient>> sweep;

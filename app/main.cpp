@@ -4,16 +4,20 @@
 #include <iostream>
 
 #include "app/gradcheck_command.hpp"
+#include "app/optimize_command.hpp"
 #include "app/parameters_command.hpp"
 #include "app/simulate_command.hpp"
 #include "problems/scene_file.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"mbsopt - simulate multibody systems described in scene files (Newmark, relative coordinates, closed loops by SVD)"};
+  CLI::App app{
+      "mbsopt - simulate multibody systems described in scene files (Newmark, relative coordinates, closed loops by "
+      "SVD), compute exact design gradients and optimise designs"};
   app.require_subcommand(1);
   mbsopt::registerSimulateCommand(app);
   mbsopt::registerParametersCommand(app);
   mbsopt::registerGradcheckCommand(app);
+  mbsopt::registerOptimizeCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -47,6 +47,7 @@ void EvaluationCache::consider(const Entry& entry) {
 }
 
 void EvaluationCache::recordIteration(const Eigen::VectorXd& x, OptimizerResult& result) {
+  if (previous_iterate_.size() == x.size() && previous_iterate_ == x) return;  // asked again for the same point
   const NlpEvaluation& values = at(x, false);
   const double step = previous_iterate_.size() == x.size() ? (x - previous_iterate_).cwiseAbs().maxCoeff() : 0.0;
   previous_iterate_ = x;

@@ -19,7 +19,7 @@ class EvaluationCache {
   /// The values at x (with gradients when asked), from the cache when x was evaluated before.
   const NlpEvaluation& at(const Eigen::VectorXd& x, bool gradients);
 
-  /// Appends an iteration at x to `result.history` and reports it.
+  /// Appends an iteration at x to `result.history` and reports it, unless x is the last one recorded.
   void recordIteration(const Eigen::VectorXd& x, OptimizerResult& result);
   /// The same from the algorithm's own figures (Ipopt's callback does not hand over x).
   void recordIteration(double cost, double max_violation, double step, OptimizerResult& result);
