@@ -13,20 +13,14 @@ DesignNlp::DesignNlp(DesignProblem problem, std::string gradient_method, double 
   requireGradientMethod(gradient_method_);
 }
 
-Eigen::VectorXd DesignNlp::lowerBounds() const {
-  Eigen::VectorXd lower(variableCount());
-  for (std::size_t i = 0; i < problem_.design.variables.size(); ++i)
-    lower[static_cast<Eigen::Index>(i)] = problem_.design.variables[i].lower / problem_.design.variables[i].scale;
-  lower[lower.size() - 1] = problem_.design.artificial.lower / problem_.design.artificial.scale;
-  return lower;
-}
-
-Eigen::VectorXd DesignNlp::upperBounds() const {
-  Eigen::VectorXd upper(variableCount());
-  for (std::size_t i = 0; i < problem_.design.variables.size(); ++i)
-    upper[static_cast<Eigen::Index>(i)] = problem_.design.variables[i].upper / problem_.design.variables[i].scale;
-  upper[upper.size() - 1] = problem_.design.artificial.upper / problem_.design.artificial.scale;
-  return upper;
+Eigen::VectorXd DesignNlp::scaledBounds(double DesignVariable::*variable_bound,
+                                        double ArtificialVariable::*artificial_bound) const {
+  const DesignDescription& d = problem_.design;
+  Eigen::VectorXd bounds(variableCount());
+  for (std::size_t i = 0; i < d.variables.size(); ++i)
+    bounds[static_cast<Eigen::Index>(i)] = d.variables[i].*variable_bound / d.variables[i].scale;
+  bounds[bounds.size() - 1] = d.artificial.*artificial_bound / d.artificial.scale;
+  return bounds;
 }
 
 void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) {

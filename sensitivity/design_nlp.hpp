@@ -18,8 +18,8 @@ class DesignNlp : public NlpProblem {
 
   Eigen::Index variableCount() const override { return optimisationSize(problem_); }
   Eigen::Index inequalityCount() const override { return static_cast<Eigen::Index>(functionals_.size()); }
-  Eigen::VectorXd lowerBounds() const override;
-  Eigen::VectorXd upperBounds() const override;
+  Eigen::VectorXd lowerBounds() const override { return scaledBounds(&DesignVariable::lower, &ArtificialVariable::lower); }
+  Eigen::VectorXd upperBounds() const override { return scaledBounds(&DesignVariable::upper, &ArtificialVariable::upper); }
   Eigen::VectorXd start() const override { return initialPoint(problem_); }
   std::string constraintName(Eigen::Index i) const override { return functionals_[static_cast<std::size_t>(i)].name; }
   void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override;
@@ -28,6 +28,9 @@ class DesignNlp : public NlpProblem {
   const std::vector<ConstraintFunctional>& functionals() const { return functionals_; }
 
  private:
+  /// One bound of every variable, in the scaled units the optimizers see.
+  Eigen::VectorXd scaledBounds(double DesignVariable::*variable_bound, double ArtificialVariable::*artificial_bound) const;
+
   DesignProblem problem_;
   std::vector<ConstraintFunctional> functionals_;
   std::string gradient_method_;
