@@ -1,0 +1,95 @@
+#include "app/optimization_run.hpp"
+
+#include <numbers>
+#include <variant>
+
+#include "sensitivity/design_evaluation.hpp"
+#include "sensitivity/design_nlp.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+TimeMeasure formulationMeasure(const std::string& name) {
+  if (name == "positive_part") return TimeMeasure::PositivePart;
+  if (name == "squared_positive_part") return TimeMeasure::SquaredPositivePart;
+  if (name == "ks") return TimeMeasure::KsAggregate;
+  if (name == "grid_max") return TimeMeasure::GridMax;
+  throw std::invalid_argument("unknown formulation '" + name + "'");
+}
+
+bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngleSensor>(sensor.kind); }
+
+/// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
+std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
+
+/// max |y| over the time grid of every sensor the cost and the constraints use, at the scaled x.
+nlohmann::json responses(const DesignNlp& nlp, const Eigen::VectorXd& x) {
+  const DesignResponse response = evaluateDesign(nlp.problem(), nlp.functionals(), x);
+  const auto& sensors = nlp.problem().scene.model.sensors();
+  nlohmann::json out = nlohmann::json::object();
+  for (const ConstraintFunctional& f : nlp.functionals()) {
+    const Sensor& sensor = sensors[static_cast<std::size_t>(f.sensor)];
+    const double largest = response.sensors.col(f.sensor).cwiseAbs().maxCoeff();
+    out[responseKey(sensor)] = isAngle(sensor) ? largest * 180.0 / std::numbers::pi : largest;
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& formulationNames() {
+  static const std::vector<std::string> names{"positive_part", "squared_positive_part", "ks", "grid_max"};
+  return names;
+}
+
+OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
+                                const std::function<void(const IterationRecord&)>& on_iteration) {
+  problem.design.transcription.measure = formulationMeasure(choice.formulation);
+  problem.design.transcription.tolerance = choice.tolerance;
+  OptimizationRun run;
+  run.choice = choice;
+  if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
+  DesignNlp nlp(std::move(problem), run.choice.gradient);
+  OptimizerOptions options;
+  options.max_iterations = choice.max_iterations;
+  options.on_iteration = on_iteration;
+  run.result = minimize(choice.optimizer, nlp, options);
+  const auto& variables = nlp.problem().design.variables;
+  for (std::size_t i = 0; i < variables.size(); ++i)
+    run.design.push_back(run.result.x[static_cast<Eigen::Index>(i)] * variables[i].scale);
+  run.responses = responses(nlp, run.result.x);
+  const Sensor& cost_sensor = nlp.problem().scene.model.sensors()[static_cast<std::size_t>(nlp.functionals()[0].sensor)];
+  run.initial_cost = responses(nlp, nlp.start())[responseKey(cost_sensor)].get<double>();
+  return run;
+}
+
+nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
+  const OptimizerResult& r = run.result;
+  nlohmann::json history = nlohmann::json::array();
+  for (const IterationRecord& h : r.history)
+    history.push_back({{"iteration", h.iteration},
+                       {"cost", h.cost},
+                       {"max_violation", h.max_violation},
+                       {"step", h.step},
+                       {"simulations", h.value_evaluations},
+                       {"gradient_evaluations", h.gradient_evaluations}});
+  return {{"problem", problem},
+          {"optimizer", run.choice.optimizer},
+          {"gradient", run.choice.gradient},
+          {"formulation", run.choice.formulation},
+          {"status", toString(r.status)},
+          {"message", r.message},
+          {"design", run.design},
+          {"responses", run.responses},
+          {"initial_cost", run.initial_cost},
+          {"cost", r.cost},
+          {"max_violation", r.max_violation},
+          {"iterations", r.iterations},
+          {"simulations", r.value_evaluations},
+          {"gradient_evaluations", r.gradient_evaluations},
+          {"wall_time_s", r.wall_time_s},
+          {"history", history}};
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,42 @@
+// One optimizer run on a design problem, as `mbsopt optimize` and `mbsopt compare` perform and
+// report it: the problem with the chosen formulation, the gradients of the chosen method, the
+// result, the final design in SI units and its responses.
+#pragma once
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "optimizers/optimizer.hpp"
+#include "problems/design_problem.hpp"
+
+namespace mbsopt {
+
+struct RunChoice {
+  std::string optimizer = "slsqp";
+  std::string gradient = "adjoint";             ///< a gradientMethodNames() entry, or "fd" (= fd_central)
+  std::string formulation = "positive_part";    ///< positive_part | squared_positive_part | ks | grid_max
+  double tolerance = 0.0;                       ///< ε of the transcription
+  int max_iterations = 100;
+};
+
+/// The formulation names, in the order of --help.
+const std::vector<std::string>& formulationNames();
+
+struct OptimizationRun {
+  RunChoice choice;
+  OptimizerResult result;
+  std::vector<double> design;  ///< the final design variables in SI units, without b_{k+1}
+  nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
+  double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
+};
+
+/// Runs `choice` on `problem` (its transcription replaced by the choice's formulation).
+OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
+                                const std::function<void(const IterationRecord&)>& on_iteration);
+
+/// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
+nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
+
+}  // namespace mbsopt
