@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 
+#include "app/compare_command.hpp"
 #include "app/gradcheck_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/parameters_command.hpp"
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   mbsopt::registerParametersCommand(app);
   mbsopt::registerGradcheckCommand(app);
   mbsopt::registerOptimizeCommand(app);
+  mbsopt::registerCompareCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

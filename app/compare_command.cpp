@@ -1,0 +1,159 @@
+#include "app/compare_command.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "app/atomic_file.hpp"
+#include "app/gnuplot.hpp"
+#include "app/optimization_run.hpp"
+#include "app/scene_argument.hpp"
+#include "sensitivity/gradient_method.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+struct CompareOptions {
+  SceneArgument problem;
+  std::vector<std::string> optimizers = optimizerNames();
+  std::vector<std::string> gradients{"adjoint"};
+  std::vector<std::string> formulations{"positive_part"};
+  int max_iterations = 100;
+  std::string out;
+};
+
+std::string runName(const RunChoice& c) { return c.optimizer + "/" + c.gradient + "/" + c.formulation; }
+
+/// The table's columns, as (header, value) per run; the same for Markdown and CSV.
+std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run, const std::string& cost_key) {
+  const OptimizerResult& r = run.result;
+  const double final_cost = run.responses[cost_key].get<double>();
+  const auto number = [](double value, const char* format) {
+    char text[64];
+    std::snprintf(text, sizeof text, format, value);
+    return std::string(text);
+  };
+  return {{"optimizer", run.choice.optimizer},
+          {"gradient", run.choice.gradient},
+          {"formulation", run.choice.formulation},
+          {"status", toString(r.status)},
+          {cost_key, number(final_cost, "%.5g")},
+          {"lowered by", number(100.0 * (run.initial_cost - final_cost) / run.initial_cost, "%.2f %%")},
+          {"max violation", number(r.max_violation, "%.2g")},
+          {"iterations", std::to_string(r.iterations)},
+          {"simulations", std::to_string(r.value_evaluations)},
+          {"gradients", std::to_string(r.gradient_evaluations)},
+          {"wall time [s]", number(r.wall_time_s, "%.1f")}};
+}
+
+std::string markdownTable(const std::vector<OptimizationRun>& runs, const std::string& cost_key) {
+  std::ostringstream out;
+  const auto header = row(runs.front(), cost_key);
+  out << '|';
+  for (const auto& [name, value] : header) out << ' ' << name << " |";
+  out << "\n|";
+  for (std::size_t i = 0; i < header.size(); ++i) out << "---|";
+  out << '\n';
+  for (const OptimizationRun& run : runs) {
+    out << '|';
+    for (const auto& [name, value] : row(run, cost_key)) out << ' ' << value << " |";
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string csvTable(const std::vector<OptimizationRun>& runs, const std::string& cost_key) {
+  std::ostringstream out;
+  const auto header = row(runs.front(), cost_key);
+  for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i].first;
+  out << '\n';
+  for (const OptimizationRun& run : runs) {
+    const auto cells = row(run, cost_key);
+    for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i].second;
+    out << '\n';
+  }
+  return out.str();
+}
+
+/// Cost and max violation against simulations, one curve per run. A violation of exactly zero is
+/// drawn at 1e-12 so that the logarithmic axis can show it (the axis label says so).
+void plotConvergence(const std::string& stem, const std::string& problem, const std::vector<OptimizationRun>& runs) {
+  PlotPanel cost{"simulations", "cost", false, {}}, violation{"simulations", "max violation (0 drawn at 1e-12)", true, {}};
+  for (const OptimizationRun& run : runs) {
+    PlotSeries c{runName(run.choice), {}}, v{runName(run.choice), {}};
+    for (const IterationRecord& h : run.result.history) {
+      c.points.emplace_back(static_cast<double>(h.value_evaluations), h.cost);
+      v.points.emplace_back(static_cast<double>(h.value_evaluations), std::max(h.max_violation, 1e-12));
+    }
+    cost.series.push_back(c);
+    violation.series.push_back(v);
+  }
+  plotPanels(stem, "convergence on " + problem, {cost, violation});
+}
+
+void compare(const CompareOptions& options) {
+  const SceneSource source = resolveScene(options.problem.scene);
+  const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
+  if (!options.out.empty()) std::filesystem::create_directories(options.out);
+  std::vector<OptimizationRun> runs;
+  for (const std::string& formulation : options.formulations)
+    for (const std::string& gradient : options.gradients)
+      for (const std::string& optimizer : options.optimizers) {
+        const RunChoice choice{optimizer, gradient, formulation, 0.0, options.max_iterations};
+        std::printf("%-40s ", runName(choice).c_str());
+        std::fflush(stdout);
+        runs.push_back(runOptimization(problem, choice, {}));
+        const OptimizerResult& r = runs.back().result;
+        std::printf("%-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", toString(r.status).c_str(), r.cost,
+                    r.max_violation, r.value_evaluations, r.wall_time_s);
+        if (!options.out.empty())
+          writeAtomically(options.out + "/" + optimizer + "-" + runs.back().choice.gradient + "-" + formulation + ".json",
+                          [&](std::ostream& out) { out << toJson(runs.back(), source.path).dump(2) << '\n'; });
+      }
+  const std::string cost_key = runs.front().responses.begin().key();  // the cost's sensor comes first
+  const std::string table = markdownTable(runs, cost_key);
+  std::printf("\n%s", table.c_str());
+  if (options.out.empty()) return;
+  writeAtomically(options.out + "/comparison.md", [&](std::ostream& out) { out << table; });
+  writeAtomically(options.out + "/comparison.csv", [&](std::ostream& out) { out << csvTable(runs, cost_key); });
+  plotConvergence(options.out + "/convergence", source.path, runs);
+  std::printf("wrote %s/comparison.md, comparison.csv, convergence.png and one JSON per run\n", options.out.c_str());
+}
+
+}  // namespace
+
+void registerCompareCommand(CLI::App& app) {
+  auto options = std::make_shared<CompareOptions>();
+  CLI::App* command = app.add_subcommand(
+      "compare",
+      "Run every combination of optimizers, gradient methods and formulations on one design problem from its start "
+      "and tabulate them: status, final cost (the cost sensor's max |y|) and how much it fell, max violation, "
+      "iterations, simulations, gradients, wall time");
+  addSceneArgument(*command, options->problem, true);
+  command->add_option("--optimizers", options->optimizers, "Optimizers to run")
+      ->delimiter(',')
+      ->check(CLI::IsMember(optimizerNames()))
+      ->capture_default_str();
+  std::vector<std::string> gradients = gradientMethodNames();
+  gradients.push_back("fd");
+  command->add_option("--gradients", options->gradients, "Gradient methods (fd = fd_central)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(gradients))
+      ->capture_default_str();
+  command->add_option("--formulations", options->formulations, "Formulations (see `mbsopt optimize --help`)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(formulationNames()))
+      ->capture_default_str();
+  command->add_option("--max-iter", options->max_iterations, "Iteration budget of each run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--out", options->out,
+                      "Directory for comparison.md, comparison.csv, convergence.png (with its .dat and .gp) and one "
+                      "JSON per run (created if missing)");
+  command->callback([options] { compare(*options); });
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,73 @@
+#include "app/gnuplot.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "app/atomic_file.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// gnuplot's own quoting: single quotes, with ' doubled.
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+/// The shell's quoting: single quotes, with ' as '\''.
+std::string shellQuoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+bool plotPanels(const std::string& stem, const std::string& title, const std::vector<PlotPanel>& panels) {
+  const std::string data = stem + ".dat", script = stem + ".gp", image = stem + ".png";
+  // Data: every series a block of "x y" lines, blocks separated by two blank lines (gnuplot's index).
+  writeAtomically(data, [&](std::ostream& out) {
+    out.precision(17);
+    for (const PlotPanel& panel : panels)
+      for (const PlotSeries& series : panel.series) {
+        out << "# " << series.title << '\n';
+        for (const auto& [x, y] : series.points) out << x << ' ' << y << '\n';
+        out << "\n\n";
+      }
+  });
+  writeAtomically(script, [&](std::ostream& out) {
+    out << "set terminal pngcairo size 1000," << 380 * panels.size() << " font ',10'\n"
+        << "set output " << quoted(std::filesystem::path(image).filename().string()) << '\n'
+        << "set multiplot layout " << panels.size() << ",1 title " << quoted(title) << '\n'
+        << "set key outside right\nset grid\n";
+    int block = 0;
+    for (const PlotPanel& panel : panels) {
+      out << "set xlabel " << quoted(panel.xlabel) << "\nset ylabel " << quoted(panel.ylabel) << '\n'
+          << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
+      for (std::size_t s = 0; s < panel.series.size(); ++s, ++block)
+        out << (s ? ", " : "") << quoted(std::filesystem::path(data).filename().string()) << " index " << block
+            << " with linespoints title " << quoted(panel.series[s].title);
+      out << '\n';
+    }
+    out << "unset multiplot\n";
+  });
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+    std::cerr << "mbsopt: warning: gnuplot is not installed; wrote " << data << " and " << script << " only\n";
+    return false;
+  }
+  const std::filesystem::path directory = std::filesystem::path(script).parent_path();
+  const std::string command = "cd " + shellQuoted(directory.empty() ? "." : directory.string()) + " && gnuplot " +
+                              shellQuoted(std::filesystem::path(script).filename().string());
+  if (std::system(command.c_str()) != 0) {
+    std::cerr << "mbsopt: warning: gnuplot failed on " << script << '\n';
+    return false;
+  }
+  return true;
+}
+
+}  // namespace mbsopt
