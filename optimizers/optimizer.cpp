@@ -4,6 +4,7 @@
 
 #include "optimizers/ipopt_optimizer.hpp"
 #include "optimizers/nlopt_optimizer.hpp"
+#include "optimizers/sdcc.hpp"
 
 namespace mbsopt {
 
@@ -22,11 +23,12 @@ std::string toString(OptimizerStatus status) {
 }
 
 const std::vector<std::string>& optimizerNames() {
-  static const std::vector<std::string> names{"slsqp", "mma", "ccsaq", "ipopt"};
+  static const std::vector<std::string> names{"sdcc", "slsqp", "mma", "ccsaq", "ipopt"};
   return names;
 }
 
 OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
+  if (optimizer == "sdcc") return minimizeWithSdcc(problem, options);
   if (optimizer == "slsqp") return minimizeWithNlopt(nlopt::LD_SLSQP, problem, options);
   if (optimizer == "mma") return minimizeWithNlopt(nlopt::LD_MMA, problem, options);
   if (optimizer == "ccsaq") return minimizeWithNlopt(nlopt::LD_CCSAQ, problem, options);

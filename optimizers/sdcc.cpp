@@ -1,0 +1,267 @@
+#include "optimizers/sdcc.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "optimizers/evaluation_cache.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// δb₁ below this fraction of ‖W^{-1/2} l₀‖ is round-off of the projection, not a direction.
+constexpr double kNegligibleDescent = 1e-12;
+
+/// (7): every equality, and the inequalities with Ψᵢ ≥ −ε.
+std::vector<Eigen::Index> epsilonActive(const ConstraintLinearization& constraints, double epsilon) {
+  std::vector<Eigen::Index> active;
+  for (Eigen::Index i = 0; i < constraints.values.size(); ++i)
+    if (i < constraints.equality_count || constraints.values[i] >= -epsilon) active.push_back(i);
+  return active;
+}
+
+/// The projection (11) in the variables W^{1/2}b, where L becomes A = W^{-1/2}L and LᵀW⁻¹L = AᵀA:
+/// the rank-revealing solves are on A itself (its condition number, not its square), and dependent
+/// active constraints get the least-norm multipliers instead of a singular solve.
+struct ScaledProjection {
+  Eigen::VectorXd first_multipliers;   ///< μ₁
+  Eigen::VectorXd second_multipliers;  ///< μ₂ = (LᵀW⁻¹L)⁻¹Ψ̃, which compensation adds to μ₁ (11)
+  Eigen::VectorXd descent;             ///< W^{1/2}δb₁
+  Eigen::VectorXd compensation;        ///< W^{1/2}δb₂
+};
+
+ScaledProjection project(const Eigen::VectorXd& scaled_cost_gradient, const Eigen::MatrixXd& scaled_gradients,
+                         const Eigen::VectorXd& active_values) {
+  if (scaled_gradients.cols() == 0)  // no active constraint: plain steepest descent (6); Eigen's COD needs a column
+    return {Eigen::VectorXd(0), Eigen::VectorXd(0), -scaled_cost_gradient,
+            Eigen::VectorXd::Zero(scaled_cost_gradient.size())};
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> of_a(scaled_gradients),
+      of_a_transposed(scaled_gradients.transpose());
+  ScaledProjection p;
+  p.first_multipliers = -of_a.solve(scaled_cost_gradient);  // μ₁ = −(LᵀW⁻¹L)⁻¹LᵀW⁻¹l₀ = −A⁺W^{-1/2}l₀
+  p.descent = -(scaled_cost_gradient + scaled_gradients * p.first_multipliers);  // δb₁ = −W⁻¹(l₀ + Lμ₁)
+  const Eigen::VectorXd pulled_back = of_a_transposed.solve(active_values);  // A(AᵀA)⁻¹Ψ̃ = A⁺ᵀΨ̃
+  p.compensation = -pulled_back;  // δb₂ = −W⁻¹L(LᵀW⁻¹L)⁻¹Ψ̃
+  p.second_multipliers = of_a.solve(pulled_back);  // (AᵀA)⁻¹Ψ̃ = A⁺A⁺ᵀΨ̃
+  return p;
+}
+
+/// (10) shared by the W-orthogonal parts: ‖t δb₁ + φ δb₂‖²_W = t²‖δb₁‖²_W + φ²‖δb₂‖²_W = ξ².
+/// The compensation comes first (φ = 1 when it fits); t = 1/(2γ) of (11) takes what is left.
+void splitStepBound(double step_bound, double descent_norm, double compensation_norm, bool descent_negligible,
+                    SdccStep& step) {
+  if (compensation_norm >= step_bound) {  // no γ ≥ 0 solves (10)-(11): compensate as far as ξ allows
+    step.scale_compensation = step_bound / compensation_norm;
+    step.scale_descent = 0.0;
+    return;
+  }
+  step.scale_compensation = 1.0;
+  step.scale_descent =
+      descent_negligible ? 0.0 : std::sqrt(step_bound * step_bound - compensation_norm * compensation_norm) / descent_norm;
+}
+
+/// Vectors with the signs of the step's multipliers μ̃ = μ₁ + 2γφμ₂ (11): t μ₁ + φ μ₂ with t = 1/(2γ);
+/// μ₂ alone when the compensation takes all of ξ (γ → ∞); μ₁ alone when there is no descent (γ = 0).
+Eigen::VectorXd multiplierSigns(const ScaledProjection& p, const SdccStep& step) {
+  if (step.scale_descent > 0.0)
+    return step.scale_descent * p.first_multipliers + step.scale_compensation * p.second_multipliers;
+  return step.scale_compensation < 1.0 ? p.second_multipliers : p.first_multipliers;
+}
+
+/// The position in `active` of the inequality with the most negative multiplier, or −1 if none is.
+Eigen::Index leavingInequality(const std::vector<Eigen::Index>& active, const Eigen::VectorXd& signs,
+                               Eigen::Index equality_count) {
+  Eigen::Index leaving = -1;
+  for (Eigen::Index k = 0; k < signs.size(); ++k)
+    if (active[static_cast<std::size_t>(k)] >= equality_count && signs[k] < 0.0 && (leaving < 0 || signs[k] < signs[leaving]))
+      leaving = k;
+  return leaving;
+}
+
+}  // namespace
+
+SdccStep sdccStep(const Eigen::VectorXd& cost_gradient, const ConstraintLinearization& constraints,
+                  const Eigen::VectorXd& weights, double epsilon, double step_bound) {
+  const Eigen::VectorXd root = weights.cwiseSqrt();  // W^{1/2}
+  const Eigen::VectorXd scaled_cost_gradient = cost_gradient.cwiseQuotient(root);
+  SdccStep step;
+  step.active = epsilonActive(constraints, epsilon);  // (7)
+  for (;;) {
+    const Eigen::MatrixXd scaled_gradients =
+        root.cwiseInverse().asDiagonal() * constraints.gradients(Eigen::all, step.active);  // (9): l̃
+    const ScaledProjection p = project(scaled_cost_gradient, scaled_gradients, constraints.values(step.active));
+    const double descent_norm = p.descent.norm();
+    splitStepBound(step_bound, descent_norm, p.compensation.norm(),
+                   descent_norm <= kNegligibleDescent * scaled_cost_gradient.norm(), step);
+    const Eigen::Index leaving = leavingInequality(step.active, multiplierSigns(p, step), constraints.equality_count);
+    if (leaving < 0) {
+      step.multipliers = p.first_multipliers;
+      step.descent = p.descent.cwiseQuotient(root);
+      step.compensation = p.compensation.cwiseQuotient(root);
+      step.step = step.scale_descent * step.descent + step.scale_compensation * step.compensation;
+      return step;
+    }
+    step.active.erase(step.active.begin() + leaving);  // a negative multiplier: the constraint leaves (11)
+  }
+}
+
+namespace {
+
+/// The problem's constraints at x as (14) has them: [h; g; x − upper; lower − x].
+ConstraintLinearization linearize(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& values) {
+  const Eigen::Index n = x.size(), inequalities = problem.inequalityCount(), equalities = problem.equalityCount();
+  ConstraintLinearization c;
+  c.equality_count = equalities;
+  c.values.resize(equalities + inequalities + 2 * n);
+  c.values << values.constraints.tail(equalities), values.constraints.head(inequalities), x - problem.upperBounds(),
+      problem.lowerBounds() - x;
+  c.gradients.resize(n, c.values.size());
+  c.gradients << values.constraint_jacobian.bottomRows(equalities).transpose(),
+      values.constraint_jacobian.topRows(inequalities).transpose(), Eigen::MatrixXd::Identity(n, n),
+      -Eigen::MatrixXd::Identity(n, n);
+  return c;
+}
+
+/// The max violation the linearization (9) predicts after the step δb.
+double predictedViolation(const ConstraintLinearization& c, const Eigen::VectorXd& step) {
+  const Eigen::VectorXd after = c.values + c.gradients.transpose() * step;
+  const double equalities = c.equality_count > 0 ? after.head(c.equality_count).cwiseAbs().maxCoeff() : 0.0;
+  const Eigen::Index inequalities = after.size() - c.equality_count;
+  return std::max({0.0, equalities, inequalities > 0 ? after.tail(inequalities).maxCoeff() : 0.0});
+}
+
+std::string number(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
+Eigen::VectorXd checkedWeights(const SdccSettings& settings, Eigen::Index n) {
+  if (settings.weights.size() == 0) return Eigen::VectorXd::Ones(n);
+  if (settings.weights.size() != n || !(settings.weights.array() > 0.0).all() || !settings.weights.allFinite())
+    throw std::invalid_argument("SDCC: the weights W must be " + std::to_string(n) +
+                                " positive finite numbers, one per design variable");
+  return settings.weights;
+}
+
+/// One run: the current design and its linearization, the step bound ξ and the merit's penalty ρ.
+class SdccRun {
+ public:
+  SdccRun(NlpProblem& problem, const OptimizerOptions& options, const SdccSettings& settings, OptimizerResult& result)
+      : problem_(problem),
+        options_(options),
+        settings_(settings),
+        result_(result),
+        cache_(problem, options),
+        weights_(checkedWeights(settings, problem.variableCount())),
+        step_bound_(settings.initial_step_bound),
+        penalty_(settings.initial_penalty) {}
+
+  void run() {
+    // The start is clipped to the bounds: no point outside them is evaluated.
+    const Eigen::VectorXd start = problem_.start().cwiseMax(problem_.lowerBounds()).cwiseMin(problem_.upperBounds());
+    try {
+      accept(start, cache_.at(start, true));
+    } catch (const std::exception& e) {
+      return stop(OptimizerStatus::Failed, std::string("the start could not be evaluated: ") + e.what());
+    }
+    stationarity_scale_ = std::max(1.0, values_.cost_gradient.cwiseQuotient(weights_.cwiseSqrt()).norm());
+    for (int trial = 0;; ++trial) {
+      const SdccStep step =
+          sdccStep(values_.cost_gradient, constraints_, weights_, settings_.active_set_epsilon, step_bound_);
+      const double stationarity = step.descent.cwiseProduct(weights_.cwiseSqrt()).norm();  // ‖δb₁‖_W
+      const std::string where = "‖δb₁‖_W = " + number(stationarity) + ", max violation " + number(violation_);
+      if (stationarity <= settings_.stationarity_tolerance * stationarity_scale_ &&
+          violation_ <= options_.feasibility_tolerance)
+        return stop(OptimizerStatus::Converged, "a feasible KKT point: " + where);
+      if (trial == options_.max_iterations)
+        return stop(OptimizerStatus::MaxIterations, std::to_string(trial) + " trial steps, " + where);
+      if (step_bound_ < settings_.min_step_bound)
+        return stop(OptimizerStatus::Failed,
+                    "the step bound ξ fell below " + number(settings_.min_step_bound) + " at no feasible KKT point: " + where);
+      tryStep(step);
+    }
+  }
+
+  void finish() {
+    cache_.finish(result_);
+    rejectInfeasible(result_, options_.feasibility_tolerance);
+  }
+
+ private:
+  void accept(const Eigen::VectorXd& x, const NlpEvaluation& values) {
+    x_ = x;
+    values_ = values;
+    constraints_ = linearize(problem_, x_, values_);
+    violation_ = maxViolation(problem_, x_, values_);
+    cache_.recordIteration(x_, result_);
+  }
+
+  /// Evaluates x + δb (clipped to the bounds) and accepts it when the merit f + ρ·violation falls
+  /// by at least `acceptance_ratio` of what the linearization (8)-(9) predicts; adapts ξ.
+  void tryStep(const SdccStep& step) {
+    penalty_ = std::max(penalty_, settings_.penalty_factor * step.multipliers.lpNorm<1>());
+    const Eigen::VectorXd trial = (x_ + step.step).cwiseMax(problem_.lowerBounds()).cwiseMin(problem_.upperBounds());
+    const Eigen::VectorXd taken = trial - x_;
+    const double predicted = values_.cost_gradient.dot(taken) +  // (8)
+                             penalty_ * (predictedViolation(constraints_, taken) - violation_);  // (9)
+    if (!(predicted < 0.0)) return shrink();  // nothing to gain at this ξ (e.g. the bounds clip the step away)
+    try {
+      const NlpEvaluation& values = cache_.at(trial, true);
+      const double achieved = values.cost + penalty_ * maxViolation(problem_, trial, values) -
+                              (values_.cost + penalty_ * violation_);
+      const double ratio = achieved / predicted;
+      if (!(ratio >= settings_.acceptance_ratio)) return shrink();  // NaN is rejected too
+      accept(trial, values);
+      if (ratio >= settings_.growth_ratio) step_bound_ *= settings_.growth_factor;
+    } catch (const std::exception& e) {
+      last_failure_ = e.what();
+      shrink();
+    }
+  }
+
+  void shrink() { step_bound_ *= settings_.shrink_factor; }
+
+  void stop(OptimizerStatus status, const std::string& why) {
+    result_.status = status;
+    result_.message = "SDCC: " + why;
+    if (!last_failure_.empty()) result_.message += "; last failed evaluation: " + last_failure_;
+  }
+
+  NlpProblem& problem_;
+  const OptimizerOptions& options_;
+  const SdccSettings& settings_;
+  OptimizerResult& result_;
+  EvaluationCache cache_;
+  const Eigen::VectorXd weights_;
+  double step_bound_;
+  double penalty_;
+  double stationarity_scale_ = 1.0;
+  Eigen::VectorXd x_;
+  NlpEvaluation values_;
+  ConstraintLinearization constraints_;
+  double violation_ = 0.0;
+  std::string last_failure_;
+};
+
+}  // namespace
+
+OptimizerResult minimizeWithSdcc(NlpProblem& problem, const OptimizerOptions& options, const SdccSettings& settings) {
+  const auto start_time = std::chrono::steady_clock::now();
+  OptimizerResult result;
+  result.optimizer = "SDCC (steepest descent with constraint compensation)";
+  SdccRun run(problem, options, settings, result);
+  run.run();
+  run.finish();
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return result;
+}
+
+}  // namespace mbsopt

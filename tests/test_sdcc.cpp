@@ -1,0 +1,163 @@
+// SDCC (paper §2.2, (6)-(11)) step by step: the projected steepest descent and the compensation on
+// small linear constraints where every quantity has a closed form, the active-set rule of (11), and
+// a run that compensates a violated linear constraint in its first step. The whole-run behaviour on
+// the analytic problems is in test_optimizers.cpp (the EveryOptimizer suite).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "optimizers/sdcc.hpp"
+#include "tests/analytic_problems.hpp"
+
+namespace mbsopt {
+namespace {
+
+using test::values;
+
+/// Every quantity below is a handful of flops on O(1) numbers: round-off is ~1e-15, so 1e-12 only
+/// fails if a formula is wrong.
+constexpr double kRoundOff = 1e-12;
+
+/// One constraint Ψ = value with gradient `gradient`, an inequality unless said otherwise.
+ConstraintLinearization oneConstraint(double value, const Eigen::VectorXd& gradient, bool equality = false) {
+  ConstraintLinearization c;
+  c.values = Eigen::VectorXd::Constant(1, value);
+  c.gradients = gradient;
+  c.equality_count = equality ? 1 : 0;
+  return c;
+}
+
+double wNorm(const Eigen::VectorXd& v, const Eigen::VectorXd& weights) {
+  return std::sqrt(v.dot(weights.asDiagonal() * v));
+}
+
+// A violated linear constraint the cost pushes against (μ₁ > 0), with a non-identity W: the parts of
+// the step are the projected steepest descent and the compensation, characterised by their defining
+// properties rather than by the formulas the code uses.
+TEST(Sdcc, TheStepIsTheWProjectedSteepestDescentPlusAWOrthogonalCompensation) {
+  const Eigen::VectorXd weights = values({1.0, 4.0, 0.25});
+  const Eigen::VectorXd cost_gradient = values({-1.0, -2.0, -3.0}), a = values({1.0, 1.0, 1.0});
+  const double psi = 0.3, xi = 2.0;
+  const SdccStep s = sdccStep(cost_gradient, oneConstraint(psi, a), weights, 0.01, xi);
+  ASSERT_EQ(s.active.size(), 1U);
+  ASSERT_EQ(s.multipliers.size(), 1);
+  EXPECT_GT(s.multipliers[0], 0.0);
+  // δb₁ is tangent to the constraint and solves l₀ + l̃μ₁ + Wδb₁ = 0 (11) with γ = ½: it is the
+  // minimiser of l₀ᵀd + ½dᵀWd on the tangent plane, the W-projected steepest descent.
+  EXPECT_NEAR(a.dot(s.descent), 0.0, kRoundOff);
+  EXPECT_LE((cost_gradient + a * s.multipliers[0] + weights.asDiagonal() * s.descent).norm(), kRoundOff);
+  EXPECT_LT(cost_gradient.dot(s.descent), 0.0);
+  // δb₂ zeroes the linearized constraint (9) and is W-orthogonal to δb₁, so (10) splits exactly.
+  EXPECT_NEAR(a.dot(s.compensation), -psi, kRoundOff);
+  EXPECT_NEAR(s.descent.dot(weights.asDiagonal() * s.compensation), 0.0, kRoundOff);
+  ASSERT_LT(wNorm(s.compensation, weights), xi);  // so the compensation is taken whole
+  EXPECT_EQ(s.scale_compensation, 1.0);
+  EXPECT_NEAR(wNorm(s.step, weights), xi, kRoundOff);
+  EXPECT_NEAR(a.dot(s.step), -psi, kRoundOff);
+}
+
+// When the compensation alone is longer than ξ, no γ ≥ 0 satisfies (10)-(11): the step is the
+// compensation shortened to ξ, with no descent in it.
+TEST(Sdcc, ACompensationLongerThanTheStepBoundIsShortenedToIt) {
+  const Eigen::VectorXd weights = Eigen::VectorXd::Ones(2);
+  const SdccStep s = sdccStep(values({-1.0, 0.0}), oneConstraint(3.0, values({1.0, 0.0})), weights, 0.01, 0.5);
+  EXPECT_EQ(s.scale_descent, 0.0);
+  EXPECT_NEAR(s.scale_compensation, 0.5 / 3.0, kRoundOff);
+  EXPECT_LE((s.step - values({-0.5, 0.0})).norm(), kRoundOff);
+}
+
+// x₀ ≤ 0 active at x₀ = 0 (Ψ = 0). Descent along −l₀ = (−1, −1) enters the feasible side, so
+// μ₁ = −aᵀl₀/aᵀa = −1 < 0 and the constraint leaves the set: the step is plain steepest descent (6).
+// With l₀ = (−1, 1) the cost pushes outward, μ₁ = 1 > 0, and the step slides along x₀ = 0.
+TEST(Sdcc, AnInequalityWithANegativeMultiplierLeavesTheActiveSet) {
+  const Eigen::VectorXd weights = Eigen::VectorXd::Ones(2), a = values({1.0, 0.0});
+  const double xi = 0.1;
+  const SdccStep inward = sdccStep(values({1.0, 1.0}), oneConstraint(0.0, a), weights, 0.01, xi);
+  EXPECT_TRUE(inward.active.empty());
+  EXPECT_LE((inward.step + xi * values({1.0, 1.0}) / std::sqrt(2.0)).norm(), kRoundOff);
+
+  const SdccStep outward = sdccStep(values({-1.0, 1.0}), oneConstraint(0.0, a), weights, 0.01, xi);
+  ASSERT_EQ(outward.active.size(), 1U);
+  EXPECT_NEAR(outward.multipliers[0], 1.0, kRoundOff);
+  EXPECT_LE((outward.step - values({0.0, -xi})).norm(), kRoundOff);
+}
+
+TEST(Sdcc, AnEqualityNeverLeavesTheActiveSet) {
+  const SdccStep s =
+      sdccStep(values({1.0, 1.0}), oneConstraint(0.0, values({1.0, 0.0}), true), Eigen::VectorXd::Ones(2), 0.01, 0.1);
+  ASSERT_EQ(s.active.size(), 1U);
+  EXPECT_NEAR(s.multipliers[0], -1.0, kRoundOff);
+  EXPECT_NEAR(s.step[0], 0.0, kRoundOff);
+}
+
+// The ε of (7): an inequality at −2ε is left out of the set, one at −ε/2 is in it.
+TEST(Sdcc, OnlyInequalitiesWithinEpsilonOfZeroAreActive) {
+  const Eigen::VectorXd cost_gradient = values({-1.0, 1.0}), a = values({1.0, 0.0});
+  const double epsilon = 0.01, xi = 1.0;
+  EXPECT_TRUE(sdccStep(cost_gradient, oneConstraint(-2 * epsilon, a), Eigen::VectorXd::Ones(2), epsilon, xi).active.empty());
+  EXPECT_EQ(sdccStep(cost_gradient, oneConstraint(-epsilon / 2, a), Eigen::VectorXd::Ones(2), epsilon, xi).active.size(), 1U);
+}
+
+// The same constraint twice (rank-deficient LᵀW⁻¹L): the rank-revealing solve still gives the
+// projection onto the one tangent direction and the compensation, with nothing undefined.
+TEST(Sdcc, DependentActiveConstraintsGiveAFiniteProjection) {
+  ConstraintLinearization c;
+  c.values = values({0.2, 0.2});
+  c.gradients.resize(2, 2);
+  c.gradients << 1.0, 1.0, 1.0, 1.0;
+  const SdccStep s = sdccStep(values({-1.0, -2.0}), c, Eigen::VectorXd::Ones(2), 0.01, 1.0);
+  ASSERT_TRUE(s.step.allFinite());
+  ASSERT_TRUE(s.multipliers.allFinite());
+  EXPECT_NEAR(values({1.0, 1.0}).dot(s.descent), 0.0, kRoundOff);
+  EXPECT_NEAR(values({1.0, 1.0}).dot(s.compensation), -0.2, kRoundOff);
+}
+
+/// min (x₀ + 1)² + 2(x₁ + 1)² subject to x₀ + x₁ ≥ 1, from (0, 0) where the constraint is violated
+/// by 1 and the cost pushes away from it (μ₁ = 3 > 0). The optimum is on x₀ + x₁ = 1, where
+/// 2(x₀ + 1) = 4(x₁ + 1) gives (1, 0). Rosenbrock's class lends its two variables, one inequality,
+/// bounds [−2, 2]² and start (0, 0); only the functions differ.
+class QuadraticAboveALine : public test::RosenbrockInDisc {
+ public:
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    out.cost = (x[0] + 1) * (x[0] + 1) + 2 * (x[1] + 1) * (x[1] + 1);
+    out.constraints = Eigen::VectorXd::Constant(1, 1 - x[0] - x[1]);
+    if (gradients) {
+      out.cost_gradient = values({2 * (x[0] + 1), 4 * (x[1] + 1)});
+      out.constraint_jacobian = values({-1, -1}).transpose();
+    }
+  }
+};
+
+// ξ₀ = 0.8 exceeds ‖δb₂‖ = 1/√2, so the first step compensates the linear constraint whole: the
+// first accepted iterate is the first trial, and its violation is round-off of x₀ + x₁ ≈ 1.
+TEST(Sdcc, CompensatesAViolatedLinearConstraintInOneStep) {
+  QuadraticAboveALine problem;
+  OptimizerOptions options;
+  options.feasibility_tolerance = 1e-10;
+  SdccSettings settings;
+  settings.initial_step_bound = 0.8;
+  const OptimizerResult r = minimizeWithSdcc(problem, options, settings);
+  ASSERT_GE(r.history.size(), 2U);
+  EXPECT_EQ(r.history[0].max_violation, 1.0);
+  EXPECT_EQ(r.history[1].value_evaluations, 2);
+  EXPECT_LE(r.history[1].max_violation, kRoundOff);
+  EXPECT_EQ(r.status, OptimizerStatus::Converged) << r.message;
+  // ‖δb₁‖ ≤ 1e-7 × ‖l₀(b₀)‖ ≈ 4.5e-7 at the end; f's curvature along the line is 3, so x is within
+  // ~1.5e-7 of the optimum.
+  EXPECT_NEAR(r.x[0], 1.0, 1e-6);
+  EXPECT_NEAR(r.x[1], 0.0, 1e-6);
+}
+
+TEST(Sdcc, RefusesWeightsThatAreNotOnePositiveNumberPerVariable) {
+  test::BoundedQuadratic problem;
+  SdccSettings settings;
+  settings.weights = values({1.0, 0.0});
+  EXPECT_THROW(minimizeWithSdcc(problem, {}, settings), std::invalid_argument);
+  settings.weights = values({1.0});
+  EXPECT_THROW(minimizeWithSdcc(problem, {}, settings), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mbsopt
