@@ -113,7 +113,7 @@ void compare(const CompareOptions& options) {
           writeAtomically(options.out + "/" + optimizer + "-" + runs.back().choice.gradient + "-" + formulation + ".json",
                           [&](std::ostream& out) { out << toJson(runs.back(), source.path).dump(2) << '\n'; });
       }
-  const std::string cost_key = runs.front().responses.begin().key();  // the cost's sensor comes first
+  const std::string& cost_key = runs.front().cost_response;
   const std::string table = markdownTable(runs, cost_key);
   std::printf("\n%s", table.c_str());
   if (options.out.empty()) return;

@@ -41,7 +41,7 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
       }
   });
   writeAtomically(script, [&](std::ostream& out) {
-    out << "set terminal pngcairo size 1000," << 380 * panels.size() << " font ',10'\n"
+    out << "set terminal pngcairo noenhanced size 1000," << 380 * panels.size() << " font ',10'\n"
         << "set output " << quoted(std::filesystem::path(image).filename().string()) << '\n'
         << "set multiplot layout " << panels.size() << ",1 title " << quoted(title) << '\n'
         << "set key outside right\nset grid\n";

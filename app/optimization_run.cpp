@@ -60,7 +60,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
     run.design.push_back(run.result.x[static_cast<Eigen::Index>(i)] * variables[i].scale);
   run.responses = responses(nlp, run.result.x);
   const Sensor& cost_sensor = nlp.problem().scene.model.sensors()[static_cast<std::size_t>(nlp.functionals()[0].sensor)];
-  run.initial_cost = responses(nlp, nlp.start())[responseKey(cost_sensor)].get<double>();
+  run.cost_response = responseKey(cost_sensor);
+  run.initial_cost = responses(nlp, nlp.start())[run.cost_response].get<double>();
   return run;
 }
 

@@ -29,6 +29,7 @@ struct OptimizationRun {
   OptimizerResult result;
   std::vector<double> design;  ///< the final design variables in SI units, without b_{k+1}
   nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
+  std::string cost_response;   ///< the key in `responses` of the cost's sensor
   double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
 };
 
