@@ -51,7 +51,7 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
           << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
       for (std::size_t s = 0; s < panel.series.size(); ++s, ++block)
         out << (s ? ", " : "") << quoted(std::filesystem::path(data).filename().string()) << " index " << block
-            << " with linespoints title " << quoted(panel.series[s].title);
+            << (panel.markers ? " with linespoints" : " with lines") << " title " << quoted(panel.series[s].title);
       out << '\n';
     }
     out << "unset multiplot\n";

@@ -17,6 +17,7 @@ struct PlotPanel {
   std::string xlabel, ylabel;
   bool log_y = false;
   std::vector<PlotSeries> series;
+  bool markers = true;  ///< a marker at each point (iterations); plain lines for dense series
 };
 
 /// Writes STEM.dat (one block per series of each panel), STEM.gp and, when gnuplot is installed,

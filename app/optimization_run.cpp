@@ -23,9 +23,8 @@ bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngle
 /// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
 std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
 
-/// max |y| over the time grid of every sensor the cost and the constraints use, at the scaled x.
-nlohmann::json responses(const DesignNlp& nlp, const Eigen::VectorXd& x) {
-  const DesignResponse response = evaluateDesign(nlp.problem(), nlp.functionals(), x);
+/// max |y| over the time grid of every sensor the cost and the constraints use.
+nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
   const auto& sensors = nlp.problem().scene.model.sensors();
   nlohmann::json out = nlohmann::json::object();
   for (const ConstraintFunctional& f : nlp.functionals()) {
@@ -58,10 +57,15 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const auto& variables = nlp.problem().design.variables;
   for (std::size_t i = 0; i < variables.size(); ++i)
     run.design.push_back(run.result.x[static_cast<Eigen::Index>(i)] * variables[i].scale);
-  run.responses = responses(nlp, run.result.x);
-  const Sensor& cost_sensor = nlp.problem().scene.model.sensors()[static_cast<std::size_t>(nlp.functionals()[0].sensor)];
-  run.cost_response = responseKey(cost_sensor);
-  run.initial_cost = responses(nlp, nlp.start())[run.cost_response].get<double>();
+  const DesignResponse initial = evaluateDesign(nlp.problem(), nlp.functionals(), nlp.start());
+  const DesignResponse final = evaluateDesign(nlp.problem(), nlp.functionals(), run.result.x);
+  run.responses = responses(nlp, final);
+  const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
+  run.cost_response = responseKey(nlp.problem().scene.model.sensors()[static_cast<std::size_t>(cost_sensor)]);
+  run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
+  run.time = final.trajectory.time;
+  run.initial_history = initial.sensors.col(cost_sensor);
+  run.final_history = final.sensors.col(cost_sensor);
   return run;
 }
 

@@ -31,6 +31,8 @@ struct OptimizationRun {
   nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
   std::string cost_response;   ///< the key in `responses` of the cost's sensor
   double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
+  /// The cost's sensor over time (SI) at the start and at the final design (the paper's figure 8).
+  Eigen::VectorXd time, initial_history, final_history;
 };
 
 /// Runs `choice` on `problem` (its transcription replaced by the choice's formulation).

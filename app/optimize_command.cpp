@@ -1,9 +1,12 @@
 #include "app/optimize_command.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "app/atomic_file.hpp"
+#include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
 #include "sensitivity/gradient_method.hpp"
@@ -16,7 +19,30 @@ struct OptimizeOptions {
   SceneArgument problem;
   RunChoice choice;
   std::string json;
+  std::string out;
 };
+
+/// The paper's figures 6-8 for one run: cost and max violation against iterations, and the cost's
+/// sensor over time at the start and at the final design.
+void plotRun(const std::string& directory, const std::string& problem, const OptimizationRun& run) {
+  PlotPanel cost{"iteration", "cost", false, {}}, violation{"iteration", "max violation (0 drawn at 1e-12)", true, {}};
+  PlotSeries c{run.choice.optimizer, {}}, v{run.choice.optimizer, {}};
+  for (const IterationRecord& h : run.result.history) {
+    c.points.emplace_back(h.iteration, h.cost);
+    v.points.emplace_back(h.iteration, std::max(h.max_violation, 1e-12));
+  }
+  cost.series.push_back(c);
+  violation.series.push_back(v);
+  plotPanels(directory + "/history", "optimisation of " + problem, {cost, violation});
+  PlotPanel response{"t [s]", run.cost_response.substr(std::string("max_abs_").size()) + " (SI)", false, {}, false};
+  PlotSeries initial{"start", {}}, final{"final design", {}};
+  for (Eigen::Index k = 0; k < run.time.size(); ++k) {
+    initial.points.emplace_back(run.time[k], run.initial_history[k]);
+    final.points.emplace_back(run.time[k], run.final_history[k]);
+  }
+  response.series = {initial, final};
+  plotPanels(directory + "/response", "the cost's sensor at the start and at the final design", {response});
+}
 
 void printIteration(const IterationRecord& r) {
   std::printf("%5d  %14.8e  %11.3e  %10.3e  %6ld  %6ld\n", r.iteration, r.cost, r.max_violation, r.step,
@@ -43,6 +69,12 @@ void optimize(const OptimizeOptions& options) {
   for (const auto& [name, value] : run.responses.items()) std::printf("  %s = %.6g\n", name.c_str(), value.get<double>());
   if (!options.json.empty())
     writeAtomically(options.json, [&](std::ostream& out) { out << toJson(run, source.path).dump(2) << '\n'; });
+  if (!options.out.empty()) {
+    std::filesystem::create_directories(options.out);
+    writeAtomically(options.out + "/result.json", [&](std::ostream& out) { out << toJson(run, source.path).dump(2) << '\n'; });
+    plotRun(options.out, source.path, run);
+    std::printf("wrote %s/result.json, history.png, response.png (with their .dat and .gp)\n", options.out.c_str());
+  }
 }
 
 }  // namespace
@@ -83,6 +115,10 @@ void registerOptimizeCommand(CLI::App& app) {
                       "(SI), responses, initial_cost, cost, max_violation, iterations, simulations, gradient_evaluations, "
                       "wall_time_s, history[{iteration, cost, max_violation, step, simulations, "
                       "gradient_evaluations}]");
+  command->add_option("--out", options->out,
+                      "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
+                      "history.png (cost and max violation against iterations) and response.png (the cost's sensor "
+                      "over time at the start and at the final design)");
   command->callback([options] { optimize(*options); });
 }
 
