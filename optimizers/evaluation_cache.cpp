@@ -1,5 +1,7 @@
 #include "optimizers/evaluation_cache.hpp"
 
+#include "optimizers/first_order_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -71,11 +73,22 @@ void EvaluationCache::finish(OptimizerResult& result) const {
   result.max_violation = best_.violation;
 }
 
-void rejectInfeasible(OptimizerResult& result, double feasibility_tolerance) {
+void EvaluationCache::review(OptimizerResult& result) {
   if (result.status == OptimizerStatus::Failed || result.status == OptimizerStatus::Unsupported) return;
-  if (result.max_violation <= feasibility_tolerance) return;
+  if (result.max_violation > options_.feasibility_tolerance) {
+    result.status = OptimizerStatus::Failed;
+    result.message += "; no point it evaluated is feasible (max violation " + std::to_string(result.max_violation) + ")";
+    return;
+  }
+  if (result.status != OptimizerStatus::Converged) return;
+  const double active = std::max(100.0 * options_.feasibility_tolerance, 1e-6);
+  const double residual = firstOrderResidual(problem_, result.x, at(result.x, true), active);
+  result.value_evaluations = value_evaluations_;
+  result.gradient_evaluations = gradient_evaluations_;
+  if (residual <= kFirstOrderTolerance) return;
   result.status = OptimizerStatus::Failed;
-  result.message += "; no point it evaluated is feasible (max violation " + std::to_string(result.max_violation) + ")";
+  result.message += "; but the point is not first-order optimal (KKT residual " + std::to_string(residual) +
+                    "): the algorithm could not move from it";
 }
 
 }  // namespace mbsopt

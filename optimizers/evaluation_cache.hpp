@@ -10,6 +10,11 @@
 
 namespace mbsopt {
 
+/// The first-order residual above which a "converged" point is not taken as optimal: loose, because
+/// the algorithms' own tolerances are on steps and costs, and a max over a time grid is only
+/// piecewise smooth; a point where no active constraint balances the cost gradient scores 1.
+inline constexpr double kFirstOrderTolerance = 1e-2;
+
 class EvaluationCache {
  public:
   EvaluationCache(NlpProblem& problem, const OptimizerOptions& options) : problem_(problem), options_(options) {}
@@ -27,6 +32,12 @@ class EvaluationCache {
   /// Fills the result's point, cost, violation and counts: the best point evaluated (feasible
   /// within the options' tolerance with the lowest cost, else the least violation).
   void finish(OptimizerResult& result) const;
+
+  /// After finish(): the algorithm's verdict, checked. An infeasible best point is a failure that
+  /// says so; a "converged" point that fails the first-order conditions (residual above
+  /// kFirstOrderTolerance, first_order_check.hpp) is a failure that says the algorithm could not
+  /// move from it. May cost one gradient evaluation at the best point.
+  void review(OptimizerResult& result);
 
   long valueEvaluations() const { return value_evaluations_; }
   long gradientEvaluations() const { return gradient_evaluations_; }
@@ -49,8 +60,5 @@ class EvaluationCache {
   Eigen::VectorXd previous_iterate_;
 };
 
-/// A result the algorithm called converged (or stopped by budget) whose best point is infeasible
-/// becomes a failure that says so.
-void rejectInfeasible(OptimizerResult& result, double feasibility_tolerance);
 
 }  // namespace mbsopt

@@ -108,9 +108,8 @@ class ProblemAsTnlp : public Ipopt::TNLP {
   OptimizerResult& result_;
 };
 
-/// Ipopt's return, overruled where no feasible point was found.
-void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, OptimizerResult& result,
-           const OptimizerOptions& options) {
+/// Ipopt's return (EvaluationCache::review checks it).
+void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, OptimizerResult& result) {
   switch (code) {
     case Ipopt::Solve_Succeeded:
     case Ipopt::Solved_To_Acceptable_Level:
@@ -126,7 +125,6 @@ void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, Optim
   result.message = "Ipopt: return status " + std::to_string(static_cast<int>(code)) + ", solver status " +
                    std::to_string(static_cast<int>(tnlp.status));
   if (!tnlp.error.empty()) result.message += "; last failed evaluation: " + tnlp.error;
-  rejectInfeasible(result, options.feasibility_tolerance);
 }
 
 }  // namespace
@@ -150,7 +148,8 @@ OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& o
   if (app->Initialize() != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt: initialisation failed");
   const Ipopt::ApplicationReturnStatus code = app->OptimizeTNLP(tnlp);
   cache.finish(result);
-  judge(code, *tnlp, result, options);
+  judge(code, *tnlp, result);
+  cache.review(result);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }

@@ -67,8 +67,8 @@ void equalities(unsigned m, double* values, unsigned n, const double* x, double*
 
 std::vector<double> toStd(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
-/// The status from NLopt's own return code, overruled where the point it returned is infeasible.
-void judge(nlopt::result code, const std::string& words, OptimizerResult& result, const OptimizerOptions& options) {
+/// The status from NLopt's own return code (EvaluationCache::review checks it).
+void judge(nlopt::result code, const std::string& words, OptimizerResult& result) {
   result.message = "NLopt: " + words;
   if (code == nlopt::MAXEVAL_REACHED || code == nlopt::MAXTIME_REACHED) {
     result.status = OptimizerStatus::MaxIterations;
@@ -77,7 +77,6 @@ void judge(nlopt::result code, const std::string& words, OptimizerResult& result
   } else {
     result.status = OptimizerStatus::Failed;
   }
-  rejectInfeasible(result, options.feasibility_tolerance);
 }
 
 }  // namespace
@@ -128,7 +127,8 @@ OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& proble
     words = e.what();
   }
   cache.finish(result);
-  judge(code, words, result, options);
+  judge(code, words, result);
+  cache.review(result);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }

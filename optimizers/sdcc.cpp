@@ -192,7 +192,7 @@ class SdccRun {
 
   void finish() {
     cache_.finish(result_);
-    rejectInfeasible(result_, options_.feasibility_tolerance);
+    cache_.review(result_);
   }
 
  private:

@@ -94,6 +94,40 @@ TEST_P(EveryOptimizer, NeverCallsAnInfeasiblePointConverged) {
   EXPECT_GE(r.max_violation, 1.0 - 1e-9);  // the best it can do is x = 1
 }
 
+/// min x subject to ⟨1 − x⟩² ≤ 0 on [0, 3] from x = 2: the paper's kind of constraint, exactly zero
+/// with a zero gradient on the whole feasible set x ≥ 1. The optimum is x = 1.
+class FlatConstraint : public NlpProblem {
+ public:
+  Eigen::Index variableCount() const override { return 1; }
+  Eigen::Index inequalityCount() const override { return 1; }
+  Eigen::VectorXd lowerBounds() const override { return Eigen::VectorXd::Zero(1); }
+  Eigen::VectorXd upperBounds() const override { return Eigen::VectorXd::Constant(1, 3.0); }
+  Eigen::VectorXd start() const override { return Eigen::VectorXd::Constant(1, 2.0); }
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    const double excess = std::max(1.0 - x[0], 0.0);
+    out.cost = x[0];
+    out.constraints = Eigen::VectorXd::Constant(1, excess * excess);
+    if (gradients) {
+      out.cost_gradient = Eigen::VectorXd::Ones(1);
+      out.constraint_jacobian = Eigen::MatrixXd::Constant(1, 1, -2.0 * excess);
+    }
+  }
+};
+
+// Whoever stops short of x = 1 (MMA and CCSAQ treat a constraint at zero as active and cannot
+// move) must not call it converged: the first-order check catches it (cost gradient 1, nothing to
+// balance it, residual 1). Whoever calls it converged is at x = 1 within the feasibility tolerance
+// of ⟨1 − x⟩² ≤ 1e-8, i.e. |x − 1| ≤ 1e-4.
+TEST_P(EveryOptimizer, NeverCallsAPointItCannotLeaveConverged) {
+  FlatConstraint problem;
+  const OptimizerResult r = minimize(GetParam(), problem, tightOptions());
+  if (r.status == OptimizerStatus::Converged) {
+    EXPECT_NEAR(r.x[0], 1.0, 1e-4) << r.message;
+  } else {
+    EXPECT_GT(r.x[0], 1.0 - 1e-4) << r.message;  // never infeasible beyond the tolerance
+  }
+}
+
 /// The quadratic, remembering every point it is evaluated at and failing beyond x₀ = 0.9.
 class Recording : public test::BoundedQuadratic {
  public:
