@@ -20,12 +20,14 @@ struct CompareOptions {
   SceneArgument problem;
   std::vector<std::string> optimizers = optimizerNames();
   std::vector<std::string> gradients{"adjoint"};
-  std::vector<std::string> formulations{"positive_part"};
+  std::vector<std::string> formulations{""};  ///< "": the problem's own
   int max_iterations = 100;
   std::string out;
 };
 
-std::string runName(const RunChoice& c) { return c.optimizer + "/" + c.gradient + "/" + c.formulation; }
+std::string runName(const RunChoice& c) {
+  return c.optimizer + "/" + c.gradient + "/" + (c.formulation.empty() ? "problem's formulation" : c.formulation);
+}
 
 /// The table's columns, as (header, value) per run; the same for Markdown and CSV.
 std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run, const std::string& cost_key) {
@@ -106,11 +108,12 @@ void compare(const CompareOptions& options) {
         std::printf("%-40s ", runName(choice).c_str());
         std::fflush(stdout);
         runs.push_back(runOptimization(problem, choice, {}));
+        const std::string& formulation_used = runs.back().choice.formulation;
         const OptimizerResult& r = runs.back().result;
         std::printf("%-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", toString(r.status).c_str(), r.cost,
                     r.max_violation, r.value_evaluations, r.wall_time_s);
         if (!options.out.empty())
-          writeAtomically(options.out + "/" + optimizer + "-" + runs.back().choice.gradient + "-" + formulation + ".json",
+          writeAtomically(options.out + "/" + optimizer + "-" + runs.back().choice.gradient + "-" + formulation_used + ".json",
                           [&](std::ostream& out) { out << toJson(runs.back(), source.path).dump(2) << '\n'; });
       }
   const std::string& cost_key = runs.front().cost_response;
@@ -143,10 +146,10 @@ void registerCompareCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember(gradients))
       ->capture_default_str();
-  command->add_option("--formulations", options->formulations, "Formulations (see `mbsopt optimize --help`)")
+  command->add_option("--formulations", options->formulations,
+                      "Formulations (see `mbsopt optimize --help`); default: the problem's own")
       ->delimiter(',')
-      ->check(CLI::IsMember(formulationNames()))
-      ->capture_default_str();
+      ->check(CLI::IsMember(formulationNames()));
   command->add_option("--max-iter", options->max_iterations, "Iteration budget of each run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -10,12 +10,21 @@ namespace mbsopt {
 
 namespace {
 
+/// The transcription measures in the order of formulationNames().
+constexpr TimeMeasure kFormulationMeasures[] = {TimeMeasure::PositivePart, TimeMeasure::SquaredPositivePart,
+                                                TimeMeasure::KsAggregate, TimeMeasure::GridMax};
+
 TimeMeasure formulationMeasure(const std::string& name) {
-  if (name == "positive_part") return TimeMeasure::PositivePart;
-  if (name == "squared_positive_part") return TimeMeasure::SquaredPositivePart;
-  if (name == "ks") return TimeMeasure::KsAggregate;
-  if (name == "grid_max") return TimeMeasure::GridMax;
+  const auto& names = formulationNames();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return kFormulationMeasures[i];
   throw std::invalid_argument("unknown formulation '" + name + "'");
+}
+
+std::string formulationName(TimeMeasure measure) {
+  for (std::size_t i = 0; i < formulationNames().size(); ++i)
+    if (kFormulationMeasures[i] == measure) return formulationNames()[i];
+  throw std::invalid_argument("the problem's transcription is not one of the formulations");
 }
 
 bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngleSensor>(sensor.kind); }
@@ -44,10 +53,15 @@ const std::vector<std::string>& formulationNames() {
 
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 const std::function<void(const IterationRecord&)>& on_iteration) {
-  problem.design.transcription.measure = formulationMeasure(choice.formulation);
-  problem.design.transcription.tolerance = choice.tolerance;
   OptimizationRun run;
   run.choice = choice;
+  if (choice.formulation.empty()) {
+    run.choice.formulation = formulationName(problem.design.transcription.measure);
+    run.choice.tolerance = problem.design.transcription.tolerance;
+  } else {
+    problem.design.transcription.measure = formulationMeasure(choice.formulation);
+    problem.design.transcription.tolerance = choice.tolerance;
+  }
   if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
   DesignNlp nlp(std::move(problem), run.choice.gradient);
   OptimizerOptions options;

@@ -14,10 +14,12 @@
 namespace mbsopt {
 
 struct RunChoice {
-  std::string optimizer = "slsqp";
-  std::string gradient = "adjoint";             ///< a gradientMethodNames() entry, or "fd" (= fd_central)
-  std::string formulation = "positive_part";    ///< positive_part | squared_positive_part | ks | grid_max
-  double tolerance = 0.0;                       ///< ε of the transcription
+  std::string optimizer = "sdcc";
+  std::string gradient = "adjoint";  ///< a gradientMethodNames() entry, or "fd" (= fd_central)
+  /// positive_part | squared_positive_part | ks | grid_max; empty: the problem's own transcription
+  /// (measure and tolerance), as its scene file or C++ description says.
+  std::string formulation;
+  double tolerance = 0.0;  ///< ε of the transcription, with a formulation
   int max_iterations = 100;
 };
 

@@ -55,7 +55,7 @@ void optimize(const OptimizeOptions& options) {
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
   const RunChoice& c = options.choice;
   std::printf("optimize %s with %s, %s gradients, %s formulation\n", source.path.c_str(), c.optimizer.c_str(),
-              c.gradient.c_str(), c.formulation.c_str());
+              c.gradient.c_str(), c.formulation.empty() ? "the problem's" : c.formulation.c_str());
   std::printf(" iter  cost            max_viol     step        sims   grads\n");
   const OptimizationRun run = runOptimization(problem, c, printIteration);
   const OptimizerResult& r = run.result;
@@ -98,12 +98,12 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_option("--formulation", options->choice.formulation,
                       "How each max-over-time constraint becomes one number: positive_part (the paper's ∫⟨φ⟩dt), "
                       "squared_positive_part (∫⟨φ⟩²dt), ks (Kreisselmeier-Steinhauser over the time mean) or "
-                      "grid_max (the maximum over the time grid)")
-      ->check(CLI::IsMember(formulationNames()))
-      ->capture_default_str();
+                      "grid_max (the maximum over the time grid); default: the problem's own (the scene file's "
+                      "design.transcription)")
+      ->check(CLI::IsMember(formulationNames()));
   command->add_option("--tolerance", options->choice.tolerance,
-                      "ε ≥ 0: each transcribed constraint is measure ≤ ε (the paper's form has a zero gradient where "
-                      "satisfied; ε > 0 gives it an interior)")
+                      "ε ≥ 0 with --formulation: each transcribed constraint is measure ≤ ε (the paper's form has a "
+                      "zero gradient where satisfied; ε > 0 gives it an interior)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_option("--max-iter", options->choice.max_iterations,
