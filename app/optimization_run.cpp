@@ -1,5 +1,7 @@
 #include "app/optimization_run.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <numbers>
 #include <variant>
 
@@ -44,6 +46,23 @@ nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
   return out;
 }
 
+/// The largest excess of a constrained sensor over its bound on the time grid (angles in degrees).
+double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
+  const DesignProblem& problem = nlp.problem();
+  double excess = -std::numeric_limits<double>::infinity();
+  for (const ResponseConstraint& c : problem.design.constraints) {
+    const int index = sensorIndex(problem.scene.model, c.sensor);
+    const Eigen::VectorXd y = response.sensors.col(index);
+    double extreme = 0.0;
+    if (c.of == ResponseMeasure::MaxAbs) extreme = y.cwiseAbs().maxCoeff();
+    else if (c.of == ResponseMeasure::Max) extreme = y.maxCoeff();
+    else continue;  // integral and final-value constraints are exact functionals, checked by the optimizer
+    const double unit = isAngle(problem.scene.model.sensors()[static_cast<std::size_t>(index)]) ? 180.0 / std::numbers::pi : 1.0;
+    excess = std::max(excess, (extreme - c.bound) * unit);
+  }
+  return excess;
+}
+
 }  // namespace
 
 const std::vector<std::string>& formulationNames() {
@@ -74,6 +93,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const DesignResponse initial = evaluateDesign(nlp.problem(), nlp.functionals(), nlp.start());
   const DesignResponse final = evaluateDesign(nlp.problem(), nlp.functionals(), run.result.x);
   run.responses = responses(nlp, final);
+  run.limit_excess = limitExcess(nlp, final);
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
   run.cost_response = responseKey(nlp.problem().scene.model.sensors()[static_cast<std::size_t>(cost_sensor)]);
   run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
@@ -101,6 +121,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"message", r.message},
           {"design", run.design},
           {"responses", run.responses},
+          {"limit_excess", run.limit_excess},
           {"initial_cost", run.initial_cost},
           {"cost", r.cost},
           {"max_violation", r.max_violation},

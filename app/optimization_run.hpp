@@ -32,6 +32,9 @@ struct OptimizationRun {
   std::vector<double> design;  ///< the final design variables in SI units, without b_{k+1}
   nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
   std::string cost_response;   ///< the key in `responses` of the cost's sensor
+  /// max over the problem's constraints of (max over the time grid of ±y) − bound, in the sensor's
+  /// units (angles in degrees): ≤ 0 when every limit holds on the grid, whatever the formulation.
+  double limit_excess = 0.0;
   double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
   /// The cost's sensor over time (SI) at the start and at the final design (the paper's figure 8).
   Eigen::VectorXd time, initial_history, final_history;

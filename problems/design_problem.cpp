@@ -6,13 +6,13 @@
 
 namespace mbsopt {
 
-namespace {
-
 int sensorIndex(const Model& model, const std::string& name) {
   for (std::size_t s = 0; s < model.sensors().size(); ++s)
     if (model.sensors()[s].name == name) return static_cast<int>(s);
   throw std::invalid_argument("design: no sensor named '" + name + "'");
 }
+
+namespace {
 
 void checkRange(const std::string& what, double lower, double upper, double scale) {
   if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower <= upper))

@@ -78,6 +78,9 @@ struct ConstraintFunctional {
   double tolerance = 0.0;
 };
 
+/// The index of the sensor `name` in the model; throws std::invalid_argument naming it if absent.
+int sensorIndex(const Model& model, const std::string& name);
+
 /// The constraints of the problem in the order the optimizers see them: those of the cost (with the
 /// artificial variable), then those of each constraint, each MaxAbs giving two (y above, −y above).
 /// An integral constraint ∫y dt ≤ bound is ∫(y − bound/τ) dt ≤ 0; a final value y(τ) − bound ≤ 0.
