@@ -112,7 +112,7 @@ void registerOptimizeCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
-                      "(SI), responses, initial_cost, cost, max_violation, iterations, simulations, gradient_evaluations, "
+                      "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, gradient_evaluations, "
                       "wall_time_s, history[{iteration, cost, max_violation, step, simulations, "
                       "gradient_evaluations}]");
   command->add_option("--out", options->out,
