@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "dynamics/newmark.hpp"
@@ -25,10 +26,19 @@ struct DesignResponse {
 DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x);
 
+/// The cost and the constraints at one point (DesignResponse without the histories).
+struct DesignValues {
+  double cost = 0.0;
+  Eigen::VectorXd constraints;
+};
+
 /// Gradients with respect to the scaled point x: the cost's, and one row per constraint.
 struct DesignGradient {
   Eigen::VectorXd cost;
   Eigen::MatrixXd constraints;
+  /// The values at x when the method simulated x itself (the exact methods do), so that a caller
+  /// needing both pays one simulation; empty for finite differences.
+  std::optional<DesignValues> values;
 };
 
 /// ∂/∂b_{k+1} of every constraint, exactly (φ depends on b_{k+1} only through −b_{k+1}); every

@@ -24,13 +24,19 @@ Eigen::VectorXd DesignNlp::scaledBounds(double DesignVariable::*variable_bound,
 }
 
 void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) {
-  const DesignResponse response = evaluateDesign(problem_, functionals_, x);
-  out.cost = response.cost;
-  out.constraints = response.constraints;
-  if (!gradients) return;
-  const DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_);
-  out.cost_gradient = g.cost;
-  out.constraint_jacobian = g.constraints;
+  std::optional<DesignValues> values;
+  if (gradients) {
+    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_);
+    out.cost_gradient = std::move(g.cost);
+    out.constraint_jacobian = std::move(g.constraints);
+    values = std::move(g.values);  // the exact methods' own simulation: no second one
+  }
+  if (!values) {
+    const DesignResponse response = evaluateDesign(problem_, functionals_, x);
+    values = DesignValues{response.cost, response.constraints};
+  }
+  out.cost = values->cost;
+  out.constraints = std::move(values->constraints);
 }
 
 }  // namespace mbsopt

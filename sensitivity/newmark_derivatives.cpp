@@ -203,6 +203,7 @@ DesignGradient TrajectoryDerivatives::gradient(const Eigen::MatrixXd& dpsi_db) c
   for (Eigen::Index i = 0; i < variableCount(); ++i)
     out.constraints.col(i) = dpsi_db.col(i) * problem_.design.variables[static_cast<std::size_t>(i)].scale;
   out.constraints.col(nx - 1) = artificialColumn(problem_, functionals_, response_);
+  out.values = DesignValues{response_.cost, response_.constraints};
   return out;
 }
 

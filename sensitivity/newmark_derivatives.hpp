@@ -65,7 +65,8 @@ class TrajectoryDerivatives {
   ResponseSeeds seeds(Eigen::Index k);
 
   /// The gradients in the scaled variables from dΨ/db (functionals × design variables, SI): the
-  /// variables' scales, the cost b_{k+1}, and the exact column of the artificial variable.
+  /// variables' scales, the cost b_{k+1}, and the exact column of the artificial variable; with
+  /// the values of the simulation they belong to.
   DesignGradient gradient(const Eigen::MatrixXd& dpsi_db) const;
 
  private:
