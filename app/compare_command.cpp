@@ -1,6 +1,5 @@
 #include "app/compare_command.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,7 +9,6 @@
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
-#include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 
@@ -93,17 +91,9 @@ std::string csvTable(const std::vector<OptimizationRun>& runs, const std::string
 /// Cost and max violation against simulations, one curve per run. A violation of exactly zero is
 /// drawn at 1e-12 so that the logarithmic axis can show it (the axis label says so).
 void plotConvergence(const std::string& stem, const std::string& problem, const std::vector<OptimizationRun>& runs) {
-  PlotPanel cost{"simulations", "cost", false, {}}, violation{"simulations", "max violation (0 drawn at 1e-12)", true, {}};
-  for (const OptimizationRun& run : runs) {
-    PlotSeries c{runName(run.choice), {}}, v{runName(run.choice), {}};
-    for (const IterationRecord& h : run.result.history) {
-      c.points.emplace_back(static_cast<double>(h.value_evaluations), h.cost);
-      v.points.emplace_back(static_cast<double>(h.value_evaluations), std::max(h.max_violation, 1e-12));
-    }
-    cost.series.push_back(c);
-    violation.series.push_back(v);
-  }
-  plotPanels(stem, "convergence on " + problem, {cost, violation});
+  std::vector<std::pair<std::string, const OptimizationRun*>> titled;
+  for (const OptimizationRun& run : runs) titled.emplace_back(runName(run.choice), &run);
+  plotPanels(stem, "convergence on " + problem, convergencePanels(titled, true));
 }
 
 void compare(const CompareOptions& options) {
@@ -150,11 +140,9 @@ void registerCompareCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember(optimizerNames()))
       ->capture_default_str();
-  std::vector<std::string> gradients = gradientMethodNames();
-  gradients.push_back("fd");
   command->add_option("--gradients", options->gradients, "Gradient methods (fd = fd_central)")
       ->delimiter(',')
-      ->check(CLI::IsMember(gradients))
+      ->check(CLI::IsMember(gradientChoices()))
       ->capture_default_str();
   command->add_option("--formulations", options->formulations,
                       "Formulations (see `mbsopt optimize --help`); default: the problem's own")

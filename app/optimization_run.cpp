@@ -7,6 +7,7 @@
 
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/design_nlp.hpp"
+#include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 
@@ -130,6 +131,29 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"gradient_evaluations", r.gradient_evaluations},
           {"wall_time_s", r.wall_time_s},
           {"history", history}};
+}
+
+std::vector<std::string> gradientChoices() {
+  std::vector<std::string> choices = gradientMethodNames();
+  choices.push_back("fd");
+  return choices;
+}
+
+std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
+                                         bool against_simulations) {
+  const std::string x = against_simulations ? "simulations" : "iteration";
+  PlotPanel cost{x, "cost", false, {}}, violation{x, "max violation (0 drawn at 1e-12)", true, {}};
+  for (const auto& [title, run] : runs) {
+    PlotSeries c{title, {}}, v{title, {}};
+    for (const IterationRecord& h : run->result.history) {
+      const double at = against_simulations ? static_cast<double>(h.value_evaluations) : h.iteration;
+      c.points.emplace_back(at, h.cost);
+      v.points.emplace_back(at, std::max(h.max_violation, 1e-12));
+    }
+    cost.series.push_back(c);
+    violation.series.push_back(v);
+  }
+  return {cost, violation};
 }
 
 }  // namespace mbsopt

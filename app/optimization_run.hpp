@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/gnuplot.hpp"
 #include "optimizers/optimizer.hpp"
 #include "problems/design_problem.hpp"
 
@@ -46,5 +47,13 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
 
 /// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
+
+/// What the commands accept as a gradient method: gradientMethodNames() and "fd" (= fd_central).
+std::vector<std::string> gradientChoices();
+
+/// Two panels, the cost and the max violation (zero drawn at 1e-12 on the logarithmic axis),
+/// against iterations or against simulations, one curve per (title, run).
+std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
+                                         bool against_simulations);
 
 }  // namespace mbsopt

@@ -1,6 +1,5 @@
 #include "app/optimize_command.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,7 +8,6 @@
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
-#include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 
@@ -25,15 +23,7 @@ struct OptimizeOptions {
 /// The paper's figures 6-8 for one run: cost and max violation against iterations, and the cost's
 /// sensor over time at the start and at the final design.
 void plotRun(const std::string& directory, const std::string& problem, const OptimizationRun& run) {
-  PlotPanel cost{"iteration", "cost", false, {}}, violation{"iteration", "max violation (0 drawn at 1e-12)", true, {}};
-  PlotSeries c{run.choice.optimizer, {}}, v{run.choice.optimizer, {}};
-  for (const IterationRecord& h : run.result.history) {
-    c.points.emplace_back(h.iteration, h.cost);
-    v.points.emplace_back(h.iteration, std::max(h.max_violation, 1e-12));
-  }
-  cost.series.push_back(c);
-  violation.series.push_back(v);
-  plotPanels(directory + "/history", "optimisation of " + problem, {cost, violation});
+  plotPanels(directory + "/history", "optimisation of " + problem, convergencePanels({{run.choice.optimizer, &run}}, false));
   PlotPanel response{"t [s]", run.cost_response.substr(std::string("max_abs_").size()) + " (SI)", false, {}, false};
   PlotSeries initial{"start", {}}, final{"final design", {}};
   for (Eigen::Index k = 0; k < run.time.size(); ++k) {
@@ -90,10 +80,8 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_option("--optimizer", options->choice.optimizer, "The optimizer")
       ->check(CLI::IsMember(optimizerNames()))
       ->capture_default_str();
-  std::vector<std::string> gradients = gradientMethodNames();
-  gradients.push_back("fd");
   command->add_option("--gradient", options->choice.gradient, "The gradient method (fd = fd_central)")
-      ->check(CLI::IsMember(gradients))
+      ->check(CLI::IsMember(gradientChoices()))
       ->capture_default_str();
   command->add_option("--formulation", options->choice.formulation,
                       "How each max-over-time constraint becomes one number: positive_part (the paper's ∫⟨φ⟩dt), "
