@@ -19,6 +19,7 @@ struct CompareOptions {
   std::vector<std::string> optimizers = optimizerNames();
   std::vector<std::string> gradients{"adjoint"};
   std::vector<std::string> formulations{""};  ///< "": the problem's own
+  double tolerance = 0.0;                     ///< ε of the formulations
   int max_iterations = 100;
   std::string out;
 };
@@ -27,8 +28,28 @@ struct CompareOptions {
 /// (angles in degrees): the 1e-3 degree.
 constexpr double kLimitTolerance = 1e-3;
 
-std::string runName(const RunChoice& c) {
-  return c.optimizer + "/" + c.gradient + "/" + (c.formulation.empty() ? "problem's formulation" : c.formulation);
+/// The formulation with its ε when there is one: "positive_part", "positive_part ε=1e-06".
+std::string formulationLabel(const RunChoice& c) {
+  std::string label = c.formulation.empty() ? "problem's formulation" : c.formulation;
+  if (c.tolerance > 0.0) {
+    char epsilon[32];
+    std::snprintf(epsilon, sizeof epsilon, " ε=%g", c.tolerance);
+    label += epsilon;
+  }
+  return label;
+}
+
+std::string runName(const RunChoice& c) { return c.optimizer + "/" + c.gradient + "/" + formulationLabel(c); }
+
+/// The per-run JSON's name: OPTIMIZER-GRADIENT-FORMULATION[-epsTOLERANCE].json.
+std::string runFileName(const RunChoice& c) {
+  std::string name = c.optimizer + "-" + c.gradient + "-" + c.formulation;
+  if (c.tolerance > 0.0) {
+    char epsilon[32];
+    std::snprintf(epsilon, sizeof epsilon, "-eps%g", c.tolerance);
+    name += epsilon;
+  }
+  return name + ".json";
 }
 
 /// The table's columns, as (header, value) per run; the same for Markdown and CSV.
@@ -43,7 +64,7 @@ std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run,
   std::vector<std::pair<std::string, std::string>> cells{
       {"optimizer", run.choice.optimizer},
       {"gradient", run.choice.gradient},
-      {"formulation", run.choice.formulation},
+      {"formulation", formulationLabel(run.choice)},
       {"status", toString(r.status)},
       {cost_key, number(final_cost, "%.5g")},
       {"lowered by", number(100.0 * (run.initial_cost - final_cost) / run.initial_cost, "%.2f %%")}};
@@ -55,6 +76,7 @@ std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run,
           {"iterations", std::to_string(r.iterations)},
           {"simulations", std::to_string(r.value_evaluations)},
           {"gradients", std::to_string(r.gradient_evaluations)},
+          {"in simulations", number(run.simulation_equivalents, "%.0f")},
           {"wall time [s]", number(r.wall_time_s, "%.1f")}});
   return cells;
 }
@@ -104,16 +126,15 @@ void compare(const CompareOptions& options) {
   for (const std::string& formulation : options.formulations)
     for (const std::string& gradient : options.gradients)
       for (const std::string& optimizer : options.optimizers) {
-        const RunChoice choice{optimizer, gradient, formulation, 0.0, options.max_iterations};
+        const RunChoice choice{optimizer, gradient, formulation, options.tolerance, options.max_iterations};
         std::printf("%-40s ", runName(choice).c_str());
         std::fflush(stdout);
         runs.push_back(runOptimization(problem, choice, {}));
-        const std::string& formulation_used = runs.back().choice.formulation;
         const OptimizerResult& r = runs.back().result;
         std::printf("%-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", toString(r.status).c_str(), r.cost,
                     r.max_violation, r.value_evaluations, r.wall_time_s);
         if (!options.out.empty())
-          writeAtomically(options.out + "/" + optimizer + "-" + runs.back().choice.gradient + "-" + formulation_used + ".json",
+          writeAtomically(options.out + "/" + runFileName(runs.back().choice),
                           [&](std::ostream& out) { out << toJson(runs.back(), source.path).dump(2) << '\n'; });
       }
   const std::string& cost_key = runs.front().cost_response;
@@ -134,7 +155,7 @@ void registerCompareCommand(CLI::App& app) {
       "compare",
       "Run every combination of optimizers, gradient methods and formulations on one design problem from its start "
       "and tabulate them: status, final cost (the cost sensor's max |y|) and how much it fell, max violation, "
-      "iterations, simulations, gradients, wall time");
+      "iterations, simulations, gradients, the evaluations' wall time in simulations, wall time");
   addSceneArgument(*command, options->problem, true);
   command->add_option("--optimizers", options->optimizers, "Optimizers to run")
       ->delimiter(',')
@@ -148,6 +169,10 @@ void registerCompareCommand(CLI::App& app) {
                       "Formulations (see `mbsopt optimize --help`); default: the problem's own")
       ->delimiter(',')
       ->check(CLI::IsMember(formulationNames()));
+  command->add_option("--tolerance", options->tolerance,
+                      "ε ≥ 0 of every formulation given by --formulations (see `mbsopt optimize --help`)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   command->add_option("--max-iter", options->max_iterations, "Iteration budget of each run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

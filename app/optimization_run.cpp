@@ -1,6 +1,7 @@
 #include "app/optimization_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <numbers>
 #include <variant>
@@ -64,6 +65,22 @@ double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
   return excess;
 }
 
+/// The design variables of the scaled x in SI units, without b_{k+1}.
+std::vector<double> designInSi(const DesignProblem& problem, const Eigen::VectorXd& x) {
+  std::vector<double> design;
+  const auto& variables = problem.design.variables;
+  for (std::size_t i = 0; i < variables.size(); ++i) design.push_back(x[static_cast<Eigen::Index>(i)] * variables[i].scale);
+  return design;
+}
+
+/// Evaluates x and measures how long that takes.
+DesignResponse timedEvaluation(const DesignNlp& nlp, const Eigen::VectorXd& x, double& seconds) {
+  const auto start_time = std::chrono::steady_clock::now();
+  DesignResponse response = evaluateDesign(nlp.problem(), nlp.functionals(), x);
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return response;
+}
+
 }  // namespace
 
 const std::vector<std::string>& formulationNames() {
@@ -88,11 +105,15 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   options.max_iterations = choice.max_iterations;
   options.on_iteration = on_iteration;
   run.result = minimize(choice.optimizer, nlp, options);
-  const auto& variables = nlp.problem().design.variables;
-  for (std::size_t i = 0; i < variables.size(); ++i)
-    run.design.push_back(run.result.x[static_cast<Eigen::Index>(i)] * variables[i].scale);
-  const DesignResponse initial = evaluateDesign(nlp.problem(), nlp.functionals(), nlp.start());
-  const DesignResponse final = evaluateDesign(nlp.problem(), nlp.functionals(), run.result.x);
+  for (const DesignVariable& v : nlp.problem().design.variables) run.variables.push_back(v.parameter);
+  run.design = designInSi(nlp.problem(), run.result.x);
+  for (const IterationRecord& h : run.result.history)
+    run.iterate_designs.push_back(h.x.size() > 0 ? designInSi(nlp.problem(), h.x) : std::vector<double>{});
+  double initial_s = 0.0, final_s = 0.0;
+  const DesignResponse initial = timedEvaluation(nlp, nlp.start(), initial_s);
+  const DesignResponse final = timedEvaluation(nlp, run.result.x, final_s);
+  run.simulation_s = std::min(initial_s, final_s);  // interference only ever slows a run down
+  run.simulation_equivalents = nlp.evaluationSeconds() / run.simulation_s;
   run.responses = responses(nlp, final);
   run.limit_excess = limitExcess(nlp, final);
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
@@ -107,13 +128,16 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
   const OptimizerResult& r = run.result;
   nlohmann::json history = nlohmann::json::array();
-  for (const IterationRecord& h : r.history)
+  for (std::size_t k = 0; k < r.history.size(); ++k) {
+    const IterationRecord& h = r.history[k];
     history.push_back({{"iteration", h.iteration},
                        {"cost", h.cost},
                        {"max_violation", h.max_violation},
                        {"step", h.step},
                        {"simulations", h.value_evaluations},
-                       {"gradient_evaluations", h.gradient_evaluations}});
+                       {"gradient_evaluations", h.gradient_evaluations},
+                       {"design", run.iterate_designs[k].empty() ? nlohmann::json(nullptr) : nlohmann::json(run.iterate_designs[k])}});
+  }
   return {{"problem", problem},
           {"optimizer", run.choice.optimizer},
           {"gradient", run.choice.gradient},
@@ -129,6 +153,8 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"iterations", r.iterations},
           {"simulations", r.value_evaluations},
           {"gradient_evaluations", r.gradient_evaluations},
+          {"simulation_equivalents", run.simulation_equivalents},
+          {"simulation_s", run.simulation_s},
           {"wall_time_s", r.wall_time_s},
           {"history", history}};
 }
@@ -137,6 +163,18 @@ std::vector<std::string> gradientChoices() {
   std::vector<std::string> choices = gradientMethodNames();
   choices.push_back("fd");
   return choices;
+}
+
+PlotPanel designPanel(const OptimizationRun& run) {
+  PlotPanel panel{"iteration", "design variables (SI)", true, {}};
+  for (std::size_t i = 0; i < run.variables.size(); ++i) {
+    PlotSeries series{run.variables[i], {}};
+    for (std::size_t k = 0; k < run.iterate_designs.size(); ++k)
+      if (!run.iterate_designs[k].empty())
+        series.points.emplace_back(run.result.history[k].iteration, run.iterate_designs[k][i]);
+    panel.series.push_back(series);
+  }
+  return panel;
 }
 
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,

@@ -30,13 +30,21 @@ const std::vector<std::string>& formulationNames();
 struct OptimizationRun {
   RunChoice choice;
   OptimizerResult result;
+  std::vector<std::string> variables;  ///< the design variables' parameter names
   std::vector<double> design;  ///< the final design variables in SI units, without b_{k+1}
+  /// The design (SI, without b_{k+1}) at each record of result.history; empty where the optimizer
+  /// did not say which point an iteration was.
+  std::vector<std::vector<double>> iterate_designs;
   nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
   std::string cost_response;   ///< the key in `responses` of the cost's sensor
   /// max over the problem's constraints of (max over the time grid of ±y) − bound, in the sensor's
   /// units (angles in degrees): ≤ 0 when every limit holds on the grid, whatever the formulation.
   double limit_excess = 0.0;
   double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
+  double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the faster of two)
+  /// The optimizer's evaluations (simulations and gradients) in simulations: their wall time over
+  /// simulation_s (DESIGN.md §5).
+  double simulation_equivalents = 0.0;
   /// The cost's sensor over time (SI) at the start and at the final design (the paper's figure 8).
   Eigen::VectorXd time, initial_history, final_history;
 };
@@ -50,6 +58,10 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
 
 /// What the commands accept as a gradient method: gradientMethodNames() and "fd" (= fd_central).
 std::vector<std::string> gradientChoices();
+
+/// The design variables (SI) against iterations on a logarithmic axis, one curve per variable
+/// (the paper's figure 7).
+PlotPanel designPanel(const OptimizationRun& run);
 
 /// Two panels, the cost and the max violation (zero drawn at 1e-12 on the logarithmic axis),
 /// against iterations or against simulations, one curve per (title, run).

@@ -20,10 +20,12 @@ struct OptimizeOptions {
   std::string out;
 };
 
-/// The paper's figures 6-8 for one run: cost and max violation against iterations, and the cost's
-/// sensor over time at the start and at the final design.
+/// The paper's figures 6-8 for one run: cost, max violation and design variables against
+/// iterations, and the cost's sensor over time at the start and at the final design.
 void plotRun(const std::string& directory, const std::string& problem, const OptimizationRun& run) {
-  plotPanels(directory + "/history", "optimisation of " + problem, convergencePanels({{run.choice.optimizer, &run}}, false));
+  std::vector<PlotPanel> history = convergencePanels({{run.choice.optimizer, &run}}, false);
+  history.push_back(designPanel(run));
+  plotPanels(directory + "/history", "optimisation of " + problem, history);
   PlotPanel response{"t [s]", run.cost_response.substr(std::string("max_abs_").size()) + " (SI)", false, {}, false};
   PlotSeries initial{"start", {}}, final{"final design", {}};
   for (Eigen::Index k = 0; k < run.time.size(); ++k) {
@@ -50,10 +52,10 @@ void optimize(const OptimizeOptions& options) {
   const OptimizationRun run = runOptimization(problem, c, printIteration);
   const OptimizerResult& r = run.result;
   std::printf("%s: %s (%s)\n", r.optimizer.c_str(), toString(r.status).c_str(), r.message.c_str());
-  std::printf("cost %.8g (at the start %.8g), max violation %.3g, %d iterations, %ld simulations, %ld gradients, "
-              "%.3g s\n",
+  std::printf("cost %.8g (at the start %.8g), max violation %.3g, %d iterations, %ld simulations, %ld gradients "
+              "(%.0f simulations' time in all), %.3g s\n",
               r.cost, run.initial_cost, r.max_violation, r.iterations, r.value_evaluations, r.gradient_evaluations,
-              r.wall_time_s);
+              run.simulation_equivalents, r.wall_time_s);
   for (std::size_t i = 0; i < run.design.size(); ++i)
     std::printf("  %s = %.8g\n", problem.design.variables[i].parameter.c_str(), run.design[i]);
   for (const auto& [name, value] : run.responses.items()) std::printf("  %s = %.6g\n", name.c_str(), value.get<double>());
@@ -100,13 +102,14 @@ void registerOptimizeCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
-                      "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, gradient_evaluations, "
-                      "wall_time_s, history[{iteration, cost, max_violation, step, simulations, "
-                      "gradient_evaluations}]");
+                      "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "
+                      "gradient_evaluations, simulation_equivalents (the evaluations' wall time over one "
+                      "simulation's, simulation_s), wall_time_s, history[{iteration, cost, max_violation, step, "
+                      "simulations, gradient_evaluations, design (SI, null where the optimizer does not say)}]");
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
-                      "history.png (cost and max violation against iterations) and response.png (the cost's sensor "
-                      "over time at the start and at the final design)");
+                      "history.png (cost, max violation and design variables against iterations) and response.png "
+                      "(the cost's sensor over time at the start and at the final design)");
   command->callback([options] { optimize(*options); });
 }
 

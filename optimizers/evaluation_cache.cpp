@@ -53,12 +53,20 @@ void EvaluationCache::recordIteration(const Eigen::VectorXd& x, OptimizerResult&
   const NlpEvaluation& values = at(x, false);
   const double step = previous_iterate_.size() == x.size() ? (x - previous_iterate_).cwiseAbs().maxCoeff() : 0.0;
   previous_iterate_ = x;
-  recordIteration(values.cost, maxViolation(problem_, x, values), step, result);
+  record(values.cost, maxViolation(problem_, x, values), step, x, result);
 }
 
 void EvaluationCache::recordIteration(double cost, double max_violation, double step, OptimizerResult& result) {
+  const auto iterate = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) {
+    return std::abs(e.values.cost - cost) <= 1e-14 * std::max(1.0, std::abs(cost));  // Ipopt's unscaling
+  });
+  record(cost, max_violation, step, iterate != entries_.end() ? iterate->x : Eigen::VectorXd(), result);
+}
+
+void EvaluationCache::record(double cost, double max_violation, double step, const Eigen::VectorXd& x,
+                             OptimizerResult& result) {
   const IterationRecord record{static_cast<int>(result.history.size()), cost, max_violation, step, value_evaluations_,
-                               gradient_evaluations_};
+                               gradient_evaluations_, x};
   result.history.push_back(record);
   if (options_.on_iteration) options_.on_iteration(record);
 }

@@ -26,7 +26,8 @@ class EvaluationCache {
 
   /// Appends an iteration at x to `result.history` and reports it, unless x is the last one recorded.
   void recordIteration(const Eigen::VectorXd& x, OptimizerResult& result);
-  /// The same from the algorithm's own figures (Ipopt's callback does not hand over x).
+  /// The same from the algorithm's own figures (Ipopt 3.11's callback does not hand over x): the
+  /// iterate is taken to be the newest cached point with that cost (to round-off), if there is one.
   void recordIteration(double cost, double max_violation, double step, OptimizerResult& result);
 
   /// Fills the result's point, cost, violation and counts: the best point evaluated (feasible
@@ -50,6 +51,7 @@ class EvaluationCache {
     double violation = 0.0;
   };
   void consider(const Entry& entry);
+  void record(double cost, double max_violation, double step, const Eigen::VectorXd& x, OptimizerResult& result);
 
   NlpProblem& problem_;
   const OptimizerOptions& options_;

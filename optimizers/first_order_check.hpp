@@ -8,10 +8,11 @@
 
 namespace mbsopt {
 
-/// min ‖∇f + Σ λᵢ ∇cᵢ‖∞ / ‖∇f‖∞ over the multipliers of the active constraints (inequalities within
-/// `active_tolerance` of zero and bounds within it, λ ≥ 0; equalities, λ free), by an active-set
+/// min ‖D(∇f + Σ λᵢ ∇cᵢ)‖∞ / ‖D∇f‖∞ over the multipliers of the active constraints (inequalities within
+/// `active_tolerance` of zero and bounds within that fraction of the range, λ ≥ 0; equalities, λ free), by an active-set
 /// least-squares loop. 0 at a KKT point; 1 where no active constraint can balance ∇f at all. `at`
-/// must hold the gradients at x.
+/// must hold the gradients at x. D holds each variable's range (upper − lower, or max(1, |x_j|)
+/// where unbounded), so the residual does not depend on the units of the variables.
 double firstOrderResidual(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& at,
                           double active_tolerance);
 

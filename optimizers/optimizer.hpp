@@ -28,6 +28,7 @@ struct IterationRecord {
   double step = 0.0;  ///< ‖x_k − x_{k−1}‖∞ (0 for the first record)
   long value_evaluations = 0;
   long gradient_evaluations = 0;
+  Eigen::VectorXd x;  ///< the iterate (empty where the algorithm does not say which point it is)
 };
 
 struct OptimizerOptions {

@@ -1,5 +1,7 @@
 #include "sensitivity/design_nlp.hpp"
 
+#include <chrono>
+
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/gradient_method.hpp"
 
@@ -24,6 +26,7 @@ Eigen::VectorXd DesignNlp::scaledBounds(double DesignVariable::*variable_bound,
 }
 
 void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) {
+  const auto start_time = std::chrono::steady_clock::now();
   std::optional<DesignValues> values;
   if (gradients) {
     DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_);
@@ -37,6 +40,7 @@ void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation
   }
   out.cost = values->cost;
   out.constraints = std::move(values->constraints);
+  evaluation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
 }
 
 }  // namespace mbsopt

@@ -25,6 +25,8 @@ class DesignNlp : public NlpProblem {
   void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override;
 
   const DesignProblem& problem() const { return problem_; }
+  /// Wall time spent in evaluate() so far: simulations and gradients [s].
+  double evaluationSeconds() const { return evaluation_seconds_; }
   const std::vector<ConstraintFunctional>& functionals() const { return functionals_; }
 
  private:
@@ -35,6 +37,7 @@ class DesignNlp : public NlpProblem {
   std::vector<ConstraintFunctional> functionals_;
   std::string gradient_method_;
   double fd_step_;
+  double evaluation_seconds_ = 0.0;
 };
 
 }  // namespace mbsopt

@@ -32,7 +32,8 @@ TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
     EXPECT_EQ(file.design.variables[i].scale, cpp.design.variables[i].scale);
   }
   EXPECT_EQ(initialPoint(file), initialPoint(cpp));
-  EXPECT_EQ(initialPoint(cpp), (Eigen::VectorXd(5) << 246, 246, 15, 15, 3).finished());  // the spec's b0, b5
+  // the spec's b0 in the optimizers' units (100 kN·m/rad, 10 kN·m·s/rad), and b5
+  EXPECT_EQ(initialPoint(cpp), (Eigen::VectorXd(5) << 2.46, 2.46, 1.5, 1.5, 3).finished());
   ASSERT_EQ(file.design.constraints.size(), 2u);
   EXPECT_EQ(file.design.constraints[1].bound, cpp.design.constraints[1].bound);
   // (17)-(19) and (15)-(16): ±a_lat − b5, then ±yaw − 10° for each yaw: six constraints.
