@@ -30,7 +30,8 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   nlohmann::json r;
   std::ifstream(json) >> r;
   for (const char* key : {"problem", "optimizer", "gradient", "formulation", "status", "design", "responses", "cost",
-                          "max_violation", "iterations", "simulations", "gradient_evaluations", "wall_time_s", "history"})
+                          "max_violation", "iterations", "simulations", "gradient_evaluations", "simulation_equivalents",
+                          "wall_time_s", "history"})
     EXPECT_TRUE(r.contains(key)) << key;
   EXPECT_EQ(r["optimizer"], "slsqp");
   EXPECT_EQ(r["gradient"], "adjoint");
@@ -47,6 +48,22 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   const auto& history = r["history"];
   ASSERT_FALSE(history.empty());
   EXPECT_EQ(history[0]["cost"].get<double>(), problem.design.artificial.initial);
+  // Each record carries its iterate in SI units: the first is the scene's own design, the last
+  // accepted one lies within the bounds.
+  const Eigen::VectorXd start = initialPoint(problem);
+  for (std::size_t i = 0; i < design.size(); ++i)
+    EXPECT_NEAR(history[0]["design"][i].get<double>(), start[static_cast<Eigen::Index>(i)] * problem.design.variables[i].scale,
+                1e-12 * std::abs(problem.design.variables[i].upper));
+  for (const auto& record : history) {
+    ASSERT_EQ(record["design"].size(), design.size());
+    for (std::size_t i = 0; i < design.size(); ++i) {
+      EXPECT_GE(record["design"][i].get<double>(), problem.design.variables[i].lower);
+      EXPECT_LE(record["design"][i].get<double>(), problem.design.variables[i].upper);
+    }
+  }
+  // Every evaluation costs at least one simulation, so their time is at least that of the
+  // simulations asked for (up to timing noise, a quarter).
+  EXPECT_GE(r["simulation_equivalents"].get<double>(), 0.75 * r["simulations"].get<double>());
   EXPECT_LE(r["simulations"].get<long>(), 15 + 1);  // one per evaluation asked for, no point twice
   // The reported response is the grid maximum of |tip acceleration| at the final design, as a
   // simulation of that design in this process finds it (same code, same input: to round-off).
