@@ -21,6 +21,7 @@ struct CompareOptions {
   std::vector<std::string> formulations{""};  ///< "": the problem's own
   double tolerance = 0.0;                     ///< ε of the formulations
   int max_iterations = 100;
+  std::vector<std::string> settings;  ///< passed to every optimizer that takes them
   std::string out;
 };
 
@@ -126,7 +127,8 @@ void compare(const CompareOptions& options) {
   for (const std::string& formulation : options.formulations)
     for (const std::string& gradient : options.gradients)
       for (const std::string& optimizer : options.optimizers) {
-        const RunChoice choice{optimizer, gradient, formulation, options.tolerance, options.max_iterations};
+        const RunChoice choice{optimizer, gradient, formulation, options.tolerance, options.max_iterations,
+                               options.settings};
         std::printf("%-40s ", runName(choice).c_str());
         std::fflush(stdout);
         runs.push_back(runOptimization(problem, choice, {}));
@@ -176,6 +178,7 @@ void registerCompareCommand(CLI::App& app) {
   command->add_option("--max-iter", options->max_iterations, "Iteration budget of each run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  addSettingOption(*command, options->settings);
   command->add_option("--out", options->out,
                       "Directory for comparison.md, comparison.csv, convergence.png (with its .dat and .gp) and one "
                       "JSON per run (created if missing)");

@@ -104,6 +104,12 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   OptimizerOptions options;
   options.max_iterations = choice.max_iterations;
   options.on_iteration = on_iteration;
+  for (const std::string& setting : choice.settings) {
+    const std::size_t equals = setting.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw std::invalid_argument("--setting " + setting + ": expected NAME=VALUE");
+    options.settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
+  }
   run.result = minimize(choice.optimizer, nlp, options);
   for (const DesignVariable& v : nlp.problem().design.variables) run.variables.push_back(v.parameter);
   run.design = designInSi(nlp.problem(), run.result.x);
@@ -157,6 +163,17 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"simulation_s", run.simulation_s},
           {"wall_time_s", r.wall_time_s},
           {"history", history}};
+}
+
+void addSettingOption(CLI::App& command, std::vector<std::string>& settings) {
+  command.add_option("--setting", settings,
+                     "An optimizer's own setting, NAME=VALUE; repeat for several. sdcc: active_set_epsilon, "
+                     "initial_step_bound, shrink_factor, growth_factor, growth_ratio, acceptance_ratio, "
+                     "min_step_bound, stationarity_tolerance, initial_penalty, penalty_factor, weights (one per "
+                     "variable, comma-separated) (optimizers/sdcc.hpp); ipopt: any Ipopt option, e.g. "
+                     "mu_strategy=adaptive; mma, ccsaq: inner_maxeval, dual_ftol_rel, verbosity; slsqp: none. An "
+                     "unknown name is an error")
+      ->allow_extra_args(false);
 }
 
 std::vector<std::string> gradientChoices() {

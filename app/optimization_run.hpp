@@ -3,6 +3,7 @@
 // result, the final design in SI units and its responses.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -22,7 +23,11 @@ struct RunChoice {
   std::string formulation;
   double tolerance = 0.0;  ///< ε of the transcription, with a formulation
   int max_iterations = 100;
+  std::vector<std::string> settings;  ///< the optimizer's own settings, "NAME=VALUE" each
 };
+
+/// Adds --setting (repeatable NAME=VALUE, the optimizer's own settings) to a command.
+void addSettingOption(CLI::App& command, std::vector<std::string>& settings);
 
 /// The formulation names, in the order of --help.
 const std::vector<std::string>& formulationNames();

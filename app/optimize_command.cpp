@@ -100,6 +100,7 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Iteration budget (NLopt: objective evaluations; Ipopt and SDCC: their own iterations)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  addSettingOption(*command, options->choice.settings);
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
                       "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "

@@ -3,6 +3,8 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 #include <chrono>
+#include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "optimizers/evaluation_cache.hpp"
@@ -127,6 +129,32 @@ void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, Optim
   if (!tnlp.error.empty()) result.message += "; last failed evaluation: " + tnlp.error;
 }
 
+/// Any registered Ipopt option, typed as Ipopt registers it, its value checked against its range.
+void setOptions(const NamedSettings& settings, Ipopt::IpoptApplication& app) {
+  for (const auto& [name, value] : settings) {
+    const Ipopt::SmartPtr<const Ipopt::RegisteredOption> option = app.RegOptions()->GetOption(name);
+    if (Ipopt::IsNull(option)) throw std::invalid_argument("Ipopt has no option '" + name + "'");
+    bool valid = false;
+    switch (option->Type()) {
+      case Ipopt::OT_Number: {
+        const double number = settingNumber(name, value);
+        valid = option->IsValidNumberSetting(number) && app.Options()->SetNumericValue(name, number);
+        break;
+      }
+      case Ipopt::OT_Integer: {
+        const double number = settingNumber(name, value);
+        if (std::abs(number) > 2e9 || std::floor(number) != number) break;  // not an Index
+        const auto integer = static_cast<Index>(number);
+        valid = option->IsValidIntegerSetting(integer) && app.Options()->SetIntegerValue(name, integer);
+        break;
+      }
+      default:
+        valid = option->IsValidStringSetting(value) && app.Options()->SetStringValue(name, value);
+    }
+    if (!valid) throw std::invalid_argument("Ipopt's option " + name + " cannot take '" + value + "'");
+  }
+}
+
 }  // namespace
 
 OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& options) {
@@ -145,6 +173,7 @@ OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& o
   // Ipopt relaxes every bound by 1e-8 (relative) by default and evaluates there: a design problem's
   // bounds can be physical (a mass > 0), and the best point must respect them.
   app->Options()->SetNumericValue("bound_relax_factor", 0.0);
+  setOptions(options.settings, *app);
   if (app->Initialize() != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt: initialisation failed");
   const Ipopt::ApplicationReturnStatus code = app->OptimizeTNLP(tnlp);
   cache.finish(result);

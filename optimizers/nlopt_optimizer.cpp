@@ -1,5 +1,6 @@
 #include "optimizers/nlopt_optimizer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <string>
@@ -79,6 +80,19 @@ void judge(nlopt::result code, const std::string& words, OptimizerResult& result
   }
 }
 
+/// NLopt 2.7's algorithm parameters (nlopt_set_param), of MMA and CCSAQ only; NLopt itself would
+/// accept any name and ignore the unknown ones, so they are checked here.
+void setParameters(nlopt::algorithm algorithm, const NamedSettings& settings, nlopt::opt& opt) {
+  const std::vector<std::string> known =
+      algorithm == nlopt::LD_MMA || algorithm == nlopt::LD_CCSAQ
+          ? std::vector<std::string>{"inner_maxeval", "dual_ftol_rel", "verbosity"}
+          : std::vector<std::string>{};
+  for (const auto& [name, value] : settings) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) throwUnknownSetting(opt.get_algorithm_name(), name, known);
+    opt.set_param(name.c_str(), settingNumber(name, value));
+  }
+}
+
 }  // namespace
 
 OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& problem, const OptimizerOptions& options) {
@@ -108,6 +122,7 @@ OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& proble
   opt.set_xtol_rel(options.tolerance);
   opt.set_ftol_rel(options.tolerance);
   opt.set_maxeval(options.max_iterations);
+  setParameters(algorithm, options.settings, opt);
 
   std::vector<double> x = toStd(problem.start());
   double cost = 0.0;

@@ -28,7 +28,7 @@ const std::vector<std::string>& optimizerNames() {
 }
 
 OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
-  if (optimizer == "sdcc") return minimizeWithSdcc(problem, options);
+  if (optimizer == "sdcc") return minimizeWithSdcc(problem, options, sdccSettings(options.settings));
   if (optimizer == "slsqp") return minimizeWithNlopt(nlopt::LD_SLSQP, problem, options);
   if (optimizer == "mma") return minimizeWithNlopt(nlopt::LD_MMA, problem, options);
   if (optimizer == "ccsaq") return minimizeWithNlopt(nlopt::LD_CCSAQ, problem, options);

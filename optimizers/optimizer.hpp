@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "optimizers/nlp_problem.hpp"
+#include "optimizers/optimizer_settings.hpp"
 
 namespace mbsopt {
 
@@ -35,6 +36,10 @@ struct OptimizerOptions {
   int max_iterations = 100;
   double tolerance = 1e-6;              ///< relative, on x and on f (each algorithm's own test)
   double feasibility_tolerance = 1e-6;  ///< max violation a converged point may have
+  /// Algorithm-specific settings by name, as text: SDCC's SdccSettings fields, any Ipopt option,
+  /// NLopt's MMA/CCSAQ parameters (inner_maxeval, dual_ftol_rel, verbosity). A name the algorithm
+  /// does not know, or a value it cannot take, is an std::invalid_argument before anything runs.
+  NamedSettings settings;
   /// Called after each recorded iteration (the command's progress table); may be empty.
   std::function<void(const IterationRecord&)> on_iteration;
 };

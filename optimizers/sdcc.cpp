@@ -253,6 +253,42 @@ class SdccRun {
 
 }  // namespace
 
+SdccSettings sdccSettings(const NamedSettings& named) {
+  SdccSettings settings;
+  const std::vector<std::pair<std::string, double SdccSettings::*>> numbers{
+      {"active_set_epsilon", &SdccSettings::active_set_epsilon}, {"initial_step_bound", &SdccSettings::initial_step_bound},
+      {"shrink_factor", &SdccSettings::shrink_factor},           {"growth_factor", &SdccSettings::growth_factor},
+      {"growth_ratio", &SdccSettings::growth_ratio},             {"acceptance_ratio", &SdccSettings::acceptance_ratio},
+      {"min_step_bound", &SdccSettings::min_step_bound},         {"stationarity_tolerance", &SdccSettings::stationarity_tolerance},
+      {"initial_penalty", &SdccSettings::initial_penalty},       {"penalty_factor", &SdccSettings::penalty_factor}};
+  for (const auto& [name, value] : named) {
+    if (name == "weights") {
+      const std::vector<double> weights = settingNumbers(name, value);
+      settings.weights = Eigen::Map<const Eigen::VectorXd>(weights.data(), static_cast<Eigen::Index>(weights.size()));
+      continue;
+    }
+    const auto field = std::find_if(numbers.begin(), numbers.end(), [&](const auto& n) { return n.first == name; });
+    if (field == numbers.end()) {
+      std::vector<std::string> known{"weights"};
+      for (const auto& n : numbers) known.push_back(n.first);
+      throwUnknownSetting("SDCC", name, known);
+    }
+    settings.*(field->second) = settingNumber(name, value);
+  }
+  const bool valid = settings.active_set_epsilon >= 0.0 && settings.initial_step_bound > 0.0 &&
+                     settings.shrink_factor > 0.0 && settings.shrink_factor < 1.0 && settings.growth_factor >= 1.0 &&
+                     settings.acceptance_ratio > 0.0 && settings.acceptance_ratio <= settings.growth_ratio &&
+                     settings.growth_ratio < 1.0 && settings.min_step_bound > 0.0 &&
+                     settings.stationarity_tolerance > 0.0 && settings.initial_penalty > 0.0 &&
+                     settings.penalty_factor >= 1.0;
+  if (!valid)
+    throw std::invalid_argument(
+        "SDCC settings out of range: need active_set_epsilon ≥ 0; initial_step_bound, min_step_bound, "
+        "stationarity_tolerance, initial_penalty > 0; 0 < shrink_factor < 1 ≤ growth_factor; 0 < acceptance_ratio "
+        "≤ growth_ratio < 1; penalty_factor ≥ 1");
+  return settings;
+}
+
 OptimizerResult minimizeWithSdcc(NlpProblem& problem, const OptimizerOptions& options, const SdccSettings& settings) {
   const auto start_time = std::chrono::steady_clock::now();
   OptimizerResult result;

@@ -46,6 +46,10 @@ struct SdccSettings {
   double penalty_factor = 2.0;
 };
 
+/// The defaults with the named settings applied (names as the fields above; `weights` a comma-separated
+/// list); throws std::invalid_argument for an unknown name or a value that is not a number.
+SdccSettings sdccSettings(const NamedSettings& named);
+
 /// The constraints at one design in the paper's form, bounds included (14): the first
 /// `equality_count` are Ψᵢ = 0, the rest Ψᵢ ≤ 0; their gradients are the columns of `gradients`.
 struct ConstraintLinearization {

@@ -182,6 +182,25 @@ TEST_P(EveryOptimizer, ReportsAFailedEvaluationWithItsReason) {
 INSTANTIATE_TEST_SUITE_P(Optimizers, EveryOptimizer, testing::ValuesIn(optimizerNames()),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
+// Settings by name reach the algorithm: a budget of 3 iterations set through Ipopt's own max_iter
+// (the common budget says 1000) stops it after 3.
+TEST(Optimizers, IpoptTakesItsOwnOptionsByName) {
+  test::RosenbrockInDisc problem;
+  OptimizerOptions options = tightOptions();
+  options.settings = {{"max_iter", "3"}, {"mu_strategy", "adaptive"}};
+  const OptimizerResult r = minimize("ipopt", problem, options);
+  EXPECT_EQ(r.status, OptimizerStatus::MaxIterations) << r.message;
+  EXPECT_EQ(r.iterations, 4);  // the start and three iterations
+}
+
+TEST_P(EveryOptimizer, RefusesASettingItDoesNotKnowBeforeEvaluatingAnything) {
+  Recording problem;
+  OptimizerOptions options = tightOptions();
+  options.settings = {{"no_such_setting", "1"}};
+  EXPECT_THROW(minimize(GetParam(), problem, options), std::invalid_argument);
+  EXPECT_TRUE(problem.calls.empty());
+}
+
 TEST(Optimizers, AnUnknownNameIsAnErrorThatListsTheKnownOnes) {
   test::BoundedQuadratic problem;
   try {

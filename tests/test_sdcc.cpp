@@ -159,5 +159,17 @@ TEST(Sdcc, RefusesWeightsThatAreNotOnePositiveNumberPerVariable) {
   EXPECT_THROW(minimizeWithSdcc(problem, {}, settings), std::invalid_argument);
 }
 
+TEST(Sdcc, ReadsItsSettingsByNameAndRefusesValuesOutOfRange) {
+  const SdccSettings read = sdccSettings({{"initial_step_bound", "0.5"}, {"weights", "1,2.5"}, {"shrink_factor", "0.25"}});
+  EXPECT_EQ(read.initial_step_bound, 0.5);
+  EXPECT_EQ(read.shrink_factor, 0.25);
+  EXPECT_EQ(read.weights, values({1.0, 2.5}));
+  EXPECT_EQ(read.growth_factor, SdccSettings{}.growth_factor);  // the rest keep their defaults
+  EXPECT_THROW(sdccSettings({{"weights", "1,x"}}), std::invalid_argument);
+  EXPECT_THROW(sdccSettings({{"initial_step_bound", "0.5m"}}), std::invalid_argument);
+  EXPECT_THROW(sdccSettings({{"shrink_factor", "1"}}), std::invalid_argument);  // ξ would never shrink
+  EXPECT_THROW(sdccSettings({{"xi", "1"}}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace mbsopt
