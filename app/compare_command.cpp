@@ -1,5 +1,6 @@
 #include "app/compare_command.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -111,12 +112,26 @@ std::string csvTable(const std::vector<OptimizationRun>& runs, const std::string
   return out.str();
 }
 
-/// Cost and max violation against simulations, one curve per run. A violation of exactly zero is
-/// drawn at 1e-12 so that the logarithmic axis can show it (the axis label says so).
+/// Cost and max violation against simulations: one row of two panels per (formulation, gradient),
+/// one curve per optimizer, in the same colour in every row. A violation of exactly zero is drawn at
+/// 1e-12 so that the logarithmic axis can show it (the axis label says so); costs above the start's
+/// are cut off, so that an excursion of b_{k+1} does not flatten the rest.
 void plotConvergence(const std::string& stem, const std::string& problem, const std::vector<OptimizationRun>& runs) {
-  std::vector<std::pair<std::string, const OptimizationRun*>> titled;
-  for (const OptimizationRun& run : runs) titled.emplace_back(runName(run.choice), &run);
-  plotPanels(stem, "convergence on " + problem, convergencePanels(titled, true));
+  std::vector<PlotPanel> panels;
+  for (std::size_t first = 0; first < runs.size();) {
+    const std::string group = formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient;
+    std::vector<std::pair<std::string, const OptimizationRun*>> titled;
+    double start_cost = 0.0;
+    for (; first < runs.size() && formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient == group; ++first) {
+      titled.emplace_back(runs[first].choice.optimizer, &runs[first]);
+      if (!runs[first].result.history.empty()) start_cost = std::max(start_cost, runs[first].result.history.front().cost);
+    }
+    std::vector<PlotPanel> row = convergencePanels(titled, true);
+    for (PlotPanel& panel : row) panel.title = group;
+    if (start_cost > 0.0) row.front().y_max = start_cost;
+    panels.insert(panels.end(), row.begin(), row.end());
+  }
+  plotPanels(stem, "convergence on " + problem, panels, 2);
 }
 
 void compare(const CompareOptions& options) {

@@ -1,5 +1,6 @@
 #include "app/gnuplot.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,7 +29,8 @@ std::string shellQuoted(const std::string& text) {
 
 }  // namespace
 
-bool plotPanels(const std::string& stem, const std::string& title, const std::vector<PlotPanel>& panels) {
+bool plotPanels(const std::string& stem, const std::string& title, const std::vector<PlotPanel>& panels, int columns) {
+  const std::size_t width = static_cast<std::size_t>(columns), rows = (panels.size() + width - 1) / width;
   const std::string data = stem + ".dat", script = stem + ".gp", image = stem + ".png";
   // Data: every series a block of "x y" lines, blocks separated by two blank lines (gnuplot's index).
   writeAtomically(data, [&](std::ostream& out) {
@@ -41,14 +43,19 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
       }
   });
   writeAtomically(script, [&](std::ostream& out) {
-    out << "set terminal pngcairo noenhanced size 1000," << 380 * panels.size() << " font ',10'\n"
+    out << "set terminal pngcairo noenhanced size " << (width == 1 ? 1000 : 650 * width) << "," << 380 * rows
+        << " font ',10'\n"
         << "set output " << quoted(std::filesystem::path(image).filename().string()) << '\n'
-        << "set multiplot layout " << panels.size() << ",1 title " << quoted(title) << '\n'
-        << "set key outside right\nset grid\n";
+        << "set multiplot layout " << rows << "," << width << " rowsfirst title " << quoted(title) << '\n'
+        << (width == 1 ? "set key outside right\n" : "set key top right font ',8'\n") << "set grid\n";
     int block = 0;
     for (const PlotPanel& panel : panels) {
-      out << "set xlabel " << quoted(panel.xlabel) << "\nset ylabel " << quoted(panel.ylabel) << '\n'
-          << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
+      out << "set title " << quoted(panel.title) << "\nset xlabel " << quoted(panel.xlabel) << "\nset ylabel "
+          << quoted(panel.ylabel) << '\n'
+          << (panel.log_y ? "set logscale y\n" : "unset logscale y\n");
+      if (std::isnan(panel.y_max)) out << "set yrange [*:*]\n";
+      else out << "set yrange [*:" << panel.y_max << "]\n";
+      out << "plot ";
       for (std::size_t s = 0; s < panel.series.size(); ++s, ++block)
         out << (s ? ", " : "") << quoted(std::filesystem::path(data).filename().string()) << " index " << block
             << (panel.markers ? " with linespoints" : " with lines") << " title " << quoted(panel.series[s].title);

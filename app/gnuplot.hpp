@@ -2,6 +2,7 @@
 // beside the PNG, so that a figure can be redrawn or restyled without rerunning anything.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -14,15 +15,20 @@ struct PlotSeries {
 };
 
 struct PlotPanel {
-  std::string xlabel, ylabel;
+  std::string xlabel{}, ylabel{};
   bool log_y = false;
-  std::vector<PlotSeries> series;
+  std::vector<PlotSeries> series{};
   bool markers = true;  ///< a marker at each point (iterations); plain lines for dense series
+  std::string title{};  ///< above the panel; may be empty
+  double y_max = std::numeric_limits<double>::quiet_NaN();  ///< the top of the y axis; NaN: gnuplot's choice
 };
 
 /// Writes STEM.dat (one block per series of each panel), STEM.gp and, when gnuplot is installed,
-/// STEM.png with the panels stacked vertically. Returns false (and says why on stderr) when gnuplot
-/// is missing or fails; the data and the script are written regardless.
-bool plotPanels(const std::string& stem, const std::string& title, const std::vector<PlotPanel>& panels);
+/// STEM.png with the panels row by row, `columns` to a row (with one column each panel's key is
+/// outside on the right, with more inside it). The n-th series of every panel gets the same colour.
+/// Returns false (and says why on stderr) when gnuplot is missing or fails; the data and the script
+/// are written regardless.
+bool plotPanels(const std::string& stem, const std::string& title, const std::vector<PlotPanel>& panels,
+                int columns = 1);
 
 }  // namespace mbsopt

@@ -183,7 +183,7 @@ std::vector<std::string> gradientChoices() {
 }
 
 PlotPanel designPanel(const OptimizationRun& run) {
-  PlotPanel panel{"iteration", "design variables (SI)", true, {}};
+  PlotPanel panel{.xlabel = "iteration", .ylabel = "design variables (SI)", .log_y = true};
   for (std::size_t i = 0; i < run.variables.size(); ++i) {
     PlotSeries series{run.variables[i], {}};
     for (std::size_t k = 0; k < run.iterate_designs.size(); ++k)
@@ -197,7 +197,8 @@ PlotPanel designPanel(const OptimizationRun& run) {
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
                                          bool against_simulations) {
   const std::string x = against_simulations ? "simulations" : "iteration";
-  PlotPanel cost{x, "cost", false, {}}, violation{x, "max violation (0 drawn at 1e-12)", true, {}};
+  PlotPanel cost{.xlabel = x, .ylabel = "cost"};
+  PlotPanel violation{.xlabel = x, .ylabel = "max violation (0 drawn at 1e-12)", .log_y = true};
   for (const auto& [title, run] : runs) {
     PlotSeries c{title, {}}, v{title, {}};
     for (const IterationRecord& h : run->result.history) {

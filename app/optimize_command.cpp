@@ -26,7 +26,9 @@ void plotRun(const std::string& directory, const std::string& problem, const Opt
   std::vector<PlotPanel> history = convergencePanels({{run.choice.optimizer, &run}}, false);
   history.push_back(designPanel(run));
   plotPanels(directory + "/history", "optimisation of " + problem, history);
-  PlotPanel response{"t [s]", run.cost_response.substr(std::string("max_abs_").size()) + " (SI)", false, {}, false};
+  PlotPanel response{.xlabel = "t [s]",
+                     .ylabel = run.cost_response.substr(std::string("max_abs_").size()) + " (SI)",
+                     .markers = false};
   PlotSeries initial{"start", {}}, final{"final design", {}};
   for (Eigen::Index k = 0; k < run.time.size(); ++k) {
     initial.points.emplace_back(run.time[k], run.initial_history[k]);

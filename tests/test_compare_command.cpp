@@ -1,0 +1,77 @@
+// `mbsopt compare` end to end on the open chain: one table row and one JSON per combination, the
+// table's figures the same as the JSON's, and a convergence plot with one block per run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+#include "tests/sensitivity_scenes.hpp"
+
+namespace mbsopt {
+namespace {
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / ("mbsopt_compare_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(directory);
+  const std::filesystem::path scene = directory / "chain.yaml", out = directory / "out";
+  std::ofstream(scene) << test::kOpenChainProblem;
+  const std::string command = std::string(MBSOPT_EXECUTABLE) + " compare " + scene.string() +
+                              " --optimizers sdcc,slsqp --formulations ks,grid_max --max-iter 8 --out " +
+                              out.string() + " > " + (directory / "stdout").string();
+  ASSERT_EQ(std::system(command.c_str()), 0);
+
+  std::ifstream csv(out / "comparison.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  const std::vector<std::string> header = splitCsv(line);
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(at, header.end()) << name;
+    return static_cast<std::size_t>(at - header.begin());
+  };
+  for (const char* name : {"optimizer", "gradient", "formulation", "status", "limits met", "max violation", "iterations",
+                           "simulations", "gradients", "in simulations", "wall time [s]"})
+    column(name);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(csv, line)) rows.push_back(splitCsv(line));
+  ASSERT_EQ(rows.size(), 4u);  // (ks, grid_max) × (sdcc, slsqp), formulations outermost
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"sdcc", "ks"}, {"slsqp", "ks"}, {"sdcc", "grid_max"}, {"slsqp", "grid_max"}};
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto& [optimizer, formulation] = expected[r];
+    EXPECT_EQ(rows[r][column("optimizer")], optimizer);
+    EXPECT_EQ(rows[r][column("formulation")], formulation);
+    nlohmann::json run;
+    std::ifstream(out / (optimizer + "-adjoint-" + formulation + ".json")) >> run;
+    EXPECT_EQ(rows[r][column("status")], run["status"].get<std::string>());
+    EXPECT_EQ(std::stol(rows[r][column("simulations")]), run["simulations"].get<long>());
+    EXPECT_EQ(std::stol(rows[r][column("iterations")]), run["iterations"].get<long>());
+    EXPECT_EQ(rows[r][column("limits met")], run["limit_excess"].get<double>() <= 1e-3 ? "yes" : "no");
+    // The cost column is the cost sensor's max |y| at the final design, printed to 5 digits.
+    const double cost = run["responses"]["max_abs_tip_acceleration"].get<double>();
+    EXPECT_NEAR(std::stod(rows[r][column("max_abs_tip_acceleration")]), cost, 5e-5 * cost);
+  }
+  // Two panels (cost, violation) per (formulation, gradient), one block per run in each.
+  std::ifstream data(out / "convergence.dat");
+  int blocks = 0;
+  while (std::getline(data, line))
+    if (line.starts_with("# ")) ++blocks;
+  EXPECT_EQ(blocks, 2 * 4);
+  std::filesystem::remove_all(directory);
+}
+
+}  // namespace
+}  // namespace mbsopt
