@@ -107,8 +107,17 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   for (const std::string& setting : choice.settings) {
     const std::size_t equals = setting.find('=');
     if (equals == std::string::npos || equals == 0)
-      throw std::invalid_argument("--setting " + setting + ": expected NAME=VALUE");
-    options.settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
+      throw std::invalid_argument("--setting " + setting + ": expected [OPTIMIZER.]NAME=VALUE");
+    std::string name = setting.substr(0, equals);
+    if (const std::size_t dot = name.find('.'); dot != std::string::npos) {  // meant for one optimizer
+      const std::string optimizer = name.substr(0, dot);
+      const auto& known = optimizerNames();
+      if (std::find(known.begin(), known.end(), optimizer) == known.end())
+        throw std::invalid_argument("--setting " + setting + ": '" + optimizer + "' is not an optimizer");
+      if (optimizer != choice.optimizer) continue;
+      name = name.substr(dot + 1);
+    }
+    options.settings.emplace_back(name, setting.substr(equals + 1));
   }
   run.result = minimize(choice.optimizer, nlp, options);
   for (const DesignVariable& v : nlp.problem().design.variables) run.variables.push_back(v.parameter);
@@ -167,7 +176,8 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
 
 void addSettingOption(CLI::App& command, std::vector<std::string>& settings) {
   command.add_option("--setting", settings,
-                     "An optimizer's own setting, NAME=VALUE; repeat for several. sdcc: active_set_epsilon, "
+                     "An optimizer's own setting, NAME=VALUE for every optimizer that runs or OPTIMIZER.NAME=VALUE "
+                     "for one (ipopt.mu_strategy=adaptive); repeat for several. sdcc: active_set_epsilon, "
                      "initial_step_bound, shrink_factor, growth_factor, growth_ratio, acceptance_ratio, "
                      "min_step_bound, stationarity_tolerance, initial_penalty, penalty_factor, weights (one per "
                      "variable, comma-separated) (optimizers/sdcc.hpp); ipopt: any Ipopt option, e.g. "

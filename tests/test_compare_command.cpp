@@ -1,5 +1,6 @@
 // `mbsopt compare` end to end on the open chain: one table row and one JSON per combination, the
-// table's figures the same as the JSON's, and a convergence plot with one block per run.
+// table's figures the same as the JSON's, a setting meant for one optimizer given to it alone, and a
+// convergence plot with one block per run.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,7 +30,8 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
   const std::filesystem::path scene = directory / "chain.yaml", out = directory / "out";
   std::ofstream(scene) << test::kOpenChainProblem;
   const std::string command = std::string(MBSOPT_EXECUTABLE) + " compare " + scene.string() +
-                              " --optimizers sdcc,slsqp --formulations ks,grid_max --max-iter 8 --out " +
+                              " --optimizers sdcc,slsqp --formulations ks,grid_max --max-iter 8"
+                              " --setting sdcc.initial_step_bound=0.05 --out " +
                               out.string() + " > " + (directory / "stdout").string();
   ASSERT_EQ(std::system(command.c_str()), 0);
 
@@ -63,6 +65,15 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
     // The cost column is the cost sensor's max |y| at the final design, printed to 5 digits.
     const double cost = run["responses"]["max_abs_tip_acceleration"].get<double>();
     EXPECT_NEAR(std::stod(rows[r][column("max_abs_tip_acceleration")]), cost, 5e-5 * cost);
+  }
+  // The prefixed setting reached SDCC alone (SLSQP would refuse it): SDCC's first step is bounded by
+  // the initial ξ = 0.05 in the W-norm (W = I), so in the max norm too (the default ξ is 0.1).
+  for (const char* formulation : {"ks", "grid_max"}) {
+    nlohmann::json run;
+    std::ifstream(out / (std::string("sdcc-adjoint-") + formulation + ".json")) >> run;
+    ASSERT_GE(run["history"].size(), 2u);
+    EXPECT_GT(run["history"][1]["step"].get<double>(), 0.0);
+    EXPECT_LE(run["history"][1]["step"].get<double>(), 0.05 * (1 + 1e-12));
   }
   // Two panels (cost, violation) per (formulation, gradient), one block per run in each.
   std::ifstream data(out / "convergence.dat");
