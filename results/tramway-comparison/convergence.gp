@@ -1,14 +1,54 @@
-set terminal pngcairo noenhanced size 1000,760 font ',10'
+set terminal pngcairo noenhanced size 1300,1520 font ',10'
 set output 'convergence.png'
-set multiplot layout 2,1 title 'convergence on problems/scenes/tramway.yaml'
-set key outside right
+set multiplot layout 4,2 rowsfirst title 'convergence on problems/scenes/tramway.yaml'
+set key top right font ',8'
 set grid
+set title 'positive_part, adjoint'
 set xlabel 'simulations'
 set ylabel 'cost'
 unset logscale y
-plot 'convergence.dat' index 0 with linespoints title 'sdcc/adjoint/positive_part', 'convergence.dat' index 1 with linespoints title 'slsqp/adjoint/positive_part', 'convergence.dat' index 2 with linespoints title 'mma/adjoint/positive_part', 'convergence.dat' index 3 with linespoints title 'ccsaq/adjoint/positive_part', 'convergence.dat' index 4 with linespoints title 'ipopt/adjoint/positive_part', 'convergence.dat' index 5 with linespoints title 'sdcc/adjoint/squared_positive_part', 'convergence.dat' index 6 with linespoints title 'slsqp/adjoint/squared_positive_part', 'convergence.dat' index 7 with linespoints title 'mma/adjoint/squared_positive_part', 'convergence.dat' index 8 with linespoints title 'ccsaq/adjoint/squared_positive_part', 'convergence.dat' index 9 with linespoints title 'ipopt/adjoint/squared_positive_part', 'convergence.dat' index 10 with linespoints title 'sdcc/adjoint/grid_max', 'convergence.dat' index 11 with linespoints title 'slsqp/adjoint/grid_max', 'convergence.dat' index 12 with linespoints title 'mma/adjoint/grid_max', 'convergence.dat' index 13 with linespoints title 'ccsaq/adjoint/grid_max', 'convergence.dat' index 14 with linespoints title 'ipopt/adjoint/grid_max', 'convergence.dat' index 15 with linespoints title 'sdcc/adjoint/ks', 'convergence.dat' index 16 with linespoints title 'slsqp/adjoint/ks', 'convergence.dat' index 17 with linespoints title 'mma/adjoint/ks', 'convergence.dat' index 18 with linespoints title 'ccsaq/adjoint/ks', 'convergence.dat' index 19 with linespoints title 'ipopt/adjoint/ks'
+set yrange [*:3]
+plot 'convergence.dat' index 0 with linespoints title 'sdcc', 'convergence.dat' index 1 with linespoints title 'slsqp', 'convergence.dat' index 2 with linespoints title 'mma', 'convergence.dat' index 3 with linespoints title 'ccsaq', 'convergence.dat' index 4 with linespoints title 'ipopt'
+set title 'positive_part, adjoint'
 set xlabel 'simulations'
 set ylabel 'max violation (0 drawn at 1e-12)'
 set logscale y
-plot 'convergence.dat' index 20 with linespoints title 'sdcc/adjoint/positive_part', 'convergence.dat' index 21 with linespoints title 'slsqp/adjoint/positive_part', 'convergence.dat' index 22 with linespoints title 'mma/adjoint/positive_part', 'convergence.dat' index 23 with linespoints title 'ccsaq/adjoint/positive_part', 'convergence.dat' index 24 with linespoints title 'ipopt/adjoint/positive_part', 'convergence.dat' index 25 with linespoints title 'sdcc/adjoint/squared_positive_part', 'convergence.dat' index 26 with linespoints title 'slsqp/adjoint/squared_positive_part', 'convergence.dat' index 27 with linespoints title 'mma/adjoint/squared_positive_part', 'convergence.dat' index 28 with linespoints title 'ccsaq/adjoint/squared_positive_part', 'convergence.dat' index 29 with linespoints title 'ipopt/adjoint/squared_positive_part', 'convergence.dat' index 30 with linespoints title 'sdcc/adjoint/grid_max', 'convergence.dat' index 31 with linespoints title 'slsqp/adjoint/grid_max', 'convergence.dat' index 32 with linespoints title 'mma/adjoint/grid_max', 'convergence.dat' index 33 with linespoints title 'ccsaq/adjoint/grid_max', 'convergence.dat' index 34 with linespoints title 'ipopt/adjoint/grid_max', 'convergence.dat' index 35 with linespoints title 'sdcc/adjoint/ks', 'convergence.dat' index 36 with linespoints title 'slsqp/adjoint/ks', 'convergence.dat' index 37 with linespoints title 'mma/adjoint/ks', 'convergence.dat' index 38 with linespoints title 'ccsaq/adjoint/ks', 'convergence.dat' index 39 with linespoints title 'ipopt/adjoint/ks'
+set yrange [*:*]
+plot 'convergence.dat' index 5 with linespoints title 'sdcc', 'convergence.dat' index 6 with linespoints title 'slsqp', 'convergence.dat' index 7 with linespoints title 'mma', 'convergence.dat' index 8 with linespoints title 'ccsaq', 'convergence.dat' index 9 with linespoints title 'ipopt'
+set title 'squared_positive_part, adjoint'
+set xlabel 'simulations'
+set ylabel 'cost'
+unset logscale y
+set yrange [*:3]
+plot 'convergence.dat' index 10 with linespoints title 'sdcc', 'convergence.dat' index 11 with linespoints title 'slsqp', 'convergence.dat' index 12 with linespoints title 'mma', 'convergence.dat' index 13 with linespoints title 'ccsaq', 'convergence.dat' index 14 with linespoints title 'ipopt'
+set title 'squared_positive_part, adjoint'
+set xlabel 'simulations'
+set ylabel 'max violation (0 drawn at 1e-12)'
+set logscale y
+set yrange [*:*]
+plot 'convergence.dat' index 15 with linespoints title 'sdcc', 'convergence.dat' index 16 with linespoints title 'slsqp', 'convergence.dat' index 17 with linespoints title 'mma', 'convergence.dat' index 18 with linespoints title 'ccsaq', 'convergence.dat' index 19 with linespoints title 'ipopt'
+set title 'grid_max, adjoint'
+set xlabel 'simulations'
+set ylabel 'cost'
+unset logscale y
+set yrange [*:3]
+plot 'convergence.dat' index 20 with linespoints title 'sdcc', 'convergence.dat' index 21 with linespoints title 'slsqp', 'convergence.dat' index 22 with linespoints title 'mma', 'convergence.dat' index 23 with linespoints title 'ccsaq', 'convergence.dat' index 24 with linespoints title 'ipopt'
+set title 'grid_max, adjoint'
+set xlabel 'simulations'
+set ylabel 'max violation (0 drawn at 1e-12)'
+set logscale y
+set yrange [*:*]
+plot 'convergence.dat' index 25 with linespoints title 'sdcc', 'convergence.dat' index 26 with linespoints title 'slsqp', 'convergence.dat' index 27 with linespoints title 'mma', 'convergence.dat' index 28 with linespoints title 'ccsaq', 'convergence.dat' index 29 with linespoints title 'ipopt'
+set title 'ks, adjoint'
+set xlabel 'simulations'
+set ylabel 'cost'
+unset logscale y
+set yrange [*:3]
+plot 'convergence.dat' index 30 with linespoints title 'sdcc', 'convergence.dat' index 31 with linespoints title 'slsqp', 'convergence.dat' index 32 with linespoints title 'mma', 'convergence.dat' index 33 with linespoints title 'ccsaq', 'convergence.dat' index 34 with linespoints title 'ipopt'
+set title 'ks, adjoint'
+set xlabel 'simulations'
+set ylabel 'max violation (0 drawn at 1e-12)'
+set logscale y
+set yrange [*:*]
+plot 'convergence.dat' index 35 with linespoints title 'sdcc', 'convergence.dat' index 36 with linespoints title 'slsqp', 'convergence.dat' index 37 with linespoints title 'mma', 'convergence.dat' index 38 with linespoints title 'ccsaq', 'convergence.dat' index 39 with linespoints title 'ipopt'
 unset multiplot
