@@ -26,10 +26,6 @@ struct CompareOptions {
   std::string out;
 };
 
-/// How far a limit may be exceeded on the time grid and still count as met, in the sensor's units
-/// (angles in degrees): the 1e-3 degree.
-constexpr double kLimitTolerance = 1e-3;
-
 /// The formulation with its ε when there is one: "positive_part", "positive_part ε=1e-06".
 std::string formulationLabel(const RunChoice& c) {
   std::string label = c.formulation.empty() ? "problem's formulation" : c.formulation;
@@ -73,7 +69,7 @@ std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run,
   for (const auto& [name, value] : run.responses.items())
     if (name != cost_key) cells.emplace_back(name, number(value.get<double>(), "%.4g"));
   cells.insert(cells.end(), {
-          {"limits met", run.limit_excess <= kLimitTolerance ? "yes" : "no"},
+          {"limits met", limitsMet(run) ? "yes" : "no"},
           {"max violation", number(r.max_violation, "%.2g")},
           {"iterations", std::to_string(r.iterations)},
           {"simulations", std::to_string(r.value_evaluations)},

@@ -54,6 +54,13 @@ struct OptimizationRun {
   Eigen::VectorXd time, initial_history, final_history;
 };
 
+/// How far a limit may be exceeded on the time grid and still count as met, in the sensor's units
+/// (angles in degrees): the 1e-3 degree.
+inline constexpr double kLimitTolerance = 1e-3;
+
+/// Whether every max-type limit holds on the time grid at the final design, to kLimitTolerance.
+inline bool limitsMet(const OptimizationRun& run) { return run.limit_excess <= kLimitTolerance; }
+
 /// Runs `choice` on `problem` (its transcription replaced by the choice's formulation).
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 const std::function<void(const IterationRecord&)>& on_iteration);

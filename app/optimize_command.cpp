@@ -1,5 +1,6 @@
 #include "app/optimize_command.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -61,6 +62,14 @@ void optimize(const OptimizeOptions& options) {
   for (std::size_t i = 0; i < run.design.size(); ++i)
     std::printf("  %s = %.8g\n", problem.design.variables[i].parameter.c_str(), run.design[i]);
   for (const auto& [name, value] : run.responses.items()) std::printf("  %s = %.6g\n", name.c_str(), value.get<double>());
+  const double final_cost = run.responses[run.cost_response].get<double>();
+  std::printf("%s %s by %.4g %% from the start", run.cost_response.c_str(),
+              final_cost <= run.initial_cost ? "lowered" : "RAISED",
+              100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost);
+  if (std::isfinite(run.limit_excess))  // there are limits on extremes to check on the time grid
+    std::printf("; on the time grid the limits are %s (largest excess %.3g, in degrees for angles)",
+                limitsMet(run) ? "met" : "NOT met", run.limit_excess);
+  std::printf("\n");
   if (!options.json.empty())
     writeAtomically(options.json, [&](std::ostream& out) { out << toJson(run, source.path).dump(2) << '\n'; });
   if (!options.out.empty()) {
