@@ -121,6 +121,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   }
   run.result = minimize(choice.optimizer, nlp, options);
   for (const DesignVariable& v : nlp.problem().design.variables) run.variables.push_back(v.parameter);
+  if (run.result.x.size() == 0) run.result.x = nlp.start();  // nothing was evaluated (its error follows below)
   run.design = designInSi(nlp.problem(), run.result.x);
   for (const IterationRecord& h : run.result.history)
     run.iterate_designs.push_back(h.x.size() > 0 ? designInSi(nlp.problem(), h.x) : std::vector<double>{});
