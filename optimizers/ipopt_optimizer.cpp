@@ -2,7 +2,6 @@
 
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -158,7 +157,6 @@ void setOptions(const NamedSettings& settings, Ipopt::IpoptApplication& app) {
 }  // namespace
 
 OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& options) {
-  const auto start_time = std::chrono::steady_clock::now();
   OptimizerResult result;
   result.optimizer = "Ipopt (L-BFGS Hessian)";
   EvaluationCache cache(problem, options);
@@ -179,7 +177,6 @@ OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& o
   cache.finish(result);
   judge(code, *tnlp, result);
   cache.review(result);
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
 

@@ -1,7 +1,6 @@
 #include "optimizers/nlopt_optimizer.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <string>
 #include <vector>
@@ -96,7 +95,6 @@ void setParameters(nlopt::algorithm algorithm, const NamedSettings& settings, nl
 }  // namespace
 
 OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& problem, const OptimizerOptions& options) {
-  const auto start_time = std::chrono::steady_clock::now();
   OptimizerResult result;
   const auto n = static_cast<unsigned>(problem.variableCount());
   nlopt::opt opt(algorithm, n);
@@ -144,7 +142,6 @@ OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& proble
   cache.finish(result);
   judge(code, words, result);
   cache.review(result);
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "optimizers/optimizer.hpp"
 
+#include <chrono>
 #include <stdexcept>
 
 #include "optimizers/ipopt_optimizer.hpp"
@@ -27,7 +28,9 @@ const std::vector<std::string>& optimizerNames() {
   return names;
 }
 
-OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
+namespace {
+
+OptimizerResult dispatch(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
   if (optimizer == "sdcc") return minimizeWithSdcc(problem, options, sdccSettings(options.settings));
   if (optimizer == "slsqp") return minimizeWithNlopt(nlopt::LD_SLSQP, problem, options);
   if (optimizer == "mma") return minimizeWithNlopt(nlopt::LD_MMA, problem, options);
@@ -36,6 +39,15 @@ OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, cons
   std::string known;
   for (const std::string& name : optimizerNames()) known += (known.empty() ? "" : ", ") + name;
   throw std::invalid_argument("unknown optimizer '" + optimizer + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
+  const auto start_time = std::chrono::steady_clock::now();
+  OptimizerResult result = dispatch(optimizer, problem, options);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return result;
 }
 
 }  // namespace mbsopt

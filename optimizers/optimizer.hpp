@@ -54,7 +54,7 @@ struct OptimizerResult {
   int iterations = 0;
   long value_evaluations = 0;
   long gradient_evaluations = 0;
-  double wall_time_s = 0.0;
+  double wall_time_s = 0.0;  ///< filled by minimize(), around whichever adapter runs
   std::vector<IterationRecord> history;
 };
 

@@ -2,7 +2,6 @@
 
 #include <Eigen/QR>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <sstream>
@@ -290,13 +289,11 @@ SdccSettings sdccSettings(const NamedSettings& named) {
 }
 
 OptimizerResult minimizeWithSdcc(NlpProblem& problem, const OptimizerOptions& options, const SdccSettings& settings) {
-  const auto start_time = std::chrono::steady_clock::now();
   OptimizerResult result;
   result.optimizer = "SDCC (steepest descent with constraint compensation)";
   SdccRun run(problem, options, settings, result);
   run.run();
   run.finish();
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
 
