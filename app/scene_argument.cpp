@@ -25,7 +25,8 @@ void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_over
   command
       .add_option("--set", argument.sets,
                   "Override one number of the scene by its dotted name, e.g. --set front_secondary.k=300e3 or "
-                  "--set hinge.q0='45 deg'; repeat for several ('mbsopt parameters SCENE' lists the names)")
+                  "--set hinge.q0='45 deg', or the word of settings.closure (position | acceleration); repeat for several "
+                  "('mbsopt parameters SCENE' lists the numbers)")
       ->allow_extra_args(false);
 }
 
@@ -41,6 +42,10 @@ SceneSource resolveScene(const std::string& scene) {
 }
 
 ParameterOverride parseOverride(const SceneSource& source, const std::string& name, const std::string& text) {
+  if (isWordSetting(name)) {  // the loader checks the word against the setting's choices
+    if (text.empty()) throw SceneError(source.path, 0, 0, "--set " + name + "=: the value is empty");
+    return ParameterOverride::ofWord(name, text);
+  }
   double value = 0.0;
   std::string why;
   if (!parseNumber(text, value, why)) throw SceneError(source.path, 0, 0, name + "=" + text + ": " + why);

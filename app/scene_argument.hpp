@@ -21,10 +21,11 @@ void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_over
 /// The file, or the built-in scene of that name; a SceneError when neither exists.
 SceneSource resolveScene(const std::string& scene);
 
-/// One override from its name and the value as typed (a number, optionally with `deg`).
+/// One override from its name and the value as typed (a number, optionally with `deg`; a word for a
+/// word setting such as settings.closure).
 ParameterOverride parseOverride(const SceneSource& source, const std::string& name, const std::string& text);
 
-/// Parses "name=value" (value a number, optionally with `deg`); errors name the scene.
+/// Parses "name=value" (value a number, optionally with `deg`, or a word setting's word); errors name the scene.
 std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets);
 
 }  // namespace mbsopt

@@ -104,6 +104,26 @@ void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const Vect
   }
 }
 
+CutWrench cutReaction(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda, int cut) {
+  Eigen::Index row = 0;
+  for (int c = 0; c < cut; ++c) row += equationCount(model.cuts()[static_cast<std::size_t>(c)].kind);
+  // addConstraintWrenches adds λ to the wrench frame b must transmit when the rows say −λ: the
+  // cut applies +λ_p and +λ_r u_r × w_r to frame b.
+  CutWrench on_b;
+  forEachEquation(
+      model.cuts()[static_cast<std::size_t>(cut)].kind,
+      [&](FrameIndex, FrameIndex) {
+        on_b.force = lambda.segment<3>(row);
+        row += 3;
+      },
+      [&](const Orthogonality& o) {
+        const Eigen::Vector3d u = ws.rotation[static_cast<std::size_t>(o.frame_a)] * o.u_local;
+        const Eigen::Vector3d w = ws.rotation[static_cast<std::size_t>(o.frame_b)] * o.w_local;
+        on_b.torque += lambda[row++] * u.cross(w);
+      });
+  return on_b;
+}
+
 void checkWeldOrientations(const Model& model, const Workspace<double>& ws) {
   for (const CutJoint& cut : model.cuts()) {
     const auto* weld = std::get_if<WeldCut>(&cut.kind);

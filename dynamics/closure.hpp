@@ -18,6 +18,19 @@ void closureEquations(const Model& model, const Workspace<Scalar>& ws, Derivativ
 template <class Scalar>
 void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda);
 
+/// The wrench a cut joint transmits to its frame b from frame a's side, in ground axes: the force
+/// (applied at the origin of b, which coincides with that of a) and the torque about that origin.
+/// Frame a receives the opposite wrench.
+struct CutWrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+};
+
+/// The reaction of cut joint `cut` from the multipliers λ of every cut (Bᵀλ of (36) on its frames,
+/// as addConstraintWrenches applies them): force λ_p of its coincidence rows p_a − p_b, torque
+/// Σ λ_r u_r × w_r of its orthogonality rows u_r·w_r. Needs forwardKinematics at Position level.
+CutWrench cutReaction(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda, int cut);
+
 /// The closure equations of a weld cut (three orthogonalities) also hold when frame b is turned by
 /// 180° (or 120° about a diagonal) relative to frame a. Throws std::invalid_argument naming the cut
 /// when the frames of a weld cut are turned by more than 90° from each other (trace(R_aᵀR_b) ≤ 1).

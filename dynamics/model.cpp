@@ -21,18 +21,22 @@ void checkFinite(double value, const std::string& what) {
   if (!std::isfinite(value)) throw std::invalid_argument(what + " must be finite");
 }
 
-/// Empty when (mass, inertia) is a rigid body: positive mass, symmetric inertia with positive
-/// principal moments that satisfy the triangle inequalities I₁ ≤ I₂ + I₃ (the moments of a real
-/// mass distribution); otherwise what is wrong.
+/// Empty when (mass, inertia) is a rigid body: positive mass, symmetric inertia with principal
+/// moments ≥ 0 that satisfy the triangle inequalities I₁ ≤ I₂ + I₃ (the moments of a real mass
+/// distribution: a slender rod has one zero moment, a point mass three); otherwise what is wrong.
+/// The eigenvalues carry a round-off of a few ε‖I‖, so both tests allow 1e-12 ‖I‖ of slack.
 std::string rigidBodyDefect(double mass, const Eigen::Vector3d& centre_of_mass, const Eigen::Matrix3d& inertia) {
   if (!(mass > 0.0) || !std::isfinite(mass)) return "mass must be positive and finite";
   if (!centre_of_mass.allFinite() || !inertia.allFinite()) return "centre of mass and inertia must be finite";
   if ((inertia - inertia.transpose()).norm() > 1e-9 * std::max(1.0, inertia.norm()))
     return "inertia tensor must be symmetric";
   const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
-  if (!(principal.minCoeff() > 0.0)) return "inertia tensor must be positive definite";
+  const double slack = 1e-12 * inertia.norm();
+  if (!(principal.minCoeff() >= -slack))
+    return "inertia tensor must be positive semi-definite (smallest principal moment " +
+           std::to_string(principal.minCoeff()) + " < 0)";
   // Ascending order: only the largest can exceed the sum of the other two.
-  if (principal[2] > (principal[0] + principal[1]) * (1.0 + 1e-12))
+  if (principal[2] > principal[0] + principal[1] + slack)
     return "principal moments of inertia violate the triangle inequality (largest " + std::to_string(principal[2]) +
            " > sum of the other two " + std::to_string(principal[0] + principal[1]) + "): no rigid body has them";
   return {};
@@ -44,6 +48,10 @@ int equationCount(const CutKind& cut) {
   return std::visit(Overloaded{[](const SphericalCut&) { return 3; }, [](const RevoluteCut&) { return 5; },
                                [](const WeldCut&) { return 6; }},
                     cut);
+}
+
+FrameIndex cutFrameA(const CutKind& cut) {
+  return std::visit([](const auto& c) { return c.frame_a; }, cut);
 }
 
 std::vector<int> allCoordinates(const Model& model) {
@@ -238,6 +246,13 @@ void Model::addSensor(const std::string& name, SensorKind kind) {
                           checkFrame(s.frame_a, name);
                           checkFrame(s.frame_b, name);
                           s.axis = unitAxis(s.axis, name);
+                        },
+                        [&](const EnergySensor&) {},
+                        [&](const CutReactionSensor& s) {
+                          if (s.cut < 0 || s.cut >= static_cast<int>(cuts_.size()))
+                            throw std::invalid_argument(name + ": no such cut joint");
+                          if (s.component < 0 || s.component > 2)
+                            throw std::invalid_argument(name + ": component must be 0, 1 or 2");
                         }},
              kind);
   sensors_.push_back({name, std::move(kind)});

@@ -134,7 +134,22 @@ struct RelativeAngleSensor {
   FrameIndex frame_a, frame_b;
   Eigen::Vector3d axis;
 };
-using SensorKind = std::variant<PointSensor, JointSensor, RelativeAngleSensor>;
+/// Which part of the mechanical energy an EnergySensor reports (dynamics/energy.hpp).
+enum class EnergyPart { Kinetic, Potential, Total };
+/// Mechanical energy of the whole model [J]: kinetic, potential (gravity and springs) or their sum.
+struct EnergySensor {
+  EnergyPart part;
+};
+enum class ReactionQuantity { Force, Torque };
+/// Component `component` (0 = x, 1 = y, 2 = z) of the force (or of the torque about the common
+/// origin) that cut joint `cut` transmits to its frame b from frame a's side, in the axes of frame a,
+/// from the multipliers λ (cutReaction in dynamics/closure.hpp).
+struct CutReactionSensor {
+  int cut;
+  ReactionQuantity quantity;
+  int component;
+};
+using SensorKind = std::variant<PointSensor, JointSensor, RelativeAngleSensor, EnergySensor, CutReactionSensor>;
 struct Sensor {
   std::string name;
   SensorKind kind;
@@ -165,7 +180,8 @@ class Model {
   FrameIndex addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
   FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track,
                             SliderOrientation orientation = SliderOrientation::FollowTrack);
-  /// A body attached to `frame` (it adds inertia to that frame; it does not create a frame).
+  /// A body attached to `frame` (it adds inertia to that frame; it does not create a frame). The inertia
+  /// may be singular (a slender rod, a point mass); a motion nothing resists is refused by the integrator.
   void addBody(const std::string& name, FrameIndex frame, double mass, const Eigen::Vector3d& centre_of_mass,
                const Eigen::Matrix3d& inertia);
 
@@ -225,7 +241,7 @@ class Model {
   /// points at to differentiate with respect to it. Valid while the model lives.
   const double& parameterReference(std::string_view dotted_name) const;
   /// Sets a named parameter with the checks of the builder (finite; bodies keep a positive mass and a
-  /// positive-definite inertia); throws std::invalid_argument and leaves the model unchanged otherwise.
+  /// positive semi-definite inertia); throws std::invalid_argument and leaves the model unchanged otherwise.
   void setParameter(std::string_view dotted_name, double value);
   std::vector<std::string> parameterNames() const;
 
@@ -251,6 +267,8 @@ class Model {
 
 /// Number of closure equations of a cut joint.
 int equationCount(const CutKind& cut);
+/// The frame a of a cut joint, whose axes express its reaction (CutReactionSensor).
+FrameIndex cutFrameA(const CutKind& cut);
 
 /// 0, 1, …, coordinateCount() − 1: every coordinate, driven ones included.
 std::vector<int> allCoordinates(const Model& model);

@@ -39,6 +39,11 @@ SimulationError::SimulationError(const std::string& what, double t, long s, doub
       residual_norm(norm),
       element(std::move(where)) {}
 
+double closureTolerance(const NewmarkSettings& s) {
+  if (s.closure_tolerance > 0.0) return s.closure_tolerance;
+  return s.closure == ClosureLevel::Position ? 1e-6 : 1e-2;
+}
+
 SettingsDefect settingsDefect(const NewmarkSettings& s) {
   const auto finitePositive = [](double x) { return x > 0.0 && std::isfinite(x); };
   if (!finitePositive(s.step)) return {"step", "the time step must be positive and finite"};
@@ -56,6 +61,10 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
   if (s.max_newton_iterations < 1) return {"max_newton_iterations", "at least one Newton iteration"};
   if (!(s.svd_threshold > 0.0 && s.svd_threshold < 1.0))
     return {"svd_threshold", "the SVD threshold must lie in (0, 1)"};
+  if (!(s.closure_tolerance >= 0.0 && std::isfinite(s.closure_tolerance)))
+    return {"closure_tolerance", "the closure tolerance must be finite and not negative (0: the default)"};
+  if (!finitePositive(s.energy_tolerance))
+    return {"energy_tolerance", "the energy tolerance must be positive and finite"};
   return {};
 }
 
@@ -65,6 +74,7 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
       ws_(model),
       ad_ws_(model),
       partition_(settings.svd_threshold),
+      roundoff_(model),
       free_(model.freeCoordinates()) {
   if (const SettingsDefect defect = settingsDefect(settings_); !defect.field.empty())
     throw std::invalid_argument("Newmark: " + defect.message);
@@ -203,6 +213,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   v_unprojected_ = v_;
   a_unprojected_ = a_;
   measureClosure();
+  energy_watch_.start(model_, ws_, q_, v_, t_, settings_.energy_tolerance);
 }
 
 void NewmarkIntegrator::applyNewmarkUpdate() {
@@ -230,9 +241,20 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     evaluateResidual();
     if (!r_free_.allFinite()) fail("the residual is not finite (NaN or infinity)", r_free_);
     closure_.resize(model_.constraintCount());
-    if (model_.constraintCount() > 0) {
+    if (model_.constraintCount() > 0)
       closureEquations(model_, ws_, position_closure ? Derivative::Position : Derivative::Acceleration, closure_);
-      if (position_closure) closure_ /= beta_h2;
+    // Every row of (37) at its round-off level: this iterate is a solution (newton_convergence.hpp).
+    // The closure rows are positions here; with the paper's acceleration-level closure (38) they
+    // have no such scale, and only the increment test below applies.
+    last_relative_residual_ =
+        roundoff_.relativeResidual(model_, ws_, r_free_, free_, lambda_, position_closure ? closure_ : no_rows_);
+    if (position_closure || model_.constraintCount() == 0) {
+      // Not before the first iteration matrix exists: the next steps reuse its tangent part.
+      if (last_relative_residual_ <= NewtonRoundoff::kFactor && J_.size() > 0) {
+        last_iterations_ = k;
+        return true;
+      }
+      closure_ /= beta_h2;
     }
     if (refresh == Refresh::Tangents) {
       updateIterationMatrix();
@@ -257,9 +279,12 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     for (int i : free_) largest = std::max(largest, std::abs(a_[i]));
     const double increment = da_.size() ? da_.cwiseAbs().maxCoeff() : 0.0;
     if (!std::isfinite(increment)) fail("the Newton increment is not finite", r_free_);
-    // Converged: the increment is below tolerance or the round-off floor, or it has stopped
-    // shrinking within a few digits of that floor.
-    const double target = std::max(settings_.newton_tolerance * (1.0 + largest), roundoff_floor);
+    // Converged: the increment is below tolerance, an ∞-norm weighted by tol·(1 + ‖q̈‖∞), or below the
+    // round-off floor; or it has stopped shrinking within a few digits of that floor. ‖q̈‖∞ is capped
+    // at twice the last accepted step's (plus one): a diverging iterate must not inflate its own
+    // tolerance (near a singular configuration it did, and the step was accepted far from a solution).
+    const double scale = std::min(largest, 2.0 * acceleration_scale_ + 1.0);
+    const double target = std::max(settings_.newton_tolerance * (1.0 + scale), roundoff_floor);
     if (k > 0) contraction_ = increment / previous;
     // The first iterate is accepted when the contraction rate measured on a recent step says the
     // next increment would already be below target (the convergence test of DASSL/IDA); the rate is
@@ -330,19 +355,28 @@ void NewmarkIntegrator::step() {
     lambda_start_ = lambda_;
   }
   lambda_previous_ = lambda_;
+  acceleration_scale_ = 0.0;
+  for (int i : free_) acceleration_scale_ = std::max(acceleration_scale_, std::abs(a_[i]));
+  a_accepted_ = a_;
   for (int i : free_) a_[i] = a_start_[i];
   lambda_ = lambda_start_;
   ++step_count_;
   t_ = t0_ + static_cast<double>(step_count_) * h;  // no round-off drift of the time grid
   setDriven(t_);
   if (!newton(false)) {
-    // Retry once from the same start with freshly evaluated tangent matrices.
+    // Retry from the same start with freshly evaluated tangent matrices; then from the last step's
+    // accelerations and multipliers (a constant predictor): near a singular configuration the
+    // extrapolated start can lie across the bifurcation, where Newton wanders between branches.
     a_ = a_start_;
     lambda_ = lambda_start_;
     setDriven(t_);
-    if (!newton(true)) fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
-                                " iterations",
-                            r_free_);
+    if (!newton(true)) {
+      a_ = a_accepted_;
+      lambda_ = lambda_previous_;
+      setDriven(t_);
+      if (!newton(true))
+        fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) + " iterations", r_free_);
+    }
   }
   a_newton_before_ = a_newton_previous_;
   a_newton_previous_ = a_newton_;
@@ -361,7 +395,23 @@ void NewmarkIntegrator::step() {
     forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
   }
   measureClosure();
+  checkStep();
   ++stats_.steps;
+}
+
+void NewmarkIntegrator::checkStep() {
+  // Needs ws_ to hold the positions at q and closure_ the position-level closure rows (measureClosure).
+  stats_.max_relative_residual =
+      std::max(stats_.max_relative_residual, last_relative_residual_ * std::numeric_limits<double>::epsilon());
+  if (!q_.allFinite() || !v_.allFinite() || !a_.allFinite() || !lambda_.allFinite())
+    fail("the state is not finite (NaN or infinity)", r_free_);
+  if (model_.constraintCount() > 0)
+    if (const StepDefect defect = closureDefect(model_, ws_, closure_, closureTolerance(settings_));
+        !defect.reason.empty())
+      throw SimulationError(defect.reason, t_, step_count_, r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0,
+                            defect.element);
+  if (const StepDefect defect = energy_watch_.check(model_, ws_, q_, v_, t_); !defect.reason.empty())
+    throw SimulationError(defect.reason, t_, step_count_, r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0, "");
 }
 
 Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,

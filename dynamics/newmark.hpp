@@ -18,6 +18,8 @@
 #include <string>
 
 #include "dynamics/model.hpp"
+#include "dynamics/newton_convergence.hpp"
+#include "dynamics/run_checks.hpp"
 #include "dynamics/scalar.hpp"
 #include "dynamics/svd_partition.hpp"
 #include "dynamics/tangent.hpp"
@@ -39,26 +41,45 @@ struct NewmarkSettings {
   double end_time = 1.0;   ///< [s]
   double beta = 0.25;      ///< Newmark β
   double gamma = 0.5;      ///< Newmark γ
-  double newton_tolerance = 1e-10;  ///< on ‖Δq̈‖∞ relative to 1 + ‖q̈‖∞
+  /// On ‖Δq̈‖∞ relative to 1 + ‖q̈‖∞ (‖q̈‖∞ capped at 2‖q̈ₙ‖∞ + 1, the last accepted step's). An
+  /// iterate whose every residual row is at its round-off level is accepted too (newton_convergence.hpp).
+  double newton_tolerance = 1e-10;
   int max_newton_iterations = 30;
-  double svd_threshold = 1e-10;     ///< singular values below this fraction of the largest are dropped
+  /// Singular values of B below this fraction of the largest are dropped. About √ε: in a direction
+  /// below it, round-off in the closure (ε times the model's reach, over βh²) moves the solution by
+  /// more than √ε, so near a singular configuration the dynamics, not the noise, decides the motion
+  /// there (IFToMM A02 released flat at h = 2e-3 diverged at a flat passage with 1e-10).
+  double svd_threshold = 1e-8;
   /// Accept the first Newton iterate when the contraction rate measured on a recent step (×10) says
   /// the next increment would be below tolerance (DASSL/IDA's test). About 1.35 instead of 2
   /// iterations per step on the tramway, but the trajectory then depends on those decisions at the
   /// round-off floor (1e-8..1e-9 relative): off by default, since design gradients need smoothness.
   bool accept_by_contraction_rate = false;
   ClosureLevel closure = ClosureLevel::Position;
+  /// After every step, a run stops with an error when a closure row exceeds this: a coincidence row
+  /// (metres) relative to the reach of its two frames, an orthogonality row (a cosine) absolutely.
+  /// 0 means the level's default (closureTolerance()): 1e-6 with the position closure, where the rows
+  /// are at round-off after every step; 1e-2 with the acceleration closure, whose positions drift by
+  /// design and are only kept from coming apart.
+  double closure_tolerance = 0.0;
+  /// In a run where no force does work (no damping, actuation, driven joint or moving spring rest),
+  /// a run stops with an error when the mechanical energy grows by more than this fraction of its
+  /// scale (kinetic energy at the start, spring energy at the start and the work of gravity over the
+  /// model's reach); the Newmark family may only dissipate it.
+  double energy_tolerance = 0.1;
 };
 
 /// Thrown when a step cannot be completed; says when, where and by how much.
 /// What is wrong with a set of settings: the field (named as in a scene file's `settings`:
 /// "step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
-/// "svd_threshold") and why. An empty field means the settings are valid.
+/// "svd_threshold", "closure_tolerance", "energy_tolerance") and why. An empty field means the settings are valid.
 struct SettingsDefect {
   std::string field;
   std::string message;
 };
 SettingsDefect settingsDefect(const NewmarkSettings& settings);
+/// settings.closure_tolerance, or the default of its closure level when it is 0.
+double closureTolerance(const NewmarkSettings& settings);
 
 class SimulationError : public std::runtime_error {
  public:
@@ -76,6 +97,9 @@ struct IntegratorStatistics {
   long jacobian_updates = 0;  ///< full tangent matrices (AD)
   long mass_updates = 0;      ///< mass-matrix-only refreshes of the iteration matrix
   double max_closure_error = 0.0;  ///< max over steps of ‖b(q)‖∞
+  /// Max over steps of the last Newton residual evaluated in the step, each row relative to the
+  /// magnitude of its terms (NewtonRoundoff; ≈ 1e-14 at round-off). 0 without a position closure.
+  double max_relative_residual = 0.0;
 };
 
 struct Trajectory {
@@ -130,6 +154,8 @@ class NewmarkIntegrator {
   void evaluateResidual();    ///< f_ and its free rows r_free_ at the current state
   void applyNewmarkUpdate();  ///< q, q̇ of the free coordinates from q̈ and the predictors (32)
   void measureClosure();
+  /// The checks of run_checks.hpp after a step; throws SimulationError when one fails.
+  void checkStep();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
   /// For an iteration matrix singular on the free directions: names the coordinate it leaves free.
   [[noreturn]] void failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const;
@@ -139,6 +165,9 @@ class NewmarkIntegrator {
   Workspace<double> ws_;
   Workspace<AdScalar> ad_ws_;
   SvdPartition partition_;
+  NewtonRoundoff roundoff_;
+  EnergyWatch energy_watch_;
+  const Eigen::VectorXd no_rows_;  ///< an empty closure: only the dynamic rows are tested
   TangentMatrices tangents_;
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale
   Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
@@ -150,6 +179,7 @@ class NewmarkIntegrator {
   Eigen::VectorXd v_unprojected_, a_unprojected_;  ///< q̇, q̈ before this step's projections
   Eigen::VectorXd q_pred_, v_pred_;  // full-size predictors q̃, ṽ
   Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
+  Eigen::VectorXd a_accepted_;  ///< q̈ₙ, the start of the last retry
   Eigen::VectorXd a_newton_, a_newton_previous_, a_newton_before_;  ///< converged Newton accelerations before projection
   int newton_history_ = 0;
   Eigen::VectorXd f_, b_at_jacobian_, zero_, closure_, r_free_, da_, dlambda_, correction_;
@@ -158,6 +188,8 @@ class NewmarkIntegrator {
   double t0_ = 0.0;
   double closure_error_ = 0.0;
   int last_iterations_ = 0;
+  double last_relative_residual_ = 0.0;
+  double acceleration_scale_ = 0.0;  ///< ‖q̈ₙ‖∞ over the free coordinates, the last accepted step's  ///< of the last residual evaluated, in units of ε (NewtonRoundoff)
   double contraction_ = 0.0;  ///< last measured ‖Δₖ‖/‖Δₖ₋₁‖ of the Newton iteration (0: unknown)
   IntegratorStatistics stats_;
 };

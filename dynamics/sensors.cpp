@@ -1,10 +1,41 @@
 #include "dynamics/sensors.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
+#include "dynamics/closure.hpp"
+#include "dynamics/energy.hpp"
 #include "dynamics/overloaded.hpp"
 
 namespace mbsopt {
+
+namespace {
+
+/// An energy or cut-reaction sensor at one time point; ws holds the kinematics of the state.
+double systemSensorValue(const Model& model, const Sensor& sensor, const Workspace<double>& ws,
+                         const Eigen::VectorXd& q, const Eigen::VectorXd& lambda, double t) {
+  if (const auto* energy = std::get_if<EnergySensor>(&sensor.kind))
+    return energyPart(mechanicalEnergyOfFrames(model, ws, q, t), energy->part);
+  const auto& reaction = std::get<CutReactionSensor>(sensor.kind);
+  if (lambda.size() != model.constraintCount())
+    throw std::invalid_argument("sensor '" + sensor.name + "': the trajectory holds no multipliers λ of the cuts");
+  const CutWrench on_b = cutReaction(model, ws, lambda, reaction.cut);
+  const Eigen::Vector3d& vector = reaction.quantity == ReactionQuantity::Force ? on_b.force : on_b.torque;
+  const auto frame_a = static_cast<std::size_t>(cutFrameA(model.cuts()[static_cast<std::size_t>(reaction.cut)].kind));
+  return ws.rotation[frame_a].col(reaction.component).dot(vector);
+}
+
+template <class Scalar>
+[[noreturn]] Scalar notAStateSensor(const Sensor& sensor) {
+  throw std::invalid_argument("sensor '" + sensor.name +
+                              "' is not a function of the state (q, q̇, q̈) alone: sensorHistory evaluates it");
+}
+
+}  // namespace
+
+bool isStateSensor(const Sensor& sensor) {
+  return !std::holds_alternative<EnergySensor>(sensor.kind) && !std::holds_alternative<CutReactionSensor>(sensor.kind);
+}
 
 template <class Scalar>
 Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const VectorX<Scalar>& q,
@@ -38,7 +69,9 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
                 ws.rotation[static_cast<std::size_t>(s.frame_a)].transpose() * ws.rotation[static_cast<std::size_t>(s.frame_b)];
             const Vector3<Scalar> image = relative * e.template cast<Scalar>();
             return atan2(image.dot(f.template cast<Scalar>()), image.dot(e.template cast<Scalar>()));
-          }},
+          },
+          [&](const EnergySensor&) -> Scalar { return notAStateSensor<Scalar>(sensor); },
+          [&](const CutReactionSensor&) -> Scalar { return notAStateSensor<Scalar>(sensor); }},
       sensor.kind);
 }
 
@@ -46,14 +79,19 @@ Eigen::MatrixXd sensorHistory(const Model& model, const Trajectory& trajectory) 
   Workspace<double> ws(model);
   const Eigen::Index points = trajectory.time.size();
   Eigen::MatrixXd out(points, static_cast<Eigen::Index>(model.sensors().size()));
-  Eigen::VectorXd q, v, a;
+  Eigen::VectorXd q, v, a, lambda;
   for (Eigen::Index k = 0; k < points; ++k) {
     q = trajectory.q.col(k);
     v = trajectory.v.col(k);
     a = trajectory.a.col(k);
+    if (trajectory.lambda.rows() > 0) lambda = trajectory.lambda.col(k);
     forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
-    for (std::size_t s = 0; s < model.sensors().size(); ++s)
-      out(k, static_cast<Eigen::Index>(s)) = sensorValue(model.sensors()[s], ws, q, v, a);
+    for (std::size_t s = 0; s < model.sensors().size(); ++s) {
+      const Sensor& sensor = model.sensors()[s];
+      out(k, static_cast<Eigen::Index>(s)) = isStateSensor(sensor)
+                                                  ? sensorValue(sensor, ws, q, v, a)
+                                                  : systemSensorValue(model, sensor, ws, q, lambda, trajectory.time[k]);
+    }
   }
   return out;
 }

@@ -1,5 +1,6 @@
 // Outputs of a simulation ("sensors"): point kinematics in a chosen frame, joint coordinates and
-// rates, relative angles between bodies. Templated so later layers can differentiate them.
+// rates, relative angles between bodies, the mechanical energy and the reactions of cut joints.
+// The state sensors (functions of q, q̇, q̈ alone) are templated so later layers can differentiate them.
 #pragma once
 
 #include "dynamics/kinematics.hpp"
@@ -7,12 +8,19 @@
 
 namespace mbsopt {
 
-/// Value of one sensor; ws must hold forwardKinematics at Acceleration level for (q, v, a).
+/// Whether a sensor is a function of the state (q, q̇, q̈) alone, which sensorValue evaluates and the
+/// design gradients differentiate. An energy sensor also depends on the model parameters (masses,
+/// stiffnesses) directly, a cut-reaction sensor on the multipliers λ: sensorHistory evaluates them.
+bool isStateSensor(const Sensor& sensor);
+
+/// Value of one state sensor (isStateSensor); ws must hold forwardKinematics at Acceleration level
+/// for (q, v, a). Throws std::invalid_argument for another sensor.
 template <class Scalar>
 Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                    const VectorX<Scalar>& v, const VectorX<Scalar>& a);
 
-/// Every sensor at every time point of a trajectory: rows = time points, columns = model sensors.
+/// Every sensor at every time point of a trajectory (its q, q̇, q̈, λ and t): rows = time points,
+/// columns = model sensors.
 Eigen::MatrixXd sensorHistory(const Model& model, const Trajectory& trajectory);
 
 extern template double sensorValue<double>(const Sensor&, const Workspace<double>&, const VectorX<double>&,

@@ -17,7 +17,7 @@ namespace mbsopt {
 
 class SvdPartition {
  public:
-  explicit SvdPartition(double relative_threshold = 1e-10) : threshold_(relative_threshold) {}
+  explicit SvdPartition(double relative_threshold = 1e-8) : threshold_(relative_threshold) {}
 
   /// SVD of B (m × n, m may be 0). Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);

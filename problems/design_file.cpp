@@ -21,7 +21,10 @@ std::string readSensor(const MapReader& entry, const Model& model) {
   const std::string name = entry.name("sensor");
   std::vector<std::string> names;
   for (const Sensor& s : model.sensors()) {
-    if (s.name == name) return name;
+    if (s.name == name) {
+      if (const std::string defect = designSensorDefect(s); !defect.empty()) entry.fail("sensor", defect);
+      return name;
+    }
     names.push_back(s.name);
   }
   entry.fail("sensor", "sensor '" + name + "' does not exist" + suggestion(name, names));

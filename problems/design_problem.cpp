@@ -4,12 +4,24 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dynamics/sensors.hpp"
+
 namespace mbsopt {
 
 int sensorIndex(const Model& model, const std::string& name) {
   for (std::size_t s = 0; s < model.sensors().size(); ++s)
     if (model.sensors()[s].name == name) return static_cast<int>(s);
   throw std::invalid_argument("design: no sensor named '" + name + "'");
+}
+
+std::string designSensorDefect(const Sensor& sensor) {
+  if (isStateSensor(sensor)) return {};
+  const bool energy = std::holds_alternative<EnergySensor>(sensor.kind);
+  return "sensor '" + sensor.name + "' is " +
+         (energy ? "an energy sensor, which depends on the model parameters (masses, stiffnesses) directly"
+                 : "a cut-force sensor, which depends on the multipliers λ") +
+         ": the design gradients differentiate only point, joint and relative_angle sensors, so it cannot be a "
+         "cost or a constraint";
 }
 
 namespace {
@@ -29,6 +41,8 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   const double duration = problem.scene.settings.end_time;
   const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial) {
     const int index = sensorIndex(model, sensor);
+    if (const std::string defect = designSensorDefect(model.sensors()[static_cast<std::size_t>(index)]); !defect.empty())
+      throw std::invalid_argument("design: " + defect);
     if (of == ResponseMeasure::Integral) {
       functionals.push_back({sensor + "_integral", index, 1.0, bound / duration, false, TimeMeasure::Integral, 0.0});
     } else if (of == ResponseMeasure::FinalValue) {

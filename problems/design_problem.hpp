@@ -81,10 +81,14 @@ struct ConstraintFunctional {
 /// The index of the sensor `name` in the model; throws std::invalid_argument naming it if absent.
 int sensorIndex(const Model& model, const std::string& name);
 
+/// Empty when a cost or constraint may use `sensor`, i.e. when the design gradients can
+/// differentiate it (a function of the state alone, isStateSensor); otherwise why not.
+std::string designSensorDefect(const Sensor& sensor);
+
 /// The constraints of the problem in the order the optimizers see them: those of the cost (with the
 /// artificial variable), then those of each constraint, each MaxAbs giving two (y above, −y above).
 /// An integral constraint ∫y dt ≤ bound is ∫(y − bound/τ) dt ≤ 0; a final value y(τ) − bound ≤ 0.
-/// Throws std::invalid_argument naming an unknown sensor.
+/// Throws std::invalid_argument naming an unknown sensor or one designSensorDefect refuses.
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem);
 
 /// Number of optimisation variables: the design variables and the artificial one.

@@ -144,6 +144,22 @@ class SceneBuilder {
                         " (joints are revolute, prismatic and curve-slider elements and curve-slider cuts)");
   }
 
+  /// The model index of the cut named by `cut` (a curve-slider cut's equations are its "_closure").
+  int cut(const MapReader& entry) {
+    const std::string name = entry.name("cut");
+    std::vector<std::string> names;
+    const std::string closure = "_closure";
+    for (std::size_t c = 0; c < model().cuts().size(); ++c) {
+      const std::string& cut_name = model().cuts()[c].name;
+      const bool generated = !names_.contains(cut_name);  // the weld or sphere of a curve-slider cut
+      const std::string declared = generated ? cut_name.substr(0, cut_name.size() - closure.size()) : cut_name;
+      if (declared == name) return static_cast<int>(c);
+      names.push_back(declared);
+    }
+    entry.fail("cut", "cut joint '" + name + "' does not exist" + suggestion(name, names) +
+                          (names.empty() ? " (the scene has no cuts)" : ""));
+  }
+
   std::shared_ptr<const Track> track(const MapReader& entry) {
     const std::string name = entry.name("track");
     const auto found = tracks_.find(name);
@@ -176,7 +192,7 @@ class SceneBuilder {
     if (!root_.has("settings")) return;
     const MapReader settings(context_, root_.node()["settings"], "settings");
     settings.allowKeys({"step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
-                        "svd_threshold", "closure"});
+                        "svd_threshold", "closure", "closure_tolerance", "energy_tolerance"});
     s.step = settings.number("step", s.step);
     s.end_time = settings.number("end_time", s.end_time);
     s.beta = settings.number("beta", s.beta);
@@ -184,6 +200,8 @@ class SceneBuilder {
     s.newton_tolerance = settings.number("newton_tolerance", s.newton_tolerance);
     s.max_newton_iterations = settings.positiveInteger("max_newton_iterations", s.max_newton_iterations);
     s.svd_threshold = settings.number("svd_threshold", s.svd_threshold);
+    s.closure_tolerance = settings.number("closure_tolerance", s.closure_tolerance);
+    s.energy_tolerance = settings.number("energy_tolerance", s.energy_tolerance);
     s.closure = settings.choice("closure", {"position", "acceleration"}, "position") == "acceleration"
                     ? ClosureLevel::Acceleration
                     : ClosureLevel::Position;
@@ -394,7 +412,7 @@ class SceneBuilder {
   void readSensor(const YAML::Node& node) {
     std::string name;
     const MapReader s = entry(node, "sensor", name);
-    const std::string type = s.choice("type", {"point", "joint", "relative_angle"});
+    const std::string type = s.choice("type", {"point", "joint", "relative_angle", "energy", "cut_force"});
     SensorKind kind;
     if (type == "point") {
       s.allowKeys({"name", "type", "frame", "point", "quantity", "axes", "component"});
@@ -407,6 +425,18 @@ class SceneBuilder {
     } else if (type == "joint") {
       s.allowKeys({"name", "type", "joint", "quantity"});
       kind = JointSensor{model().coordinate(joint(s, "joint")), quantity(s)};
+    } else if (type == "energy") {
+      s.allowKeys({"name", "type", "part"});
+      const std::string part = s.choice("part", {"kinetic", "potential", "total"}, "total");
+      kind = EnergySensor{part == "kinetic"     ? EnergyPart::Kinetic
+                          : part == "potential" ? EnergyPart::Potential
+                                                : EnergyPart::Total};
+    } else if (type == "cut_force") {
+      s.allowKeys({"name", "type", "cut", "quantity", "component"});
+      const int c = cut(s);
+      const bool torque = s.choice("quantity", {"force", "torque"}, "force") == "torque";
+      const std::string component = s.choice("component", {"x", "y", "z"});
+      kind = CutReactionSensor{c, torque ? ReactionQuantity::Torque : ReactionQuantity::Force, component[0] - 'x'};
     } else {
       s.allowKeys({"name", "type", "frame_a", "frame_b", "axis"});
       const FrameIndex a = frame(s, "frame_a"), b = frame(s, "frame_b");
@@ -574,7 +604,9 @@ std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& s
       {"settings.gamma", s.gamma},
       {"settings.newton_tolerance", s.newton_tolerance},
       {"settings.max_newton_iterations", s.max_newton_iterations},
-      {"settings.svd_threshold", s.svd_threshold}};
+      {"settings.svd_threshold", s.svd_threshold},
+      {"settings.closure_tolerance", s.closure_tolerance},
+      {"settings.energy_tolerance", s.energy_tolerance}};
   for (const std::string& name : scene.model.parameterNames()) defaults.emplace_back(name, scene.model.parameter(name));
   for (const int i : scene.model.freeCoordinates()) {
     const std::string& name = scene.model.coordinates()[static_cast<std::size_t>(i)].name;

@@ -35,11 +35,22 @@ class SceneError : public std::runtime_error {
   int line_, column_;
 };
 
-/// A `--set name=value` override of one numeric parameter of the file.
+/// A `--set name=value` override of one parameter of the file: a number, or the word of a setting
+/// whose value is a word (isWordSetting: `settings.closure=acceleration`).
 struct ParameterOverride {
+  ParameterOverride(std::string name_, double value_) : name(std::move(name_)), value(value_) {}
+  static ParameterOverride ofWord(std::string name_, std::string word_) {
+    ParameterOverride o(std::move(name_), 0.0);
+    o.word = std::move(word_);
+    return o;
+  }
   std::string name;
-  double value;
+  double value = 0.0;
+  std::string word;  ///< the value of a word setting, as typed; empty for a number
 };
+
+/// Whether `dotted_name` is a setting whose value is a word, not a number: `settings.closure`.
+bool isWordSetting(const std::string& dotted_name);
 
 struct SceneLocation {
   int line = 0, column = 0;  ///< 1-based

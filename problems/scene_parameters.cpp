@@ -17,6 +17,8 @@ constexpr std::array<const char*, 10> kVectorKeys{"gravity", "translation", "axi
 // Sections that list named entries; an entry's numbers are named after its `name`.
 constexpr std::array<const char*, 6> kNamedSections{"tracks", "elements", "bodies", "forces", "cuts", "sensors"};
 constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
+// Settings whose value is a word (problems/scenes/README.md, "Top level"); the loader checks the word.
+constexpr std::array<const char*, 1> kWordSettings{"settings.closure"};
 
 bool isVectorKey(const std::string& key) {
   return std::any_of(kVectorKeys.begin(), kVectorKeys.end(), [&](const char* k) { return key == k; });
@@ -134,6 +136,10 @@ void forEachNumber(const YAML::Node& root, const Visitor& visit) {
   }
 }
 
+bool isWordSetting(const std::string& dotted_name) {
+  return std::any_of(kWordSettings.begin(), kWordSettings.end(), [&](const char* s) { return dotted_name == s; });
+}
+
 void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<ParameterOverride>& overrides) {
   for (const ParameterOverride& o : overrides) {
     std::vector<YAML::Node> targets;
@@ -142,11 +148,13 @@ void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<Pa
       if (name == o.name) targets.push_back(node);
       names.push_back(name);
     });
+    // A word setting is no number of the file: it is written in (or over) like a default.
+    const std::string text = o.word.empty() ? formatNumber(o.value) : o.word;
     YAML::Node written;
     if (!targets.empty()) {
       written.reset(targets.front());
-      written = formatNumber(o.value);
-    } else if (!root.IsMap() || !insertDefault(root, split(o.name), formatNumber(o.value), written)) {
+      written = text;
+    } else if (!root.IsMap() || !insertDefault(root, split(o.name), text, written)) {
       throw SceneError(context.path(), 0, 0,
                        describe(o) + ": the scene has no number named " + quoted(o.name) + suggestion(o.name, names) +
                            "; 'mbsopt parameters SCENE' lists them");
@@ -155,6 +163,8 @@ void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<Pa
   }
 }
 
-std::string describe(const ParameterOverride& o) { return "--set " + o.name + "=" + formatNumber(o.value); }
+std::string describe(const ParameterOverride& o) {
+  return "--set " + o.name + "=" + (o.word.empty() ? formatNumber(o.value) : o.word);
+}
 
 }  // namespace mbsopt

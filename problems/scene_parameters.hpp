@@ -14,7 +14,7 @@ namespace mbsopt {
 /// Calls `visit(name, node)` for every number of the scene, in file order.
 void forEachNumber(const YAML::Node& root, const std::function<void(const std::string&, const YAML::Node&)>& visit);
 
-/// Replaces the numbers named by the overrides in the parsed scene. A number the file leaves at
+/// Replaces the numbers (and word settings) named by the overrides in the parsed scene. A number the file leaves at
 /// its default (`settings.beta`, `hinge.q0`, `bob.com.x`) is written in, so the loader checks it
 /// like any other; a name that leads nowhere is an error naming the override.
 void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<ParameterOverride>& overrides);

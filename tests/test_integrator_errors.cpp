@@ -154,7 +154,8 @@ TEST(IntegratorErrors, ModelBuilderRejectsBadInput) {
   const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
   EXPECT_THROW(model.addRevolute("hinge", Model::ground, kZ), std::invalid_argument);  // duplicate name
   EXPECT_THROW(model.addBody("massless", hinge, 0.0, Eigen::Vector3d::Zero(), kInertia), std::invalid_argument);
-  EXPECT_THROW(model.addBody("flat", hinge, 1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 1, 0).asDiagonal()),
+  // A zero moment is a slender rod or a point mass (allowed); a negative one is no body.
+  EXPECT_THROW(model.addBody("negative", hinge, 1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 1, -0.1).asDiagonal()),
                std::invalid_argument);
   Eigen::Matrix3d skew = kInertia;
   skew(0, 1) = 1.0;

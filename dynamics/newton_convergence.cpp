@@ -1,0 +1,105 @@
+#include "dynamics/newton_convergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace mbsopt {
+
+namespace {
+
+std::pair<FrameIndex, FrameIndex> cutFrames(const CutKind& cut) {
+  return std::visit([](const auto& c) { return std::pair{c.frame_a, c.frame_b}; }, cut);
+}
+
+double ratio(double value, double scale) {
+  if (value == 0.0) return 0.0;
+  return scale > 0.0 ? std::abs(value) / (std::numeric_limits<double>::epsilon() * scale)
+                     : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+void frameReach(const Model& model, const Workspace<double>& ws, std::vector<double>& reach, std::vector<double>& depth) {
+  reach.assign(static_cast<std::size_t>(model.frameCount()), 0.0);
+  depth.assign(reach.size(), 0.0);
+  // Elements are stored parents first: each is added after its entry frame exists.
+  for (const KinematicElement& element : model.elements()) {
+    const auto entry = static_cast<std::size_t>(element.entry), exit = static_cast<std::size_t>(element.exit);
+    reach[exit] = reach[entry] + (ws.position[exit] - ws.position[entry]).lpNorm<1>();
+    depth[exit] = depth[entry] + 1.0;
+  }
+}
+
+double closureRowScale(const CutJoint& cut, int row, const std::vector<double>& reach, const std::vector<double>& depth) {
+  const auto [a, b] = cutFrames(cut.kind);
+  const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+  return row < 3 ? reach[ia] + reach[ib] : depth[ia] + depth[ib] + 1.0;
+}
+
+NewtonRoundoff::NewtonRoundoff(const Model& model)
+    : reach_(static_cast<std::size_t>(model.frameCount()), 0.0),
+      depth_(reach_.size(), 0.0),
+      force_(reach_.size(), 0.0),
+      moment_(reach_.size(), 0.0) {}
+
+void NewtonRoundoff::setWrenchMagnitudes(const Model& model, const Workspace<double>& ws,
+                                         const Eigen::VectorXd& lambda) {
+  std::fill(force_.begin(), force_.end(), 0.0);
+  std::fill(moment_.begin(), moment_.end(), 0.0);
+  const double g = model.gravity().norm();
+  for (const Body& body : model.bodies()) {  // as addBodyWrenches, on magnitudes
+    const auto k = static_cast<std::size_t>(body.frame);
+    const double c = body.centre_of_mass.norm(), w = ws.angular_velocity[k].norm();
+    const double alpha = ws.angular_acceleration[k].norm(), inertia = body.inertia.cwiseAbs().sum();
+    const double force = body.mass * (ws.acceleration[k].norm() + alpha * c + w * w * c + g);
+    force_[k] += force;
+    moment_[k] += inertia * (alpha + w * w) + (c + reach_[k]) * force;
+  }
+  Eigen::Index row = 0;
+  for (const CutJoint& cut : model.cuts()) {  // as addConstraintWrenches: λ on both frames
+    const auto [a, b] = cutFrames(cut.kind);
+    const int rows = equationCount(cut.kind);
+    const double force = lambda.size() ? lambda.segment<3>(row).lpNorm<1>() : 0.0;
+    const double torque = lambda.size() && rows > 3 ? lambda.segment(row + 3, rows - 3).lpNorm<1>() : 0.0;
+    for (const FrameIndex f : {a, b}) {
+      const auto k = static_cast<std::size_t>(f);
+      force_[k] += force;
+      moment_[k] += torque + reach_[k] * force;
+    }
+    row += rows;
+  }
+  const auto& elements = model.elements();
+  for (std::size_t k = elements.size(); k-- > 0;) {  // as addElementResiduals
+    const auto e = static_cast<std::size_t>(elements[k].entry), s = static_cast<std::size_t>(elements[k].exit);
+    force_[e] += force_[s];
+    moment_[e] += moment_[s] + (reach_[s] + reach_[e]) * force_[s];
+  }
+}
+
+double NewtonRoundoff::relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
+                                        const std::vector<int>& free, const Eigen::VectorXd& lambda,
+                                        const Eigen::VectorXd& closure) {
+  frameReach(model, ws, reach_, depth_);
+  setWrenchMagnitudes(model, ws, lambda);
+  double largest = 0.0;
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    const auto element = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(free[j])].element);
+    const auto exit = static_cast<std::size_t>(model.elements()[element].exit);
+    const double scale =
+        ws.motion_linear[element].norm() * force_[exit] + ws.motion_angular[element].norm() * moment_[exit];
+    largest = std::max(largest, ratio(r[static_cast<Eigen::Index>(j)], scale));
+  }
+  if (closure.size() == 0) return largest;
+  Eigen::Index row = 0;
+  for (const CutJoint& cut : model.cuts()) {
+    const int rows = equationCount(cut.kind);
+    for (int k = 0; k < rows; ++k)
+      largest = std::max(largest, ratio(closure[row + k], closureRowScale(cut, k, reach_, depth_)));
+    row += rows;
+  }
+  return largest;
+}
+
+}  // namespace mbsopt

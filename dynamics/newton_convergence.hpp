@@ -1,0 +1,61 @@
+// When a Newton iterate of the Newmark step solves its equations (37) as well as floating point
+// allows, whatever the model's size, units and step.
+//
+// The increment test ‖Δq̈‖∞ ≤ tol·(1 + ‖q̈‖∞) cannot be met when round-off in the equations, amplified
+// on its way to q̈, exceeds tol: the closure rows are positions of size ε·(reach of the model), divided
+// by βh², then mapped through B⁺ (1/σ_min), and σ_min is small near a singular configuration. So the
+// iteration also stops when every row of the residual is at its own round-off level, each measured
+// in its own units (the weights of IDA/DASSL, with the relative part taken from the row's terms):
+//     dynamic row i (24):            |rᵢ| ≤ c ε Sᵢ
+//     closure row, coincidence:      |bₖ| ≤ c ε (ρ_a + ρ_b)
+//     closure row, orthogonality:    |bₖ| ≤ c ε (d_a + d_b + 1)
+// ρ_f is the reach of frame f, the length of the path of element translations from the ground (a
+// bound on the terms its position sums); d_f the number of elements on that path. Sᵢ is a running
+// error bound of the backward recursion (22)-(24) that computes rᵢ: the same recursion on the
+// magnitudes of its terms, the body wrenches m(a_c − g), Iα + ω×Iω + c×F and the cut reactions λ,
+// with every lever arm taken at the reach of its frame (the round-off of a position is ε·reach).
+// Terms left out (springs, actuation) only make Sᵢ smaller, so the test stays on the safe side.
+// An iterate that passes is as accurate as its equations can say: further iterations would move it
+// only by round-off amplified by the conditioning.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "dynamics/workspace.hpp"
+
+namespace mbsopt {
+
+/// Per frame, the reach ρ (length of the path of element translations from the ground, from the
+/// positions in ws) and the depth d (number of elements on that path).
+void frameReach(const Model& model, const Workspace<double>& ws, std::vector<double>& reach, std::vector<double>& depth);
+
+/// The scale of closure row `row` of cut `cut` (its rows start at 0): ρ_a + ρ_b for a coincidence row,
+/// d_a + d_b + 1 for an orthogonality row.
+double closureRowScale(const CutJoint& cut, int row, const std::vector<double>& reach, const std::vector<double>& depth);
+
+/// Round-off levels of the rows of the Newton equations at one state.
+class NewtonRoundoff {
+ public:
+  /// Safety factor c on ε·scale: each row is a sum of a few dozen rounded terms.
+  static constexpr double kFactor = 64.0;
+
+  explicit NewtonRoundoff(const Model& model);
+
+  /// The largest ratio |row| / (ε · its scale) over the free rows r of the residual and the closure
+  /// rows `closure` (positions and orthogonalities, not divided by βh²), with λ the multipliers.
+  /// ws must hold the kinematics at Acceleration level of the state r was evaluated at. A value
+  /// below kFactor means every row is at round-off. `closure` may be empty (closure rows not tested).
+  double relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
+                          const std::vector<int>& free, const Eigen::VectorXd& lambda,
+                          const Eigen::VectorXd& closure);
+
+ private:
+  void setWrenchMagnitudes(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda);
+
+  std::vector<double> reach_, depth_;         ///< per frame
+  std::vector<double> force_, moment_;        ///< per frame: magnitudes of the terms of its wrench
+};
+
+}  // namespace mbsopt
