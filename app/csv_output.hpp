@@ -1,5 +1,5 @@
-// Writes a simulation to CSV: one row per time point, `t`, every coordinate, then every sensor.
-// The file appears only when complete (written to a temporary name, then renamed).
+// Writes a simulation to CSV: one row per time point (or every N-th), `t`, every coordinate, then
+// every sensor. The file appears only when complete (written to a temporary name, then renamed).
 #pragma once
 
 #include <string>
@@ -8,8 +8,9 @@
 
 namespace mbsopt {
 
-/// `sensors`: sensorHistory(model, trajectory).
+/// `sensors`: sensorHistory(model, trajectory). `every` ≥ 1: writes time points 0, every, 2·every, …
+/// and always the last one.
 void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory,
-                        const Eigen::MatrixXd& sensors);
+                        const Eigen::MatrixXd& sensors, long every = 1);
 
 }  // namespace mbsopt

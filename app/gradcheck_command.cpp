@@ -8,6 +8,8 @@
 #include <optional>
 
 #include "app/atomic_file.hpp"
+#include "app/design_point.hpp"
+#include "app/gradient_difference.hpp"
 #include "app/scene_argument.hpp"
 #include "problems/scene_text.hpp"
 #include "sensitivity/gradient_method.hpp"
@@ -45,32 +47,13 @@ MethodResult run(const std::string& name, Compute&& compute) {
   return result;
 }
 
-/// Row r of a gradient: the cost's (r = 0) or constraint r − 1's.
-Eigen::VectorXd row(const DesignGradient& g, Eigen::Index r) {
-  return r == 0 ? g.cost : Eigen::VectorXd(g.constraints.row(r - 1).transpose());
-}
-
-double relativeError(const Eigen::VectorXd& g, const Eigen::VectorXd& reference) {
-  const double scale = reference.cwiseAbs().maxCoeff();
-  return (g - reference).cwiseAbs().maxCoeff() / (scale > 0.0 ? scale : 1.0);
-}
-
 std::vector<double> toVector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 void gradcheck(const GradcheckOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
-  Eigen::VectorXd x = initialPoint(problem);
-  const auto& variables = problem.design.variables;
-  if (!options.design.empty()) {
-    if (options.design.size() != variables.size())
-      throw SceneError(source.path, 0, 0,
-                       "--design: " + std::to_string(options.design.size()) + " values for " +
-                           std::to_string(variables.size()) + " design variables");
-    for (std::size_t i = 0; i < variables.size(); ++i) x[static_cast<Eigen::Index>(i)] = options.design[i] / variables[i].scale;
-  }
-  if (options.artificial) x[x.size() - 1] = *options.artificial / problem.design.artificial.scale;
+  const Eigen::VectorXd x = designPoint(source, problem, options.design, options.artificial);
 
   const auto start = std::chrono::steady_clock::now();
   const DesignResponse response = evaluateDesign(problem, functionals, x);
@@ -93,7 +76,7 @@ void gradcheck(const GradcheckOptions& options) {
 
   // Text report.
   std::printf("gradcheck %s: %zu design variables + b_{k+1}, %zu constraints; one simulation %.3g s\n",
-              source.path.c_str(), variables.size(), functionals.size(), simulation);
+              source.path.c_str(), problem.design.variables.size(), functionals.size(), simulation);
   for (const MethodResult& m : methods) {
     if (!m.gradient) {
       std::printf("  %-19s not available: %s\n", m.name.c_str(), m.unavailable.c_str());
@@ -101,7 +84,7 @@ void gradcheck(const GradcheckOptions& options) {
     }
     double worst = 0.0;
     for (Eigen::Index r = 0; r <= static_cast<Eigen::Index>(functionals.size()); ++r)
-      worst = std::max(worst, relativeError(row(*m.gradient, r), row(*reference.gradient, r)));
+      worst = std::max(worst, relativeDifference(functionalGradient(*m.gradient, r), functionalGradient(*reference.gradient, r)));
     std::printf("  %-19s %8.3g s  max relative difference from %s %.2e\n", m.name.c_str(), m.seconds,
                 reference.name.c_str(), worst);
   }
@@ -113,7 +96,7 @@ void gradcheck(const GradcheckOptions& options) {
     nlohmann::json gradients = nlohmann::json::object();
     for (const MethodResult& m : methods) {
       if (!m.gradient) continue;
-      const Eigen::VectorXd g = row(*m.gradient, r);
+      const Eigen::VectorXd g = functionalGradient(*m.gradient, r);
       gradients[m.name] = toVector(g);
       std::printf("  %-19s", m.name.c_str());
       for (Eigen::Index i = 0; i < g.size(); ++i) std::printf(" %13.6e", g[i]);
@@ -122,8 +105,8 @@ void gradcheck(const GradcheckOptions& options) {
     std::printf("  central differences, relative step: relative difference from %s\n   ", reference.name.c_str());
     nlohmann::json json_sweep = nlohmann::json::array();
     for (const auto& [step, g] : sweep) {
-      std::printf(" %.0e: %.1e", step, relativeError(row(g, r), row(*reference.gradient, r)));
-      json_sweep.push_back({{"relative_step", step}, {"gradient", toVector(row(g, r))}});
+      std::printf(" %.0e: %.1e", step, relativeDifference(functionalGradient(g, r), functionalGradient(*reference.gradient, r)));
+      json_sweep.push_back({{"relative_step", step}, {"gradient", toVector(functionalGradient(g, r))}});
     }
     std::printf("\n");
     json_functionals.push_back({{"name", name}, {"value", value}, {"gradients", gradients}, {"fd_sweep", json_sweep}});

@@ -7,6 +7,7 @@
 #include "app/gradcheck_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/parameters_command.hpp"
+#include "app/precision_command.hpp"
 #include "app/simulate_command.hpp"
 #include "problems/scene_file.hpp"
 
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   mbsopt::registerGradcheckCommand(app);
   mbsopt::registerOptimizeCommand(app);
   mbsopt::registerCompareCommand(app);
+  mbsopt::registerPrecisionCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,312 @@
+#include "app/precision_study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <stdexcept>
+
+#include "dynamics/sensors.hpp"
+#include "problems/scene_file.hpp"
+#include "problems/scene_text.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// Steps of a run, as NewmarkIntegrator::simulate counts them: the grid covers [0, end_time].
+long stepCount(double step, double end_time) {
+  return std::max(1L, static_cast<long>(std::ceil(end_time / step - 1e-9)));
+}
+
+/// The index k of t = k·h on the grid of step h (within round-off), or −1.
+long gridIndex(double t, double step) {
+  const double ratio = t / step;
+  const double k = std::round(ratio);
+  return std::abs(ratio - k) <= 1e-6 ? static_cast<long>(k) : -1;
+}
+
+/// The grid indices of `times` (ascending) for step h; they must be on the grid (requireOnGrids).
+std::vector<long> gridIndices(const Eigen::VectorXd& times, double step) {
+  std::vector<long> indices;
+  for (const double t : times) indices.push_back(gridIndex(t, step));
+  return indices;
+}
+
+/// A run of ⌈T/h⌉ steps that keeps q, q̇, q̈ only at the grid indices `at` (ascending): a reference
+/// of millions of steps needs no memory, and the time measured is that of the integration alone.
+struct SampledRun {
+  Trajectory samples;
+  IntegratorStatistics statistics;
+};
+
+SampledRun integrateSampled(const Scene& scene, const NewmarkSettings& settings, const std::vector<long>& at,
+                            const std::function<void(double)>& progress = {}) {
+  NewmarkIntegrator integrator(scene.model, settings);
+  integrator.initialize(scene.q0, scene.v0, 0.0);
+  const Eigen::Index n = scene.model.coordinateCount(), points = static_cast<Eigen::Index>(at.size());
+  SampledRun run;
+  Trajectory& samples = run.samples;
+  samples.time.resize(points);
+  samples.q.resize(n, points);
+  samples.v.resize(n, points);
+  samples.a.resize(n, points);
+  Eigen::Index next = 0;
+  const auto keep = [&](long k) {
+    for (; next < points && at[static_cast<std::size_t>(next)] == k; ++next) {
+      samples.time[next] = integrator.time();
+      samples.q.col(next) = integrator.q();
+      samples.v.col(next) = integrator.v();
+      samples.a.col(next) = integrator.a();
+    }
+  };
+  keep(0);
+  const long steps = stepCount(settings.step, settings.end_time);
+  for (long k = 1; k <= steps; ++k) {
+    integrator.step();
+    keep(k);
+    if (progress) progress(integrator.time());
+  }
+  run.statistics = integrator.statistics();
+  return run;
+}
+
+/// The quantities at every sample: rows = samples, columns = quantities.
+Eigen::MatrixXd quantityValues(const Model& model, const Trajectory& samples, const std::vector<Quantity>& quantities) {
+  const bool any_sensor = std::any_of(quantities.begin(), quantities.end(), [](const Quantity& q) { return q.sensor; });
+  const Eigen::MatrixXd sensors = any_sensor ? sensorHistory(model, samples) : Eigen::MatrixXd();
+  Eigen::MatrixXd values(samples.time.size(), static_cast<Eigen::Index>(quantities.size()));
+  for (std::size_t j = 0; j < quantities.size(); ++j) {
+    const Eigen::Index column = static_cast<Eigen::Index>(j);
+    values.col(column) = quantities[j].sensor ? Eigen::VectorXd(sensors.col(quantities[j].index))
+                                              : Eigen::VectorXd(samples.q.row(quantities[j].index).transpose());
+  }
+  return values;
+}
+
+std::vector<Quantity> findQuantities(const Model& model, const std::vector<std::string>& names) {
+  std::vector<Quantity> quantities;
+  for (const std::string& name : names) quantities.push_back(findQuantity(model, name));
+  return quantities;
+}
+
+/// Fields of one CSV line and the 1-based column where each starts.
+std::vector<std::pair<std::string, int>> splitCsvLine(const std::string& line) {
+  std::vector<std::pair<std::string, int>> fields;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    std::string field = line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::size_t first = field.find_first_not_of(" \t"), last = field.find_last_not_of(" \t\r");
+    field = first == std::string::npos ? "" : field.substr(first, last - first + 1);
+    fields.emplace_back(field, static_cast<int>(start + (first == std::string::npos ? 0 : first)) + 1);
+    if (comma == std::string::npos) return fields;
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
+Quantity findQuantity(const Model& model, const std::string& name) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < model.coordinates().size(); ++i) {
+    if (model.coordinates()[i].name == name) return {name, false, static_cast<Eigen::Index>(i)};
+    names.push_back(model.coordinates()[i].name);
+  }
+  for (std::size_t s = 0; s < model.sensors().size(); ++s) {
+    if (model.sensors()[s].name == name) return {name, true, static_cast<Eigen::Index>(s)};
+    names.push_back(model.sensors()[s].name);
+  }
+  throw std::invalid_argument(quoted(name) + " is neither a coordinate nor a sensor of the scene" +
+                              suggestion(name, names) + " (they are: " + listed(names) + ")");
+}
+
+const std::vector<std::string>& integratorVariantNames() {
+  static const std::vector<std::string> names{"newmark", "damped", "fast-newton", "acceleration-closure"};
+  return names;
+}
+
+NewmarkSettings variantSettings(NewmarkSettings settings, const std::string& variant, double alpha) {
+  if (variant == "damped") {
+    settings.gamma = 0.5 + alpha;
+    settings.beta = 0.25 * (settings.gamma + 0.5) * (settings.gamma + 0.5);
+  } else if (variant == "fast-newton") {
+    settings.accept_by_contraction_rate = true;
+  } else if (variant == "acceleration-closure") {
+    settings.closure = ClosureLevel::Acceleration;
+  } else if (variant != "newmark") {
+    throw std::invalid_argument("unknown variant " + quoted(variant) + suggestion(variant, integratorVariantNames()) +
+                                " (the variants: " + listed(integratorVariantNames()) + ")");
+  }
+  return settings;
+}
+
+Eigen::VectorXd commonGridTimes(const std::vector<double>& steps, double end_time) {
+  const double largest = *std::max_element(steps.begin(), steps.end());
+  std::vector<double> times;
+  for (long k = 1; k * largest <= end_time * (1.0 + 1e-12); ++k) {
+    const double t = static_cast<double>(k) * largest;
+    if (std::all_of(steps.begin(), steps.end(), [t](double h) { return gridIndex(t, h) >= 0; })) times.push_back(t);
+  }
+  if (times.empty())
+    throw std::invalid_argument("the steps have no common time point in (0, " + formatNumber(end_time) +
+                                "] s: choose steps that are whole multiples of one another (a factor-2 ladder), "
+                                "with a reference step that divides them all");
+  return Eigen::Map<const Eigen::VectorXd>(times.data(), static_cast<Eigen::Index>(times.size()));
+}
+
+void requireOnGrids(const Eigen::VectorXd& times, const std::vector<double>& steps, double end_time) {
+  for (const double t : times)
+    for (const double h : steps) {
+      const long k = gridIndex(t, h);
+      if (k < 0)
+        throw std::invalid_argument("the reference time t = " + formatNumber(t) + " s is not on the grid of the step " +
+                                    formatNumber(h) + " s (t/h = " + formatNumber(t / h) +
+                                    "): give reference rows at multiples of every swept step");
+      if (k > stepCount(h, end_time))
+        throw std::invalid_argument("the reference time t = " + formatNumber(t) +
+                                    " s lies after the end of the runs (" + formatNumber(end_time) + " s)");
+    }
+}
+
+ReferenceSolution readReferenceCsv(const std::string& path, const Model& model,
+                                   const std::vector<std::string>& quantities) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path, 0, 0, "cannot open the reference file");
+  std::string line;
+  if (!std::getline(in, line))
+    throw SceneError(path, 0, 0, "the reference file is empty: expected a header t,<name>,...");
+  const auto header = splitCsvLine(line);
+  if (header[0].first != "t")
+    throw SceneError(path, 1, header[0].second,
+                     "the first column must be the time 't', not " + quoted(header[0].first));
+  std::vector<Quantity> columns;  // the file's columns after t
+  std::vector<std::string> names;
+  for (std::size_t c = 1; c < header.size(); ++c) {
+    const auto& [name, column] = header[c];
+    try {
+      columns.push_back(findQuantity(model, name));
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(path, 1, column, "column " + std::string(e.what()));
+    }
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw SceneError(path, 1, column, "column " + quoted(name) + " appears twice");
+    names.push_back(name);
+  }
+  if (columns.empty()) throw SceneError(path, 1, 0, "the header has no column after 't': nothing to compare");
+
+  std::vector<std::vector<double>> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto fields = splitCsvLine(line);
+    if (fields.size() != header.size())
+      throw SceneError(path, number, 0, std::to_string(fields.size()) + " fields, but the header has " +
+                                            std::to_string(header.size()));
+    std::vector<double> row;
+    for (const auto& [text, column] : fields) {
+      char* end = nullptr;
+      const double value = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(value))
+        throw SceneError(path, number, column, quoted(text) + " is not a finite number");
+      row.push_back(value);
+    }
+    if (row[0] < 0.0) throw SceneError(path, number, fields[0].second, "a negative time");
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty()) throw SceneError(path, 0, 0, "the reference file has a header but no rows");
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a[0] < b[0]; });
+
+  // The compared columns: those asked for, else the sensors, else all.
+  std::vector<std::size_t> chosen;
+  for (const std::string& name : quantities) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end())
+      throw SceneError(path, 1, 0, "--quantities: " + quoted(name) + " is not a column of the file (its columns: " +
+                                       listed(names) + ")");
+    chosen.push_back(static_cast<std::size_t>(at - names.begin()));
+  }
+  if (chosen.empty())
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      if (columns[c].sensor) chosen.push_back(c);
+  if (chosen.empty()) {
+    chosen.resize(columns.size());
+    std::iota(chosen.begin(), chosen.end(), 0);
+  }
+
+  ReferenceSolution reference;
+  reference.file = path;
+  reference.times.resize(static_cast<Eigen::Index>(rows.size()));
+  reference.values.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(chosen.size()));
+  for (std::size_t j = 0; j < chosen.size(); ++j) reference.quantities.push_back(columns[chosen[j]]);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Eigen::Index r = static_cast<Eigen::Index>(i);
+    reference.times[r] = rows[i][0];
+    for (std::size_t j = 0; j < chosen.size(); ++j)
+      reference.values(r, static_cast<Eigen::Index>(j)) = rows[i][chosen[j] + 1];
+  }
+  return reference;
+}
+
+ReferenceSolution referenceRun(const Scene& scene, double step, const Eigen::VectorXd& times,
+                               const std::vector<std::string>& quantities,
+                               const std::function<void(double)>& progress) {
+  std::vector<std::string> names = quantities;
+  if (names.empty())
+    for (const Coordinate& c : scene.model.coordinates()) names.push_back(c.name);
+  ReferenceSolution reference;
+  reference.step = step;
+  try {
+    reference.quantities = findQuantities(scene.model, names);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("--quantities: " + std::string(e.what()));
+  }
+  reference.times = times;
+  NewmarkSettings settings = scene.settings;
+  settings.step = step;
+  const auto start = std::chrono::steady_clock::now();
+  const SampledRun run = integrateSampled(scene, settings, gridIndices(times, step), progress);
+  reference.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  reference.values = quantityValues(scene.model, run.samples, reference.quantities);
+  return reference;
+}
+
+PrecisionRun measureIntegratorRun(const Scene& scene, const std::string& variant, double step, double alpha,
+                                  const ReferenceSolution& reference, int repeat) {
+  PrecisionRun result;
+  result.variant = variant;
+  result.step = step;
+  SampledRun run;
+  try {
+    NewmarkSettings settings = variantSettings(scene.settings, variant, alpha);
+    settings.step = step;
+    const std::vector<long> at = gridIndices(reference.times, step);
+    timeMedian(repeat, [&] { run = integrateSampled(scene, settings, at); }, result.seconds);
+  } catch (const SimulationError& e) {
+    return failedRun(result, e);
+  } catch (const std::invalid_argument& e) {  // settings the integrator refuses (say, too many steps)
+    return failedRun(result, e);
+  }
+  result.steps = run.statistics.steps;
+  result.newton_iterations = run.statistics.newton_iterations;
+  const Eigen::MatrixXd values = quantityValues(scene.model, run.samples, reference.quantities);
+  result.error = 0.0;
+  for (std::size_t j = 0; j < reference.quantities.size(); ++j) {
+    const Eigen::Index column = static_cast<Eigen::Index>(j);
+    const std::string& name = reference.quantities[j].name;
+    if (!values.col(column).allFinite()) {
+      Eigen::Index k = 0;
+      while (std::isfinite(values(k, column))) ++k;
+      result.failed = true;
+      result.message = quoted(name) + " is not finite at t = " + formatNumber(reference.times[k]) + " s";
+      result.error = std::numeric_limits<double>::quiet_NaN();
+      return result;
+    }
+    const double error = (values.col(column) - reference.values.col(column)).cwiseAbs().maxCoeff();
+    result.errors.emplace_back(name, error);
+    result.error = std::max(result.error, error);
+  }
+  return result;
+}
+
+}  // namespace mbsopt
