@@ -1,0 +1,756 @@
+// Side by side with a peer (issue 11): the same mechanisms in Simbody and in mbsopt, an agreement
+// check at tight accuracy, and both engines' work-precision curves.
+//
+//   peer_comparison --out DIR [--quick] [--mechanisms four_bar,chain8,nfourbar4,nfourbar16,a02_singular]
+//
+// For each mechanism:
+//   - reference: Simbody's RungeKuttaMerson at accuracy 1e-12 (RungeKuttaFeldberg, then CPodes, if it
+//     fails); its agreement with the other two at 1e-12 and with mbsopt at two tiny steps (and their
+//     Richardson extrapolation, the trapezoidal rule's error being even in h) is reported;
+//   - error of a run: the largest absolute joint-angle error [rad] over every coordinate and every
+//     output time (every 0.1 s, the integrators step onto them: no interpolated reports);
+//   - Simbody: RungeKuttaFeldberg, RungeKuttaMerson, CPodes at accuracies 1e-2 … 1e-10; mbsopt:
+//     Newmark (β = 1/4, γ = 1/2, the project's defaults otherwise) over a ladder of fixed steps;
+//   - time of a run: wall time of the integration only (integrator creation, initialisation and the
+//     steps; the models are built beforehand), median of several repetitions;
+//   - each engine's Pareto front (time against error), and the time ratio Simbody/mbsopt at errors
+//     1e-3, 1e-5, 1e-7, interpolated log-log on each integrator's front (the fastest one wins).
+// Failed runs (an mbsopt step whose Newton iteration does not converge, a Simbody exception) are
+// kept in the data with their message and left out of the fronts.
+//
+// Writes DIR/peer_comparison.json, DIR/peer_comparison.md and, per mechanism,
+// DIR/work_precision_<mechanism>.dat and .gp (scripts/peer_comparison.sh runs gnuplot on them).
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/peer/simbody_models.hpp"
+#include "dynamics/model.hpp"
+#include "dynamics/newmark.hpp"
+#include "problems/scene.hpp"
+#include "problems/scene_file.hpp"
+
+namespace {
+
+using Outputs = std::vector<std::vector<double>>;  // [output time][coordinate]
+using nlohmann::json;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kAgreementThreshold = 1e-8;
+constexpr double kReferenceBudget = 60.0;  ///< [s] of wall time for one Simbody run at 1e-12
+constexpr double kRunBudget = 15.0;        ///< [s] for one Simbody run of the sweep (beyond: failed)
+const std::vector<double> kTargetErrors = {1e-3, 1e-5, 1e-7};
+
+// ---------------------------------------------------------------------------------------------
+// Mechanisms
+
+struct Mechanism {
+  std::string key;
+  std::string description;
+  double end_time = 0.0;
+  double output_interval = 0.1;
+  std::vector<std::string> coordinates;  ///< mbsopt coordinate names, in Simbody's pin order
+  std::function<mbsopt::Scene()> mbsopt_scene;
+  std::function<std::unique_ptr<peer::SimbodyModel>()> simbody_model;
+  std::vector<int> ladder;       ///< mbsopt steps per output interval, coarse to fine
+  std::vector<int> fine_ladder;  ///< two tiny steps (steps per interval) for the agreement check
+  bool by_default = true;        ///< run without --mechanisms
+};
+
+peer::Bar barOf(const mbsopt::Model& model, const std::string& name) {
+  for (const mbsopt::Body& body : model.bodies()) {
+    if (body.name != name) continue;
+    const Eigen::Matrix3d& i = body.inertia;
+    if (i(0, 1) != 0.0 || i(0, 2) != 0.0 || i(1, 2) != 0.0)
+      throw std::runtime_error("body '" + name + "': products of inertia are not supported here");
+    return peer::Bar{body.mass,
+                     {body.centre_of_mass.x(), body.centre_of_mass.y(), body.centre_of_mass.z()},
+                     {i(0, 0), i(1, 1), i(2, 2)}};
+  }
+  throw std::runtime_error("no body '" + name + "' in the four-bar scene");
+}
+
+mbsopt::Scene fourBarScene() {
+  const std::optional<mbsopt::SceneSource> source = mbsopt::builtinScene("four_bar");
+  if (!source) throw std::runtime_error("the built-in scene four_bar is missing");
+  mbsopt::LoadedScene loaded = mbsopt::loadScene(*source);
+  for (const std::string& warning : loaded.warnings) std::cerr << "four_bar: " << warning << '\n';
+  return std::move(loaded.scene);
+}
+
+/// `links` uniform links (length L, mass m, I = mL²/12 about the centre) pinned about z, horizontal
+/// along x at rest, gravity −9.81 along y.
+mbsopt::Scene chainScene(int links, double length, double mass) {
+  mbsopt::Scene scene;
+  mbsopt::Model& m = scene.model;
+  m.setGravity(Eigen::Vector3d(0.0, -9.81, 0.0));
+  const double inertia = mass * length * length / 12.0;
+  mbsopt::FrameIndex tip = mbsopt::Model::ground;
+  for (int i = 0; i < links; ++i) {
+    const mbsopt::FrameIndex link = m.addRevolute("joint" + std::to_string(i), tip, Eigen::Vector3d::UnitZ());
+    m.addBody("link" + std::to_string(i), link, mass, Eigen::Vector3d(0.5 * length, 0.0, 0.0),
+              inertia * Eigen::Matrix3d::Identity());
+    tip = m.addOffset("tip" + std::to_string(i), link, Eigen::Vector3d(length, 0.0, 0.0));
+  }
+  scene.q0 = Eigen::VectorXd::Zero(m.coordinateCount());
+  scene.v0 = Eigen::VectorXd::Zero(m.coordinateCount());
+  return scene;
+}
+
+/// IFToMM A02 with N windows: rockers `rocker<i>` (i = 0..N) pinned to the ground at (i, 0), couplers
+/// `coupler<i>` (i = 0..N−1) pinned on rocker i's tip, each coupler's tip held on rocker i+1's tip by
+/// a spherical cut (3 equations, the one along z vanishing in the plane: dropped by the SVD).
+mbsopt::Scene nFourBarScene(int n, double rocker_angle, double rocker_rate) {
+  mbsopt::Scene scene;
+  mbsopt::Model& m = scene.model;
+  m.setGravity(Eigen::Vector3d(0.0, -9.81, 0.0));
+  const double inertia = 1.0 / 12.0;
+  std::vector<mbsopt::FrameIndex> rocker_tips;
+  for (int i = 0; i <= n; ++i) {
+    const std::string name = "rocker" + std::to_string(i);
+    const mbsopt::FrameIndex pivot =
+        m.addOffset(name + "_pivot", mbsopt::Model::ground, Eigen::Vector3d(double(i), 0.0, 0.0));
+    const mbsopt::FrameIndex rocker = m.addRevolute(name, pivot, Eigen::Vector3d::UnitZ());
+    m.addBody(name + "_bar", rocker, 1.0, Eigen::Vector3d(0.5, 0.0, 0.0), inertia * Eigen::Matrix3d::Identity());
+    rocker_tips.push_back(m.addOffset(name + "_tip", rocker, Eigen::Vector3d(1.0, 0.0, 0.0)));
+  }
+  for (int i = 0; i < n; ++i) {
+    const std::string name = "coupler" + std::to_string(i);
+    const mbsopt::FrameIndex coupler = m.addRevolute(name, rocker_tips[i], Eigen::Vector3d::UnitZ());
+    m.addBody(name + "_bar", coupler, 1.0, Eigen::Vector3d(0.5, 0.0, 0.0), inertia * Eigen::Matrix3d::Identity());
+    const mbsopt::FrameIndex tip = m.addOffset(name + "_tip", coupler, Eigen::Vector3d(1.0, 0.0, 0.0));
+    m.addSphericalCut(name + "_cut", tip, rocker_tips[i + 1]);
+  }
+  scene.q0 = Eigen::VectorXd::Zero(m.coordinateCount());
+  scene.v0 = Eigen::VectorXd::Zero(m.coordinateCount());
+  for (int i = 0; i <= n; ++i) {
+    const int c = m.coordinate("rocker" + std::to_string(i));
+    scene.q0[c] = rocker_angle;
+    scene.v0[c] = rocker_rate;
+  }
+  for (int i = 0; i < n; ++i) {
+    const int c = m.coordinate("coupler" + std::to_string(i));
+    scene.q0[c] = -rocker_angle;
+    scene.v0[c] = -rocker_rate;
+  }
+  return scene;
+}
+
+/// Rockers 60° from the hanging position (−90° + 60°): the parallelogram swings with an amplitude of
+/// 60° and never reaches the horizontal, where A02's own start (vertical, 1 m/s) takes it.
+const double kSwingAngle = -std::numbers::pi / 6.0;
+
+std::vector<Mechanism> allMechanisms() {
+  std::vector<Mechanism> list;
+  {
+    Mechanism m;
+    m.key = "four_bar";
+    m.description = "four-bar of problems/scenes/four_bar.yaml (loaded by the scene loader), released from rest, 4 s";
+    m.end_time = 4.0;
+    m.coordinates = {"crank", "coupler", "rocker"};
+    m.mbsopt_scene = fourBarScene;
+    m.simbody_model = [] {
+      const mbsopt::Scene scene = fourBarScene();
+      return peer::SimbodyModel::fourBar(barOf(scene.model, "crank_bar"), barOf(scene.model, "coupler_bar"),
+                                         barOf(scene.model, "rocker_bar"));
+    };
+    m.ladder = {2, 3, 5, 8, 13, 20, 32, 50, 80, 130, 200, 320, 500, 800, 1300, 2000, 3200};
+    m.fine_ladder = {4000, 8000};
+    list.push_back(std::move(m));
+  }
+  {
+    Mechanism m;
+    m.key = "chain8";
+    m.description = "pendulum chain of 8 uniform links (0.5 m, 1 kg, I = mL^2/12), released horizontal from rest, 2 s";
+    m.end_time = 2.0;
+    for (int i = 0; i < 8; ++i) m.coordinates.push_back("joint" + std::to_string(i));
+    m.mbsopt_scene = [] { return chainScene(8, 0.5, 1.0); };
+    m.simbody_model = [] { return peer::SimbodyModel::chain(8, 0.5, 1.0); };
+    m.ladder = {3, 5, 8, 13, 20, 32, 50, 80, 130, 200, 320, 500, 800, 1300, 2000, 3200, 5000, 8000, 13000};
+    m.fine_ladder = {16000, 32000};
+    list.push_back(std::move(m));
+  }
+  for (int n : {4, 16}) {  // A02's geometry, swinging below the horizontal (see kSwingAngle)
+    Mechanism m;
+    m.key = "nfourbar" + std::to_string(n);
+    m.description = "N four-bar of IFToMM A02, N = " + std::to_string(n) + " (" + std::to_string(n + 1) +
+                    " rockers, " + std::to_string(n) + " couplers, 1 m, 1 kg each), released from rest with the "
+                    "rockers 60 deg from hanging (never horizontal, so never singular), 10 s";
+    m.end_time = 10.0;
+    for (int i = 0; i <= n; ++i) m.coordinates.push_back("rocker" + std::to_string(i));
+    for (int i = 0; i < n; ++i) m.coordinates.push_back("coupler" + std::to_string(i));
+    m.mbsopt_scene = [n] { return nFourBarScene(n, kSwingAngle, 0.0); };
+    m.simbody_model = [n] { return peer::SimbodyModel::nFourBar(n, kSwingAngle, 0.0); };
+    // mbsopt's steps cost more here at small h (more Newton iterations and tangent refreshes per step,
+    // see the counters in the JSON): the ladder and the agreement steps stop earlier for N = 16.
+    m.ladder = n <= 4 ? std::vector<int>{2, 3, 5, 8, 13, 20, 32, 50, 80, 130, 200, 320, 500, 800, 1300, 2000}
+                      : std::vector<int>{2, 3, 5, 8, 13, 20, 32, 50, 80, 130, 200, 320, 500};
+    m.fine_ladder = n <= 4 ? std::vector<int>{1000, 2000} : std::vector<int>{500, 1000};
+    m.by_default = n <= 4;  // N = 16 takes ~10 minutes on its own (mbsopt ~0.8 ms per step at small h)
+    list.push_back(std::move(m));
+  }
+  return list;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Runs
+
+struct Run {
+  std::string engine;      ///< "simbody" | "mbsopt"
+  std::string integrator;  ///< Simbody's integrator, or "Newmark"
+  double accuracy = kNaN;  ///< Simbody
+  double step = kNaN;      ///< mbsopt
+  bool ok = false;
+  std::string message;
+  Outputs outputs;
+  std::vector<double> seconds;  ///< every repetition
+  double median_seconds = kNaN;
+  double error = kNaN;
+  json counters = json::object();
+};
+
+struct MbsoptRun {
+  bool ok = false;
+  std::string message;
+  Outputs outputs;
+  double seconds = 0.0;
+  json counters = json::object();
+};
+
+MbsoptRun runMbsopt(const mbsopt::Scene& scene, const std::vector<int>& indices, int steps_per_output,
+                    double output_interval, int outputs) {
+  MbsoptRun result;
+  mbsopt::NewmarkSettings settings = scene.settings;
+  settings.step = output_interval / steps_per_output;
+  settings.end_time = output_interval * outputs;
+  result.outputs.reserve(static_cast<std::size_t>(outputs));
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    mbsopt::NewmarkIntegrator integrator(scene.model, settings);
+    integrator.initialize(scene.q0, scene.v0);
+    for (int k = 0; k < outputs; ++k) {
+      for (int s = 0; s < steps_per_output; ++s) integrator.step();
+      std::vector<double> q;
+      q.reserve(indices.size());
+      for (int i : indices) q.push_back(integrator.q()[i]);
+      result.outputs.push_back(std::move(q));
+    }
+    result.ok = true;
+    const mbsopt::IntegratorStatistics& stats = integrator.statistics();
+    result.counters = {{"steps", stats.steps},
+                       {"newton_iterations", stats.newton_iterations},
+                       {"jacobian_updates", stats.jacobian_updates},
+                       {"mass_updates", stats.mass_updates},
+                       {"max_closure_error", stats.max_closure_error}};
+  } catch (const mbsopt::SimulationError& error) {
+    result.message = error.what();
+    result.counters = {{"failed_at_time", error.time}, {"failed_at_step", error.step},
+                       {"residual_norm", error.residual_norm}};
+  } catch (const std::exception& error) {
+    result.message = error.what();
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!result.ok) result.outputs.clear();
+  return result;
+}
+
+double maxAbsError(const Outputs& run, const Outputs& reference) {
+  if (run.size() != reference.size()) return kNaN;
+  double error = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+    for (std::size_t i = 0; i < run[k].size(); ++i) {
+      const double e = std::abs(run[k][i] - reference[k][i]);
+      if (!std::isfinite(e)) return std::numeric_limits<double>::infinity();
+      error = std::max(error, e);
+    }
+  return error;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// Repetitions after a first run of `first` seconds: 5 below 0.3 s, 3 below 3 s, else 1 (quick: 1).
+int repetitionsFor(double first, bool quick) {
+  if (quick) return 1;
+  if (first < 0.3) return 5;
+  if (first < 3.0) return 3;
+  return 1;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fronts and ratios
+
+struct Point {
+  double error, seconds;
+  std::string label;
+};
+
+/// Runs not dominated by a faster one: sorted by time, each strictly more accurate than all faster.
+std::vector<Point> paretoFront(std::vector<Point> points) {
+  std::erase_if(points, [](const Point& p) { return !(std::isfinite(p.error) && p.error > 0.0); });
+  std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.seconds < b.seconds; });
+  std::vector<Point> front;
+  for (const Point& p : points)
+    if (front.empty() || p.error < front.back().error) front.push_back(p);
+  return front;
+}
+
+/// Time to reach `error` on a front, log-log between the two front points that bracket it; nullopt
+/// when the front does not reach it or starts below it (not bracketed).
+std::optional<double> timeAtError(const std::vector<Point>& front, double error) {
+  for (std::size_t k = 0; k + 1 < front.size(); ++k) {
+    const Point& a = front[k];
+    const Point& b = front[k + 1];
+    if (a.error >= error && error >= b.error) {
+      const double s = (std::log(error) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
+      return std::exp(std::log(a.seconds) + s * (std::log(b.seconds) - std::log(a.seconds)));
+    }
+  }
+  if (front.size() == 1 && front[0].error == error) return front[0].seconds;
+  return std::nullopt;
+}
+
+json frontJson(const std::vector<Point>& front) {
+  json out = json::array();
+  for (const Point& p : front) out.push_back({{"error", p.error}, {"seconds", p.seconds}, {"run", p.label}});
+  return out;
+}
+
+std::string format(double value, int precision = 3) {
+  if (!std::isfinite(value)) return "—";
+  std::ostringstream out;
+  out << std::setprecision(precision) << value;
+  return out.str();
+}
+
+std::string sci(double value) {
+  if (!std::isfinite(value)) return "—";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1e", value);
+  return buffer;
+}
+
+/// A message on one Markdown table line: newlines and '|' replaced, runs of spaces squeezed.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const char d = (c == '\n' || c == '\r' || c == '\t') ? ' ' : (c == '|' ? '/' : c);
+    if (d == ' ' && (out.empty() || out.back() == ' ')) continue;
+    out += d;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+json jsonNumber(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+// ---------------------------------------------------------------------------------------------
+
+struct Options {
+  std::filesystem::path out = "results/peer-comparison";
+  bool quick = false;
+  std::vector<std::string> mechanisms;
+};
+
+Options parse(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--out" && i + 1 < argc) {
+      options.out = argv[++i];
+    } else if (arg == "--quick") {
+      options.quick = true;
+    } else if (arg == "--mechanisms" && i + 1 < argc) {
+      std::stringstream list(argv[++i]);
+      for (std::string name; std::getline(list, name, ',');) options.mechanisms.push_back(name);
+    } else {
+      std::cerr << "usage: peer_comparison [--out DIR] [--quick] [--mechanisms four_bar,chain8,nfourbar4,nfourbar16,a02_singular]\n";
+      std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
+    }
+  }
+  return options;
+}
+
+struct MechanismResult {
+  json data;
+  std::vector<std::string> table_rows;
+  std::vector<std::string> agreement_rows;
+  std::vector<std::string> failure_rows;
+};
+
+MechanismResult compare(const Mechanism& mech, const Options& options, const std::filesystem::path& out) {
+  const int outputs = static_cast<int>(std::lround(mech.end_time / mech.output_interval));
+  std::vector<double> output_times;
+  for (int k = 1; k <= outputs; ++k) output_times.push_back(k * mech.output_interval);
+
+  const mbsopt::Scene scene = mech.mbsopt_scene();
+  std::vector<int> indices;
+  for (const std::string& name : mech.coordinates) indices.push_back(scene.model.coordinate(name));
+  const std::unique_ptr<peer::SimbodyModel> simbody = mech.simbody_model();
+  if (simbody->coordinateCount() != static_cast<int>(indices.size()))
+    throw std::runtime_error(mech.key + ": the two models have different coordinate counts");
+
+  std::cerr << "== " << mech.key << ": " << mech.description << '\n';
+  MechanismResult result;
+  json& data = result.data;
+  data["name"] = mech.key;
+  data["description"] = mech.description;
+  data["end_time"] = mech.end_time;
+  data["output_interval"] = mech.output_interval;
+  data["output_times"] = outputs;
+  data["coordinates"] = mech.coordinates;
+
+  // Reference and agreement: the first Simbody integrator that gets through at 1e-12 (RungeKuttaMerson,
+  // then RungeKuttaFeldberg, then CPodes); the others are checked against it.
+  const std::vector<peer::SimbodyIntegrator> tight = {peer::SimbodyIntegrator::RungeKuttaMerson,
+                                                      peer::SimbodyIntegrator::RungeKuttaFeldberg,
+                                                      peer::SimbodyIntegrator::CPodes};
+  std::vector<peer::SimbodyRun> tight_runs;
+  int reference_index = -1;
+  for (std::size_t i = 0; i < tight.size(); ++i) {
+    tight_runs.push_back(simbody->run(tight[i], 1e-12, output_times, kReferenceBudget));
+    std::cerr << "   simbody " << peer::integratorName(tight[i]) << " at 1e-12: "
+              << (tight_runs.back().ok ? "ok" : "FAILED " + oneLine(tight_runs.back().message)) << ", "
+              << tight_runs.back().steps << " steps, " << tight_runs.back().seconds << " s\n";
+    if (tight_runs.back().ok && reference_index < 0) reference_index = static_cast<int>(i);
+  }
+  if (reference_index < 0) throw std::runtime_error(mech.key + ": every Simbody integrator failed at 1e-12");
+  const peer::SimbodyRun& reference = tight_runs[static_cast<std::size_t>(reference_index)];
+  const std::string reference_name = peer::integratorName(tight[static_cast<std::size_t>(reference_index)]);
+  data["reference"] = {{"engine", "simbody"}, {"integrator", reference_name}, {"accuracy", 1e-12},
+                       {"seconds", reference.seconds}, {"steps", reference.steps}};
+  json agreement = json::object();
+  for (std::size_t i = 0; i < tight.size(); ++i) {
+    if (static_cast<int>(i) == reference_index) continue;
+    const peer::SimbodyRun& check = tight_runs[i];
+    const double e = check.ok ? maxAbsError(check.outputs, reference.outputs) : kNaN;
+    agreement[std::string("simbody_") + peer::integratorName(tight[i]) + "_1e-12"] = {
+        {"error", jsonNumber(e)}, {"ok", check.ok}, {"message", check.message}, {"seconds", check.seconds}};
+    result.agreement_rows.push_back("| " + mech.key + " | " + reference_name + " | Simbody " +
+                                    peer::integratorName(tight[i]) + " at 1e-12 | " +
+                                    (check.ok ? sci(e) : "failed: " + oneLine(check.message)) + " |");
+  }
+  std::vector<MbsoptRun> fine;
+  for (int k : mech.fine_ladder) {
+    fine.push_back(runMbsopt(scene, indices, k, mech.output_interval, outputs));
+    const double h = mech.output_interval / k;
+    const double e = fine.back().ok ? maxAbsError(fine.back().outputs, reference.outputs) : kNaN;
+    agreement["mbsopt_h_" + sci(h)] = {{"step", h}, {"error", jsonNumber(e)}, {"ok", fine.back().ok},
+                                       {"message", fine.back().message}, {"seconds", fine.back().seconds}};
+    result.agreement_rows.push_back("| " + mech.key + " | " + reference_name + " | mbsopt Newmark, h = " + sci(h) + " | " +
+                                    (fine.back().ok ? sci(e) : "failed: " + oneLine(fine.back().message)) + " |");
+    std::cerr << "   mbsopt h = " << h << ": " << (fine.back().ok ? sci(e) : fine.back().message) << '\n';
+  }
+  double richardson_error = kNaN;
+  if (fine.size() == 2 && fine[0].ok && fine[1].ok) {
+    Outputs extrapolated = fine[1].outputs;  // (4 q(h/2) − q(h)) / 3
+    for (std::size_t k = 0; k < extrapolated.size(); ++k)
+      for (std::size_t i = 0; i < extrapolated[k].size(); ++i)
+        extrapolated[k][i] = (4.0 * fine[1].outputs[k][i] - fine[0].outputs[k][i]) / 3.0;
+    richardson_error = maxAbsError(extrapolated, reference.outputs);
+    result.agreement_rows.push_back("| " + mech.key + " | " + reference_name + " | mbsopt, Richardson extrapolation of the two | " +
+                                    sci(richardson_error) + " |");
+  }
+  agreement["mbsopt_richardson"] = jsonNumber(richardson_error);
+  double best_mbsopt = richardson_error;
+  for (const MbsoptRun& run : fine)
+    if (run.ok) best_mbsopt = std::min(std::isfinite(best_mbsopt) ? best_mbsopt : 1e300, maxAbsError(run.outputs, reference.outputs));
+  agreement["threshold"] = kAgreementThreshold;
+  agreement["mbsopt_best"] = jsonNumber(best_mbsopt);
+  agreement["both_engines_agree"] = std::isfinite(best_mbsopt) && best_mbsopt <= kAgreementThreshold;
+  data["agreement"] = agreement;
+  std::cerr << "   agreement: Richardson " << sci(richardson_error) << '\n';
+
+  // Sweeps.
+  std::vector<Run> runs;
+  const std::vector<double> accuracies = options.quick ? std::vector<double>{1e-2, 1e-4, 1e-6, 1e-8}
+                                                       : std::vector<double>{1e-2, 1e-3, 1e-4, 1e-5, 1e-6,
+                                                                             1e-7, 1e-8, 1e-9, 1e-10};
+  for (peer::SimbodyIntegrator kind : {peer::SimbodyIntegrator::RungeKuttaFeldberg,
+                                       peer::SimbodyIntegrator::RungeKuttaMerson, peer::SimbodyIntegrator::CPodes}) {
+    for (double accuracy : accuracies) {
+      Run run;
+      run.engine = "simbody";
+      run.integrator = peer::integratorName(kind);
+      run.accuracy = accuracy;
+      peer::SimbodyRun first = simbody->run(kind, accuracy, output_times, kRunBudget);
+      run.seconds.push_back(first.seconds);
+      const int repetitions = repetitionsFor(first.seconds, options.quick);
+      for (int r = 1; r < repetitions; ++r) run.seconds.push_back(simbody->run(kind, accuracy, output_times, kRunBudget).seconds);
+      run.ok = first.ok;
+      run.message = first.message;
+      run.outputs = std::move(first.outputs);
+      run.median_seconds = median(run.seconds);
+      run.counters = {{"steps", first.steps}, {"step_attempts", first.step_attempts},
+                      {"realizations", first.realizations}, {"projections", first.projections}};
+      run.error = run.ok ? maxAbsError(run.outputs, reference.outputs) : kNaN;
+      std::cerr << "   simbody " << std::setw(18) << run.integrator << " acc " << sci(accuracy) << ": error "
+                << sci(run.error) << ", " << format(run.median_seconds) << " s" << (run.ok ? "" : " FAILED " + oneLine(run.message))
+                << '\n';
+      runs.push_back(std::move(run));
+    }
+  }
+  std::vector<int> ladder = mech.ladder;
+  if (options.quick) {
+    std::vector<int> thinned;
+    for (std::size_t i = 0; i < ladder.size(); i += 3) thinned.push_back(ladder[i]);
+    ladder = thinned;
+  }
+  for (int k : ladder) {
+    Run run;
+    run.engine = "mbsopt";
+    run.integrator = "Newmark";
+    run.step = mech.output_interval / k;
+    MbsoptRun first = runMbsopt(scene, indices, k, mech.output_interval, outputs);
+    run.seconds.push_back(first.seconds);
+    const int repetitions = repetitionsFor(first.seconds, options.quick);
+    for (int r = 1; r < repetitions; ++r)
+      run.seconds.push_back(runMbsopt(scene, indices, k, mech.output_interval, outputs).seconds);
+    run.ok = first.ok;
+    run.message = first.message;
+    run.outputs = std::move(first.outputs);
+    run.median_seconds = median(run.seconds);
+    run.counters = first.counters;
+    run.error = run.ok ? maxAbsError(run.outputs, reference.outputs) : kNaN;
+    std::cerr << "   mbsopt  h " << sci(run.step) << ": error " << sci(run.error) << ", " << format(run.median_seconds)
+              << " s" << (run.ok ? "" : " FAILED " + oneLine(run.message)) << '\n';
+    runs.push_back(std::move(run));
+  }
+
+  // Fronts.
+  std::map<std::string, std::vector<Point>> series;  // "mbsopt Newmark", "simbody CPodes", ...
+  json runs_json = json::array();
+  for (const Run& run : runs) {
+    const std::string label = run.engine == "mbsopt" ? "h=" + sci(run.step) : "accuracy=" + sci(run.accuracy);
+    if (run.ok) series[run.engine + " " + run.integrator].push_back({run.error, run.median_seconds, label});
+    json r = {{"engine", run.engine},
+              {"integrator", run.integrator},
+              {"status", run.ok ? "ok" : "failed"},
+              {"error", jsonNumber(run.error)},
+              {"median_seconds", run.median_seconds},
+              {"seconds", run.seconds},
+              {"counters", run.counters}};
+    if (run.engine == "mbsopt") r["step"] = run.step; else r["accuracy"] = run.accuracy;
+    if (!run.ok) {
+      r["message"] = run.message;
+      result.failure_rows.push_back("| " + mech.key + " | " + run.engine + " " + run.integrator + " | " + label + " | " +
+                                    oneLine(run.message) + " |");
+    }
+    runs_json.push_back(std::move(r));
+  }
+  data["runs"] = runs_json;
+  std::vector<Point> simbody_all, mbsopt_all;
+  json fronts = json::object();
+  for (const auto& [name, points] : series) {
+    fronts[name] = frontJson(paretoFront(points));
+    auto& all = name.starts_with("mbsopt") ? mbsopt_all : simbody_all;
+    for (Point p : points) {
+      p.label = name + " " + p.label;
+      all.push_back(p);
+    }
+  }
+  const std::vector<Point> mbsopt_front = paretoFront(mbsopt_all), simbody_front = paretoFront(simbody_all);
+  data["fronts"] = {{"per_integrator", fronts}, {"mbsopt", frontJson(mbsopt_front)}, {"simbody", frontJson(simbody_front)}};
+
+  json ratios = json::array();
+  for (double target : kTargetErrors) {
+    const std::optional<double> mbsopt_time = timeAtError(mbsopt_front, target);
+    std::optional<double> simbody_time;
+    std::string winner;
+    for (const auto& [name, points] : series) {
+      if (name.starts_with("mbsopt")) continue;
+      const std::optional<double> t = timeAtError(paretoFront(points), target);
+      if (t && (!simbody_time || *t < *simbody_time)) {
+        simbody_time = t;
+        winner = name.substr(std::string("simbody ").size());
+      }
+    }
+    const double ratio = (mbsopt_time && simbody_time) ? *simbody_time / *mbsopt_time : kNaN;
+    std::string verdict = "not bracketed";
+    if (std::isfinite(ratio)) verdict = ratio > 1.0 ? "mbsopt faster" : "Simbody faster";
+    else if (mbsopt_time && !simbody_time) verdict = "Simbody does not reach it";
+    else if (!mbsopt_time && simbody_time) verdict = "mbsopt does not reach it";
+    ratios.push_back({{"error", target},
+                      {"mbsopt_seconds", mbsopt_time ? json(*mbsopt_time) : json(nullptr)},
+                      {"simbody_seconds", simbody_time ? json(*simbody_time) : json(nullptr)},
+                      {"simbody_integrator", winner.empty() ? json(nullptr) : json(winner)},
+                      {"ratio_simbody_over_mbsopt", jsonNumber(ratio)},
+                      {"verdict", verdict}});
+    result.table_rows.push_back("| " + mech.key + " | " + sci(target) + " | " +
+                                (mbsopt_time ? format(*mbsopt_time * 1e3, 3) : std::string("—")) + " | " +
+                                (simbody_time ? format(*simbody_time * 1e3, 3) : std::string("—")) + " | " +
+                                (winner.empty() ? "—" : winner) + " | " + format(ratio, 3) + " | " + verdict + " |");
+  }
+  data["time_ratio"] = ratios;
+
+  // Plot data: one block per series, "error seconds label".
+  const std::string base = "work_precision_" + mech.key;
+  {
+    std::ofstream dat(out / (base + ".dat"));
+    dat << "# " << mech.description << "\n# error[rad] median_seconds run\n";
+    std::vector<std::string> names;
+    for (const auto& [name, points] : series) {
+      names.push_back(name);
+      std::vector<Point> sorted = points;
+      std::sort(sorted.begin(), sorted.end(), [](const Point& a, const Point& b) { return a.seconds < b.seconds; });
+      dat << "# " << name << '\n';
+      for (const Point& p : sorted) dat << std::setprecision(6) << p.error << ' ' << p.seconds << ' ' << p.label << '\n';
+      dat << "\n\n";
+    }
+    std::ofstream gp(out / (base + ".gp"));
+    gp << "set terminal pngcairo noenhanced size 900,600\n"
+       << "set output '" << base << ".png'\n"
+       << "set title '" << mech.key << ": work-precision, Simbody " << peer::simbodyVersion()
+       << " (Debian build, assertions on) vs mbsopt Newmark'\n"
+       << "set logscale xy\nset format x '1e%T'\nset format y '1e%T'\n"
+       << "set xlabel 'max abs joint-angle error at the output times [rad]'\n"
+       << "set ylabel 'wall time of the integration [s] (median)'\n"
+       << "set grid\nset key top right\nset xrange [*:*] reverse\n"
+       << "plot ";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const bool ours = names[i].starts_with("mbsopt");
+      gp << (i ? ", \\\n     " : "") << "'" << base << ".dat' index " << i << " using 1:2 with linespoints "
+         << (ours ? "lw 3 pt 7 lc rgb '#d62728'" : "lw 1.5 pt " + std::to_string(4 + 2 * static_cast<int>(i)))
+         << " title '" << names[i] << "'";
+    }
+    gp << '\n';
+  }
+  return result;
+}
+
+/// IFToMM A02 as specified (N = 4, rockers vertical, B0 at 1 m/s along +x, 10 s): the linkage passes
+/// the horizontal, singular, configuration twice per turn. No 1e-12 reference exists there (every
+/// Simbody integrator fails at tight accuracy), so this only records which runs get through and where
+/// they end up: rocker 0's angle at 10 s (its tip B0 = (cos q, sin q)).
+json singularSurvey(const Options& options, std::vector<std::string>& rows) {
+  const int n = 4;
+  const double angle = 0.5 * std::numbers::pi, rate = -1.0, interval = 0.1;
+  const int outputs = 100;
+  std::vector<double> output_times;
+  for (int k = 1; k <= outputs; ++k) output_times.push_back(k * interval);
+  const std::unique_ptr<peer::SimbodyModel> simbody = peer::SimbodyModel::nFourBar(n, angle, rate);
+  const mbsopt::Scene scene = nFourBarScene(n, angle, rate);
+  std::vector<int> indices = {scene.model.coordinate("rocker0")};
+  std::cerr << "== a02_singular: IFToMM A02 as specified, N = 4, 10 s (survey, no reference)\n";
+  json runs = json::array();
+  auto record = [&](const std::string& engine, const std::string& setting, bool ok, const std::string& message,
+                    double seconds, double final_angle) {
+    runs.push_back({{"engine", engine}, {"setting", setting}, {"status", ok ? "ok" : "failed"},
+                    {"message", message}, {"seconds", seconds}, {"rocker0_at_10s", jsonNumber(final_angle)}});
+    rows.push_back("| " + engine + " | " + setting + " | " + (ok ? "ok" : "failed") + " | " +
+                   (ok ? format(final_angle, 6) : "—") + " | " + format(seconds, 3) + " | " +
+                   oneLine(message).substr(0, 160) + " |");
+    std::cerr << "   " << engine << " " << setting << ": " << (ok ? "ok, rocker0(10 s) = " + format(final_angle, 6)
+                                                              : "FAILED " + oneLine(message).substr(0, 120)) << '\n';
+  };
+  const std::vector<double> accuracies = options.quick ? std::vector<double>{1e-4, 1e-8}
+                                                       : std::vector<double>{1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+  for (peer::SimbodyIntegrator kind : {peer::SimbodyIntegrator::RungeKuttaFeldberg,
+                                       peer::SimbodyIntegrator::RungeKuttaMerson, peer::SimbodyIntegrator::CPodes})
+    for (double accuracy : accuracies) {
+      const peer::SimbodyRun run = simbody->run(kind, accuracy, output_times, 10.0);
+      record(std::string("Simbody ") + peer::integratorName(kind), "accuracy " + sci(accuracy), run.ok, run.message,
+             run.seconds, run.ok ? run.outputs.back()[0] : kNaN);
+    }
+  const std::vector<int> ladder = options.quick ? std::vector<int>{32, 1000} : std::vector<int>{10, 32, 100, 320, 1000, 3200};
+  for (int k : ladder) {
+    const MbsoptRun run = runMbsopt(scene, indices, k, interval, outputs);
+    record("mbsopt Newmark", "h " + sci(interval / k), run.ok, run.message, run.seconds,
+           run.ok ? run.outputs.back()[0] : kNaN);
+  }
+  return {{"description", "IFToMM A02 as specified, N = 4: rockers vertical, B0 at 1 m/s along +x, 10 s; passes the "
+                          "singular horizontal configuration; no reference, final angle of rocker 0 only"},
+          {"runs", runs}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  std::filesystem::create_directories(options.out);
+  std::vector<Mechanism> mechanisms = allMechanisms();
+  if (options.mechanisms.empty()) {
+    std::erase_if(mechanisms, [](const Mechanism& m) { return !m.by_default; });
+  } else {
+    std::erase_if(mechanisms, [&](const Mechanism& m) {
+      return std::find(options.mechanisms.begin(), options.mechanisms.end(), m.key) == options.mechanisms.end();
+    });
+  }
+  const auto start = std::chrono::steady_clock::now();
+  json all = {{"simbody_version", peer::simbodyVersion()},
+              {"simbody_build_note",
+               "Debian's libsimbody (3.7+dfsg) is built with assertions on and is roughly 2x slower than "
+               "upstream's Release build: Simbody's times here are pessimistic by about that factor"},
+              {"error_measure",
+               "largest absolute joint-angle error [rad] over every coordinate and every output time (every 0.1 s), "
+               "against Simbody at accuracy 1e-12 (RungeKuttaMerson unless it failed)"},
+              {"timing", "wall time of the integration only (models built beforehand), median of 5 repetitions "
+                         "below 0.3 s, 3 below 3 s, else 1"},
+              {"mbsopt_integrator", "Newmark beta=1/4 gamma=1/2, newton_tolerance 1e-10, position-level closure"},
+              {"quick", options.quick},
+              {"mechanisms", json::array()}};
+  std::vector<std::string> table, agreement, failures;
+  for (const Mechanism& mech : mechanisms) {
+    MechanismResult r = compare(mech, options, options.out);
+    all["mechanisms"].push_back(std::move(r.data));
+    table.insert(table.end(), r.table_rows.begin(), r.table_rows.end());
+    agreement.insert(agreement.end(), r.agreement_rows.begin(), r.agreement_rows.end());
+    failures.insert(failures.end(), r.failure_rows.begin(), r.failure_rows.end());
+  }
+  std::vector<std::string> survey_rows;
+  const bool run_survey = options.mechanisms.empty() ||
+                          std::find(options.mechanisms.begin(), options.mechanisms.end(), "a02_singular") !=
+                              options.mechanisms.end();
+  if (run_survey) all["a02_singular_survey"] = singularSurvey(options, survey_rows);
+  all["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ofstream(options.out / "peer_comparison.json") << all.dump(2) << '\n';
+
+  std::ofstream md(options.out / "peer_comparison.md");
+  md << "# Simbody " << peer::simbodyVersion() << " vs mbsopt: time at equal error\n\n"
+     << "Error: " << all["error_measure"].get<std::string>() << ". Times: "
+     << all["timing"].get<std::string>() << ". **Debian's Simbody is built with assertions and is roughly 2x slower "
+     << "than upstream's Release build**; halve Simbody's times (and the ratios) for a Release Simbody.\n\n"
+     << "Ratio = Simbody time / mbsopt time at the same error, each interpolated log-log on its engine's Pareto "
+     << "front (Simbody: the fastest of its integrators at that error). Above 1: mbsopt is faster.\n\n"
+     << "| mechanism | error [rad] | mbsopt [ms] | Simbody [ms] | Simbody integrator | ratio | verdict |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const std::string& row : table) md << row << '\n';
+  md << "\n## Agreement with the reference (Simbody at 1e-12)\n\n"
+     << "| mechanism | reference | run | max abs angle difference [rad] |\n|---|---|---|---|\n";
+  for (const std::string& row : agreement) md << row << '\n';
+  md << "\n## Failed runs\n\n";
+  if (failures.empty()) {
+    md << "None.\n";
+  } else {
+    md << "| mechanism | engine | run | message |\n|---|---|---|---|\n";
+    for (const std::string& row : failures) md << row << '\n';
+  }
+  if (run_survey) {
+    md << "\n## IFToMM A02 as specified (N = 4, through the singular configuration): which runs get through\n\n"
+       << "No reference: rocker 0's angle at 10 s [rad] only (the runs that agree took the same branch).\n\n"
+       << "| engine | setting | status | rocker0 at 10 s | time [s] | message |\n|---|---|---|---|---|---|\n";
+    for (const std::string& row : survey_rows) md << row << '\n';
+  }
+  std::cerr << "wrote " << (options.out / "peer_comparison.json").string() << " and peer_comparison.md in "
+            << format(all["total_seconds"].get<double>()) << " s\n";
+  return 0;
+}
