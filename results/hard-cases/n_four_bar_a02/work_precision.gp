@@ -1,0 +1,15 @@
+set terminal pngcairo noenhanced size 1000,380 font ',10'
+set output 'work_precision.png'
+set multiplot layout 1,1 rowsfirst title 'work-precision of the integrator, problems/scenes/hard/n_four_bar_a02.yaml'
+set key outside right
+set grid
+set title ''
+set xlabel 'wall time [s]'
+set ylabel 'largest absolute error [SI]'
+set logscale y
+set format y "%.0e"
+set logscale x
+set format x "%.0e"
+set yrange [*:*]
+plot 'work_precision.dat' index 0 with linespoints title 'newmark'
+unset multiplot
