@@ -52,8 +52,8 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
     for (const PlotPanel& panel : panels) {
       out << "set title " << quoted(panel.title) << "\nset xlabel " << quoted(panel.xlabel) << "\nset ylabel "
           << quoted(panel.ylabel) << '\n'
-          << (panel.log_y ? "set logscale y\n" : "unset logscale y\n")
-          << (panel.log_x ? "set logscale x\n" : "unset logscale x\n");
+          << (panel.log_y ? "set logscale y\nset format y \"%.0e\"\n" : "unset logscale y\nset format y\n")
+          << (panel.log_x ? "set logscale x\nset format x \"%.0e\"\n" : "unset logscale x\nset format x\n");
       if (std::isnan(panel.y_max)) out << "set yrange [*:*]\n";
       else out << "set yrange [*:" << panel.y_max << "]\n";
       out << "plot ";
