@@ -11,5 +11,5 @@ set format y "%.0e"
 set logscale x
 set format x "%.0e"
 set yrange [*:*]
-plot 'work_precision.dat' index 0 with linespoints title 'newmark', 'work_precision.dat' index 1 with linespoints title 'damped', 'work_precision.dat' index 2 with linespoints title 'fast-newton'
+plot 'work_precision.dat' index 0 with linespoints title 'newmark', 'work_precision.dat' index 1 with linespoints title 'fast-newton'
 unset multiplot
