@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/mass_matrix.hpp"
@@ -66,6 +67,13 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
   if (!finitePositive(s.energy_tolerance))
     return {"energy_tolerance", "the energy tolerance must be positive and finite"};
   return {};
+}
+
+double trajectoryBytes(const Model& model, const NewmarkSettings& settings) {
+  const double points = std::ceil(settings.end_time / settings.step) + 1.0;
+  const double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
+                           static_cast<double>(model.constraintCount()) + 2.0 + 0.5;  // the count is an int
+  return points * per_point * sizeof(double);
 }
 
 NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings settings)
@@ -418,6 +426,9 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
                                        const std::function<void(double)>& progress) {
   // Enough steps to cover [0, end_time]: the last time point is end_time, or the first grid point
   // after it when end_time is not a whole number of steps.
+  if (const double bytes = trajectoryBytes(model_, settings_); !(bytes <= kMaxTrajectoryBytes))
+    throw std::length_error("the trajectory would take " + std::to_string(bytes / (1 << 30)) +
+                            " GiB, more than the limit of 4 GiB (kMaxTrajectoryBytes)");
   const long steps = std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
   initialize(q0, v0, 0.0);
   const Eigen::Index n = model_.coordinateCount();

@@ -33,8 +33,10 @@ enum class ClosureLevel {
 };
 
 /// Longest run the integrator accepts: the trajectory keeps q, q̇, q̈ and λ of every step in
-/// memory (10⁷ steps of a 10-coordinate model are ~3 GB).
+/// memory (10⁷ steps of a 10-coordinate model are ~5 GB).
 inline constexpr double kMaxNewmarkSteps = 1e7;
+/// Most memory a stored trajectory may take (trajectoryBytes), 4 GiB.
+inline constexpr double kMaxTrajectoryBytes = 4.0 * 1024 * 1024 * 1024;
 
 struct NewmarkSettings {
   double step = 1e-3;      ///< h [s], fixed
@@ -78,6 +80,9 @@ struct SettingsDefect {
   std::string message;
 };
 SettingsDefect settingsDefect(const NewmarkSettings& settings);
+/// The memory NewmarkIntegrator::simulate takes for its Trajectory: per time point t, q, q̇, q̈, λ,
+/// the unprojected q̇ and q̈, the closure error and the iteration count.
+double trajectoryBytes(const Model& model, const NewmarkSettings& settings);
 /// settings.closure_tolerance, or the default of its closure level when it is 0.
 double closureTolerance(const NewmarkSettings& settings);
 

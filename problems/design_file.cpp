@@ -47,12 +47,12 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   design.allowKeys({"variables", "cost", "artificial", "constraints", "transcription"});
   DesignDescription out;
   const std::vector<std::string> parameters = model.parameterNames();
-  for (const YAML::Node& node : readList(context, design.required("variables"), "design.variables")) {
+  for (const YamlNode& node : readList(context, design.required("variables"), "design.variables")) {
     const MapReader v(context, node, "design variable");
     v.allowKeys({"parameter", "lower", "upper", "scale"});
     DesignVariable variable;
-    const YAML::Node name = v.required("parameter");
-    variable.parameter = name.IsScalar() ? name.Scalar() : "";
+    const YamlNode& name = v.required("parameter");
+    variable.parameter = name.isScalar() ? name.text() : "";
     if (std::find(parameters.begin(), parameters.end(), variable.parameter) == parameters.end())
       v.fail("parameter", "parameter " + quoted(variable.parameter) + " is not a model parameter" +
                               suggestion(variable.parameter, parameters) + " ('mbsopt parameters' lists them)");
@@ -70,7 +70,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   out.artificial.initial = artificial.number("initial");
   readRange(artificial, out.artificial.initial, out.artificial.lower, out.artificial.upper, out.artificial.scale);
 
-  for (const YAML::Node& node : readList(context, design.node()["constraints"], "design.constraints")) {
+  for (const YamlNode& node : readList(context, design.node()["constraints"], "design.constraints")) {
     const MapReader c(context, node, "design constraint");
     c.allowKeys({"sensor", "of", "bound"});
     out.constraints.push_back(

@@ -32,15 +32,15 @@ std::string withoutOwner(const std::string& message, const std::string& owner) {
   return message.starts_with(prefix) ? message.substr(prefix.size()) : message;
 }
 
-TimeFunction readTimeFunction(const YamlContext& context, const YAML::Node& node, const std::string& what) {
-  if (node.IsScalar()) return TimeFunction::constant(readNumber(context, node, what));
+TimeFunction readTimeFunction(const YamlContext& context, const YamlNode& node, const std::string& what) {
+  if (node.isScalar()) return TimeFunction::constant(readNumber(context, node, what));
   const MapReader map(context, node, what);
   map.allowKeys({"polynomial", "harmonics"});
   std::vector<double> coefficients;
-  for (const YAML::Node& c : readList(context, map.node()["polynomial"], what + ".polynomial"))
+  for (const YamlNode& c : readList(context, map.node()["polynomial"], what + ".polynomial"))
     coefficients.push_back(readNumber(context, c, what + ".polynomial"));
   std::vector<TimeFunction::Harmonic> harmonics;
-  for (const YAML::Node& h : readList(context, map.node()["harmonics"], what + ".harmonics")) {
+  for (const YamlNode& h : readList(context, map.node()["harmonics"], what + ".harmonics")) {
     const MapReader harmonic(context, h, what + " harmonic");
     harmonic.allowKeys({"amplitude", "angular_frequency", "phase"});
     harmonics.push_back({harmonic.number("amplitude"), harmonic.number("angular_frequency"),
@@ -52,7 +52,7 @@ TimeFunction readTimeFunction(const YamlContext& context, const YAML::Node& node
 /// Builds the model of a parsed scene file section by section (problems/scenes/README.md).
 class SceneBuilder {
  public:
-  SceneBuilder(const YamlContext& context, const YAML::Node& root) : context_(context), root_(context, root, "scene") {
+  SceneBuilder(const YamlContext& context, const YamlNode& root) : context_(context), root_(context, root, "scene") {
     root_.allowKeys({"settings", "gravity", "tracks", "elements", "bodies", "forces", "cuts", "sensors", "design"});
     root_.required("elements");
     root_.required("bodies");
@@ -63,10 +63,11 @@ class SceneBuilder {
     if (root_.has("gravity")) model().setGravity(root_.vector("gravity"));
     readTracks();
     readElements();
-    for (const YAML::Node& node : list("bodies")) readBody(node);
-    for (const YAML::Node& node : list("cuts")) readCut(node);
-    for (const YAML::Node& node : list("forces")) readForce(node);
-    for (const YAML::Node& node : list("sensors")) readSensor(node);
+    for (const YamlNode& node : list("bodies")) readBody(node);
+    for (const YamlNode& node : list("cuts")) readCut(node);
+    for (const YamlNode& node : list("forces")) readForce(node);
+    for (const YamlNode& node : list("sensors")) readSensor(node);
+    checkTrajectorySize();
     if (root_.has("design")) result_.design = readDesign(MapReader(context_, root_.node()["design"], "design"), model());
     recordLocations();
     assembleInitialState();
@@ -87,19 +88,19 @@ class SceneBuilder {
 
   Model& model() { return result_.scene.model; }
 
-  std::vector<YAML::Node> list(const std::string& section) const {
+  std::vector<std::reference_wrapper<const YamlNode>> list(const std::string& section) const {
     return readList(context_, root_.node()[section], section);
   }
 
   /// An entry of a named section: a map with a unique `name` and a `type` among `types`.
-  MapReader entry(const YAML::Node& node, const std::string& kind, std::string& name) {
+  MapReader entry(const YamlNode& node, const std::string& kind, std::string& name) {
     const MapReader map(context_, node, kind);
     name = map.name("name");
     if (name == "ground") map.fail("name", "'ground' is the name of the fixed frame");
     if (name == "t") map.fail("name", "'t' is the time column of the CSV output");
     if (const auto used = names_.find(name); used != names_.end())
       map.fail("name", "the name '" + name + "' is already used at line " + std::to_string(used->second.line + 1));
-    names_.emplace(name, map.node()["name"].Mark());
+    names_.emplace(name, map.node()["name"].mark());
     return MapReader(context_, node, kind + " '" + name + "'");
   }
 
@@ -187,6 +188,19 @@ class SceneBuilder {
     initial_.push_back({coordinate, entry.number("q0", 0.0), entry.number("v0", 0.0)});
   }
 
+  /// The stored trajectory must fit kMaxTrajectoryBytes (problems/scenes/README.md, "Limits").
+  void checkTrajectorySize() {
+    const NewmarkSettings& s = result_.scene.settings;
+    const double bytes = trajectoryBytes(model(), s);
+    if (bytes <= kMaxTrajectoryBytes) return;
+    const YamlNode& settings = root_.node()["settings"];
+    const std::string what = "a run of " + formatNumber(std::ceil(s.end_time / s.step)) + " steps of this model stores " +
+                             formatNumber(std::round(bytes / (1 << 20))) +
+                             " MiB of trajectory, more than the limit of 4 GiB: shorten end_time or enlarge step";
+    if (settings["end_time"].isDefined()) context_.fail(settings["end_time"], "settings: end_time: " + what);
+    context_.fail(settings.isDefined() ? settings : root_.node(), "settings: " + what);
+  }
+
   void readSettings() {
     NewmarkSettings& s = result_.scene.settings;
     if (!root_.has("settings")) return;
@@ -216,14 +230,14 @@ class SceneBuilder {
   }
 
   void readTracks() {
-    for (const YAML::Node& node : list("tracks")) {
+    for (const YamlNode& node : list("tracks")) {
       std::string name;
       const MapReader t = entry(node, "track", name);
       t.allowKeys({"name", "origin", "heading", "segments"});
       auto track = std::make_shared<Track>(t.vector("origin", Eigen::Vector3d::Zero()), t.number("heading", 0.0));
-      const std::vector<YAML::Node> segments = readList(context_, t.required("segments"), t.what() + ".segments");
+      const auto segments = readList(context_, t.required("segments"), t.what() + ".segments");
       if (segments.empty()) t.fail("segments", "a track needs at least one segment");
-      for (const YAML::Node& s : segments) {
+      for (const YamlNode& s : segments) {
         const MapReader segment(context_, s, t.what() + " segment");
         const std::string type = segment.choice("type", {"straight", "arc", "clothoid"});
         if (type == "straight") {
@@ -248,7 +262,7 @@ class SceneBuilder {
   void readElements() {
     std::vector<PendingElement> pending;
     std::map<std::string, std::size_t> index;
-    for (const YAML::Node& node : list("elements")) {
+    for (const YamlNode& node : list("elements")) {
       std::string name;
       MapReader e = entry(node, "element", name);
       const std::string type = e.choice("type", {"offset", "revolute", "prismatic", "curve_slider"});
@@ -325,7 +339,7 @@ class SceneBuilder {
     }
   }
 
-  void readBody(const YAML::Node& node) {
+  void readBody(const YamlNode& node) {
     std::string name;
     const MapReader b = entry(node, "body", name);
     b.allowKeys({"name", "frame", "mass", "com", "Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"});
@@ -342,7 +356,7 @@ class SceneBuilder {
     guarded(b, name, [&] { model().addBody(name, f, mass, com, inertia); });
   }
 
-  void readCut(const YAML::Node& node) {
+  void readCut(const YamlNode& node) {
     std::string name;
     const MapReader c = entry(node, "cut", name);
     const std::string type = c.choice("type", {"spherical", "revolute", "weld", "curve_slider"});
@@ -367,10 +381,10 @@ class SceneBuilder {
         else model().addWeldCut(name, a, b);
       });
     }
-    cut_marks_.resize(model().cuts().size(), c.node().Mark());
+    cut_marks_.resize(model().cuts().size(), c.node().mark());
   }
 
-  void readForce(const YAML::Node& node) {
+  void readForce(const YamlNode& node) {
     std::string name;
     const MapReader f = entry(node, "force", name);
     const std::string type =
@@ -409,7 +423,7 @@ class SceneBuilder {
     return q == "position" ? Derivative::Position : q == "velocity" ? Derivative::Velocity : Derivative::Acceleration;
   }
 
-  void readSensor(const YAML::Node& node) {
+  void readSensor(const YamlNode& node) {
     std::string name;
     const MapReader s = entry(node, "sensor", name);
     const std::string type = s.choice("type", {"point", "joint", "relative_angle", "energy", "cut_force"});
@@ -501,10 +515,10 @@ class SceneBuilder {
   const YamlContext& context_;
   MapReader root_;
   LoadedScene result_;
-  std::map<std::string, YAML::Mark> names_;
+  std::map<std::string, YamlMark> names_;
   std::map<std::string, std::shared_ptr<const Track>> tracks_;
   std::vector<InitialValue> initial_;
-  std::vector<YAML::Mark> cut_marks_;  ///< per cut of the model: where the file declares it
+  std::vector<YamlMark> cut_marks_;  ///< per cut of the model: where the file declares it
 };
 
 /// The 1-based number of the last line of `text` that holds something, at least 1.
@@ -526,29 +540,32 @@ std::string lineOf(const std::string& text, int number) {
   return line;
 }
 
-YAML::Node parse(const SceneSource& source) {
-  std::vector<YAML::Node> documents;
+YamlNode parse(const SceneSource& source) {
+  YamlNode root;
   try {
-    documents = YAML::LoadAll(source.text);
-  } catch (const YAML::Exception& e) {
-    if (e.mark.is_null()) throw SceneError(source.path, 0, 0, "malformed YAML: " + e.msg);
-    // yaml-cpp reports an unclosed bracket at the end of the input: name the last line instead.
-    int line = std::min(e.mark.line + 1, lastContentLine(source.text));
-    const int column = line == e.mark.line + 1 ? e.mark.column + 1 : 1;
+    root = parseYamlDocument(source.text);
+  } catch (const YamlSyntaxError& e) {
+    if (e.mark().isNull()) throw SceneError(source.path, 0, 0, e.what());
+    // An unclosed bracket is found at the end of the input: name the last line instead.
+    const int line = std::min(e.mark().line + 1, lastContentLine(source.text));
+    const int column = line == e.mark().line + 1 ? e.mark().column + 1 : 1;
     std::string hint;
+    const YamlMark& opened = e.contextMark();
+    if (!e.context().empty())
+      hint = " (" + e.context() +
+             (opened.line == e.mark().line && opened.column == e.mark().column
+                  ? ""
+                  : " at line " + std::to_string(opened.line + 1) + ", column " + std::to_string(opened.column + 1)) +
+             ")";
     for (int l : {line, line - 1})
       if (l > 0 && lineOf(source.text, l).find('\t') != std::string::npos) {
-        hint = " (line " + std::to_string(l) + " has a tab: YAML indents with spaces only)";
+        hint += " (line " + std::to_string(l) + " has a tab: YAML indents with spaces only)";
         break;
       }
-    throw SceneError(source.path, line, column, "malformed YAML: " + e.msg + hint);
+    throw SceneError(source.path, line, column, e.what() + hint);
   }
-  if (documents.size() > 1)
-    throw SceneError(source.path, documents[1].Mark().line + 1, documents[1].Mark().column + 1,
-                     "the file holds more than one YAML document ('---'); a scene is one document");
-  if (documents.empty() || !documents[0].IsDefined() || documents[0].IsNull())
-    throw SceneError(source.path, 0, 0, "the scene is empty");
-  return documents[0];
+  if (!root.isDefined() || root.isNull()) throw SceneError(source.path, 0, 0, "the scene is empty");
+  return root;
 }
 
 }  // namespace
@@ -574,8 +591,7 @@ SceneSource readSceneFile(const std::string& path) {
 
 LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   YamlContext context(source.path);
-  YAML::Node root = parse(source);
-  rejectAliases(context, root);
+  YamlNode root = parse(source);
   applyOverrides(context, root, overrides);
   return SceneBuilder(context, root).build();
 }
@@ -588,10 +604,9 @@ DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<Par
 
 std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source) {
   YamlContext context(source.path);
-  const YAML::Node root = parse(source);
-  rejectAliases(context, root);
+  const YamlNode root = parse(source);
   std::vector<std::pair<std::string, double>> parameters;
-  forEachNumber(root, [&](const std::string& name, const YAML::Node& node) {
+  forEachNumber(root, [&](const std::string& name, const YamlNode& node) {
     parameters.emplace_back(name, readNumber(context, node, name));
   });
   // The defaults the file does not write, which --set can still address.

@@ -34,20 +34,20 @@ int axisIndex(const std::string& part) {
   return -1;
 }
 
-using Visitor = std::function<void(const std::string&, const YAML::Node&)>;
+using Visitor = std::function<void(const std::string&, const YamlNode&)>;
 
-void walk(const std::string& prefix, const std::string& key, const YAML::Node& node, const Visitor& visit) {
-  if (node.IsScalar()) {
+void walk(const std::string& prefix, const std::string& key, const YamlNode& node, const Visitor& visit) {
+  if (node.isScalar()) {
     double value = 0.0;
     std::string why;
-    if (parseNumber(node.Scalar(), value, why)) visit(prefix, node);
-  } else if (node.IsSequence()) {
+    if (parseNumber(node.text(), value, why)) visit(prefix, node);
+  } else if (node.isSequence()) {
     const bool vector = isVectorKey(key) && node.size() == 3;
     for (std::size_t i = 0; i < node.size(); ++i)
       walk(prefix + "." + (vector ? kAxes[i] : std::to_string(i)), "", node[i], visit);
-  } else if (node.IsMap()) {
-    for (const auto& entry : node)
-      if (entry.first.IsScalar()) walk(prefix + "." + entry.first.Scalar(), entry.first.Scalar(), entry.second, visit);
+  } else if (node.isMap()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      if (node.key(i).isScalar()) walk(prefix + "." + node.key(i).text(), node.key(i).text(), node.value(i), visit);
   }
 }
 
@@ -58,80 +58,90 @@ std::vector<std::string> split(const std::string& dotted) {
   return parts;
 }
 
-/// The map of the named entry `name` in any section, or an invalid node.
-YAML::Node namedEntry(const YAML::Node& root, const std::string& name) {
-  for (const auto& section : root) {
-    if (!section.first.IsScalar() || !isNamedSection(section.first.Scalar()) || !section.second.IsSequence()) continue;
-    for (const YAML::Node& entry : section.second)
-      if (entry.IsMap() && entry["name"].IsScalar() && entry["name"].Scalar() == name) return entry;
+/// The map of the named entry `name` in any section, or nullptr.
+YamlNode* namedEntry(YamlNode& root, const std::string& name) {
+  for (std::size_t s = 0; s < root.size(); ++s) {
+    if (!root.key(s).isScalar() || !isNamedSection(root.key(s).text()) || !root.value(s).isSequence()) continue;
+    YamlNode& section = *root.find(root.key(s).text());
+    for (std::size_t i = 0; i < section.size(); ++i) {
+      YamlNode& entry = section.element(i);
+      if (entry.isMap() && entry["name"].isScalar() && entry["name"].text() == name) return &entry;
+    }
   }
-  return YAML::Node(YAML::NodeType::Undefined);
+  return nullptr;
 }
 
+/// A scalar without a place in the file (the loader names `--set` in its errors).
+YamlNode unplaced(std::string text) { return {YamlNode::Kind::Scalar, {}, std::move(text)}; }
+
 /// Writes a number the file leaves at its default (`settings.beta`, `hinge.q0`, `bob.com.x`,
-/// `gravity.z`), creating the keys on the way. False when the path leads nowhere.
-bool insertDefault(YAML::Node& root, const std::vector<std::string>& parts, const std::string& value,
-                   YAML::Node& written) {
-  if (parts.empty()) return false;
-  YAML::Node node = root;
+/// `gravity.z`), creating the keys on the way; returns the node written, nullptr when the path
+/// leads nowhere.
+YamlNode* insertDefault(YamlNode& root, const std::vector<std::string>& parts, const std::string& value) {
+  if (parts.empty()) return nullptr;
+  YamlNode* node = &root;
   std::size_t first = 0;
   if (parts[0] != "settings" && parts[0] != "gravity") {
-    const YAML::Node entry = namedEntry(root, parts[0]);
-    if (!entry.IsDefined()) return false;
-    node.reset(entry);
+    node = namedEntry(root, parts[0]);
+    if (node == nullptr) return nullptr;
     first = 1;
   }
   for (std::size_t i = first; i < parts.size(); ++i) {
     const std::string& part = parts[i];
     const bool last = i + 1 == parts.size();
-    if (node.IsSequence()) {
+    if (node->isSequence()) {
       const int axis = axisIndex(part);
       std::size_t index = 0;
       if (axis >= 0) index = static_cast<std::size_t>(axis);
-      else if (!part.empty() && std::all_of(part.begin(), part.end(), ::isdigit)) index = std::stoul(part);
-      else return false;
-      if (index >= node.size()) return false;
-      YAML::Node child = node[index];
-      node.reset(child);
-    } else if (node.IsMap()) {
-      if (!node[part].IsDefined()) {
-        if (last) node[part] = value;
-        else if (isVectorKey(part) && axisIndex(parts[i + 1]) >= 0 && i + 2 == parts.size())
-          node[part] = std::vector<std::string>{"0", "0", "0"};
-        else node[part] = YAML::Node(YAML::NodeType::Map);
+      else if (!part.empty() && part.size() < 10 && std::all_of(part.begin(), part.end(), ::isdigit)) index = std::stoul(part);
+      else return nullptr;
+      if (index >= node->size()) return nullptr;
+      node = &node->element(index);
+    } else if (node->isMap()) {
+      YamlNode* child = node->find(part);
+      if (child == nullptr) {
+        YamlNode fresh;
+        if (last) {
+          fresh = unplaced(value);
+        } else if (isVectorKey(part) && axisIndex(parts[i + 1]) >= 0 && i + 2 == parts.size()) {
+          fresh = YamlNode(YamlNode::Kind::Sequence, {});
+          for (int axis = 0; axis < 3; ++axis) fresh.append(unplaced("0"));
+        } else {
+          fresh = YamlNode(YamlNode::Kind::Map, {});
+        }
+        child = &node->insert(unplaced(part), std::move(fresh));
       }
-      YAML::Node child = node[part];
-      node.reset(child);
+      node = child;
     } else {
-      return false;
+      return nullptr;
     }
   }
-  if (!node.IsScalar()) return false;
-  node = value;
-  written.reset(node);
-  return true;
+  if (!node->isScalar()) return nullptr;
+  node->assign(value);
+  return node;
 }
 
 }  // namespace
 
-void forEachNumber(const YAML::Node& root, const Visitor& visit) {
-  if (!root.IsMap()) return;
-  for (const auto& section : root) {
-    if (!section.first.IsScalar()) continue;
-    const std::string& key = section.first.Scalar();
+void forEachNumber(const YamlNode& root, const Visitor& visit) {
+  if (!root.isMap()) return;
+  for (std::size_t s = 0; s < root.size(); ++s) {
+    if (!root.key(s).isScalar()) continue;
+    const std::string& key = root.key(s).text();
+    const YamlNode& section = root.value(s);
     if (!isNamedSection(key)) {
-      walk(key, key, section.second, visit);
+      walk(key, key, section, visit);
       continue;
     }
-    if (!section.second.IsSequence()) continue;
-    for (std::size_t i = 0; i < section.second.size(); ++i) {
-      const YAML::Node entry = section.second[i];
-      if (!entry.IsMap()) continue;
-      const YAML::Node name = entry["name"];
-      const std::string owner = name.IsScalar() ? name.Scalar() : key + "." + std::to_string(i);
-      for (const auto& field : entry)
-        if (field.first.IsScalar() && field.first.Scalar() != "name")
-          walk(owner + "." + field.first.Scalar(), field.first.Scalar(), field.second, visit);
+    if (!section.isSequence()) continue;
+    for (std::size_t i = 0; i < section.size(); ++i) {
+      const YamlNode& entry = section[i];
+      if (!entry.isMap()) continue;
+      const YamlNode& name = entry["name"];
+      const std::string owner = name.isScalar() ? name.text() : key + "." + std::to_string(i);
+      for (std::size_t f = 0; f < entry.size(); ++f)
+        if (entry.key(f).isScalar() && entry.key(f).text() != "name")
+          walk(owner + "." + entry.key(f).text(), entry.key(f).text(), entry.value(f), visit);
     }
   }
 }
@@ -140,26 +150,26 @@ bool isWordSetting(const std::string& dotted_name) {
   return std::any_of(kWordSettings.begin(), kWordSettings.end(), [&](const char* s) { return dotted_name == s; });
 }
 
-void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<ParameterOverride>& overrides) {
+void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<ParameterOverride>& overrides) {
   for (const ParameterOverride& o : overrides) {
-    std::vector<YAML::Node> targets;
+    const YamlNode* target = nullptr;
     std::vector<std::string> names;
-    forEachNumber(root, [&](const std::string& name, const YAML::Node& node) {
-      if (name == o.name) targets.push_back(node);
+    forEachNumber(root, [&](const std::string& name, const YamlNode& node) {
+      if (name == o.name && target == nullptr) target = &node;
       names.push_back(name);
     });
     // A word setting is no number of the file: it is written in (or over) like a default.
     const std::string text = o.word.empty() ? formatNumber(o.value) : o.word;
-    YAML::Node written;
-    if (!targets.empty()) {
-      written.reset(targets.front());
-      written = text;
-    } else if (!root.IsMap() || !insertDefault(root, split(o.name), text, written)) {
+    YamlNode* written = nullptr;
+    if (target != nullptr) {
+      written = const_cast<YamlNode*>(target);  // a node of `root`, which is ours to change
+      written->assign(text);
+    } else if (!root.isMap() || (written = insertDefault(root, split(o.name), text)) == nullptr) {
       throw SceneError(context.path(), 0, 0,
                        describe(o) + ": the scene has no number named " + quoted(o.name) + suggestion(o.name, names) +
                            "; 'mbsopt parameters SCENE' lists them");
     }
-    context.markOverridden(written, describe(o));
+    context.markOverridden(*written, describe(o));
   }
 }
 

@@ -5,19 +5,19 @@
 #include <functional>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
+#include "problems/yaml_document.hpp"
 
 #include "problems/yaml_reader.hpp"
 
 namespace mbsopt {
 
 /// Calls `visit(name, node)` for every number of the scene, in file order.
-void forEachNumber(const YAML::Node& root, const std::function<void(const std::string&, const YAML::Node&)>& visit);
+void forEachNumber(const YamlNode& root, const std::function<void(const std::string&, const YamlNode&)>& visit);
 
 /// Replaces the numbers (and word settings) named by the overrides in the parsed scene. A number the file leaves at
 /// its default (`settings.beta`, `hinge.q0`, `bob.com.x`) is written in, so the loader checks it
 /// like any other; a name that leads nowhere is an error naming the override.
-void applyOverrides(YamlContext& context, YAML::Node& root, const std::vector<ParameterOverride>& overrides);
+void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<ParameterOverride>& overrides);
 
 /// "--set name=value", for messages.
 std::string describe(const ParameterOverride& override_);

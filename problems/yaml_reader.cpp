@@ -9,11 +9,11 @@ namespace mbsopt {
 
 namespace {
 
-std::string describe(const YAML::Node& node) {
-  if (!node.IsDefined() || node.IsNull()) return "nothing";
-  if (node.IsSequence()) return "a list";
-  if (node.IsMap()) return "a map";
-  return quoted(node.Scalar());
+std::string describe(const YamlNode& node) {
+  if (!node.isDefined() || node.isNull()) return "nothing";
+  if (node.isSequence()) return "a list";
+  if (node.isMap()) return "a map";
+  return quoted(node.text());
 }
 
 std::string listOf(std::initializer_list<const char*> words) {
@@ -26,40 +26,36 @@ std::string listOf(std::initializer_list<const char*> words) {
 
 namespace {
 
-bool contains(const YAML::Node& tree, const YAML::Node& node) {
-  if (tree.is(node)) return true;
-  if (tree.IsSequence())
-    for (const YAML::Node& child : tree)
-      if (contains(child, node)) return true;
-  if (tree.IsMap())
-    for (const auto& child : tree)
-      if (contains(child.second, node)) return true;
+bool contains(const YamlNode& tree, const YamlNode* node) {
+  if (&tree == node) return true;
+  for (std::size_t i = 0; i < tree.size(); ++i)
+    if (contains(tree.isMap() ? tree.value(i) : tree[i], node)) return true;
   return false;
 }
 
 }  // namespace
 
-void YamlContext::fail(const YAML::Node& node, const std::string& what) const { fail(node, node.Mark(), what); }
+void YamlContext::fail(const YamlNode& node, const std::string& what) const { fail(node, node.mark(), what); }
 
-void YamlContext::fail(const YAML::Node& node, const YAML::Mark& mark, const std::string& what) const {
+void YamlContext::fail(const YamlNode& node, const YamlMark& mark, const std::string& what) const {
   std::string origin;  // the overrides inside the failing node may be the cause
   for (const auto& [overridden, text] : overridden_)
     if (contains(node, overridden)) origin += (origin.empty() ? " (value from " : ", ") + text;
   fail(mark, what + (origin.empty() ? "" : origin + ")"));
 }
 
-void YamlContext::fail(const YAML::Mark& mark, const std::string& what) const {
-  if (mark.is_null()) throw SceneError(path_, 0, 0, what);
+void YamlContext::fail(const YamlMark& mark, const std::string& what) const {
+  if (mark.isNull()) throw SceneError(path_, 0, 0, what);
   throw SceneError(path_, mark.line + 1, mark.column + 1, what);
 }
 
-void YamlContext::markOverridden(const YAML::Node& node, std::string origin) {
-  overridden_.emplace_back(node, std::move(origin));
+void YamlContext::markOverridden(const YamlNode& node, std::string origin) {
+  overridden_.emplace_back(&node, std::move(origin));
 }
 
-double readNumber(const YamlContext& context, const YAML::Node& node, const std::string& what) {
-  if (!node.IsScalar()) context.fail(node, what + ": expected a number, got " + describe(node));
-  const std::string& text = node.Scalar();
+double readNumber(const YamlContext& context, const YamlNode& node, const std::string& what) {
+  if (!node.isScalar()) context.fail(node, what + ": expected a number, got " + describe(node));
+  const std::string& text = node.text();
   if (text == ".nan" || text == ".NaN" || text == ".NAN" || text.ends_with(".inf") || text.ends_with(".Inf") ||
       text.ends_with(".INF"))
     context.fail(node, what + ": " + quoted(text) + " is not a finite number");
@@ -69,42 +65,43 @@ double readNumber(const YamlContext& context, const YAML::Node& node, const std:
   return value;
 }
 
-MapReader::MapReader(const YamlContext& context, const YAML::Node& node, std::string what)
+MapReader::MapReader(const YamlContext& context, const YamlNode& node, std::string what)
     : context_(context), node_(node), what_(std::move(what)) {
-  if (!node.IsMap()) context.fail(node, what_ + ": expected a map of 'key: value', got " + describe(node));
+  if (!node.isMap()) context.fail(node, what_ + ": expected a map of 'key: value', got " + describe(node));
   std::set<std::string> seen;
-  for (const auto& entry : node) {
-    if (!entry.first.IsScalar()) context.fail(entry.first, what_ + ": keys must be plain words");
-    if (!seen.insert(entry.first.Scalar()).second)
-      context.fail(entry.first, what_ + ": duplicate key " + quoted(entry.first.Scalar()));
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YamlNode& key = node.key(i);
+    if (!key.isScalar()) context.fail(key, what_ + ": keys must be plain words");
+    if (!seen.insert(key.text()).second) context.fail(key, what_ + ": duplicate key " + quoted(key.text()));
   }
 }
 
 void MapReader::allowKeys(std::initializer_list<const char*> keys) const {
-  for (const auto& entry : node_) {
-    const std::string& key = entry.first.Scalar();
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    const std::string& key = node_.key(i).text();
     if (std::any_of(keys.begin(), keys.end(), [&](const char* allowed) { return key == allowed; })) continue;
-    context_.fail(entry.second, entry.first.Mark(), what_ + ": unknown key " + quoted(key) + suggestion(key, {keys.begin(), keys.end()}) +
-                                   "; allowed keys: " + listOf(keys));
+    context_.fail(node_.value(i), node_.key(i).mark(),
+                  what_ + ": unknown key " + quoted(key) + suggestion(key, {keys.begin(), keys.end()}) +
+                      "; allowed keys: " + listOf(keys));
   }
 }
 
-bool MapReader::has(const std::string& key) const { return node_[key].IsDefined(); }
+bool MapReader::has(const std::string& key) const { return node_[key].isDefined(); }
 
-YAML::Node MapReader::required(const std::string& key) const {
-  const YAML::Node value = node_[key];
-  if (!value.IsDefined()) context_.fail(node_, what_ + ": missing required key '" + key + "'");
+const YamlNode& MapReader::required(const std::string& key) const {
+  const YamlNode& value = node_[key];
+  if (!value.isDefined()) context_.fail(node_, what_ + ": missing required key '" + key + "'");
   return value;
 }
 
-YAML::Mark MapReader::markOf(const std::string& key) const {
-  const YAML::Node value = node_[key];
-  return value.IsDefined() && !value.Mark().is_null() ? value.Mark() : node_.Mark();
+YamlMark MapReader::markOf(const std::string& key) const {
+  const YamlNode& value = node_[key];
+  return value.isDefined() && !value.mark().isNull() ? value.mark() : node_.mark();
 }
 
 void MapReader::fail(const std::string& key, const std::string& what) const {
-  const YAML::Node value = node_[key];
-  if (value.IsDefined()) context_.fail(value, what_ + ": " + what);
+  const YamlNode& value = node_[key];
+  if (value.isDefined()) context_.fail(value, what_ + ": " + what);
   context_.fail(node_, what_ + ": " + what);
 }
 
@@ -135,10 +132,10 @@ int MapReader::positiveInteger(const std::string& key, int fallback) const {
 }
 
 Eigen::Vector3d MapReader::vector(const std::string& key) const {
-  const YAML::Node value = required(key);
-  if (!value.IsSequence() || value.size() != 3)
+  const YamlNode& value = required(key);
+  if (!value.isSequence() || value.size() != 3)
     fail(key, key + ": expected a vector [x, y, z], got " +
-                  (value.IsSequence() ? "a list of " + std::to_string(value.size()) : describe(value)));
+                  (value.isSequence() ? "a list of " + std::to_string(value.size()) : describe(value)));
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i) v[i] = readNumber(context_, value[i], what_ + ": " + key);
   return v;
@@ -149,9 +146,9 @@ Eigen::Vector3d MapReader::vector(const std::string& key, const Eigen::Vector3d&
 }
 
 std::string MapReader::name(const std::string& key) const {
-  const YAML::Node value = required(key);
-  if (!value.IsScalar()) fail(key, key + ": expected a name, got " + describe(value));
-  const std::string& text = value.Scalar();
+  const YamlNode& value = required(key);
+  if (!value.isScalar()) fail(key, key + ": expected a name, got " + describe(value));
+  const std::string& text = value.text();
   const bool valid = !text.empty() && (std::isalpha(static_cast<unsigned char>(text[0])) || text[0] == '_') &&
                      std::all_of(text.begin(), text.end(), [](char c) {
                        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
@@ -163,34 +160,20 @@ std::string MapReader::name(const std::string& key) const {
 std::string MapReader::choice(const std::string& key, std::initializer_list<const char*> choices,
                               const char* fallback) const {
   if (!has(key) && *fallback) return fallback;
-  const YAML::Node value = required(key);
-  if (value.IsScalar())
+  const YamlNode& value = required(key);
+  if (value.isScalar())
     for (const char* choice : choices)
-      if (value.Scalar() == choice) return choice;
+      if (value.text() == choice) return choice;
   fail(key, key + ": expected one of " + listOf(choices) + ", got " + describe(value));
 }
 
-void rejectAliases(const YamlContext& context, const YAML::Node& root) {
-  // A node reached twice is an alias of an anchor: each node has its own position in the text.
-  std::set<int> seen;
-  std::vector<YAML::Node> pending{root};
-  while (!pending.empty()) {
-    const YAML::Node node = pending.back();
-    pending.pop_back();
-    if (!node.IsNull() && !node.Mark().is_null() && !seen.insert(node.Mark().pos).second)
-      context.fail(node, "this value is anchored ('&name') and reused by an alias ('*name'); a scene refuses "
-                         "aliases, so that every number has one name of its own");
-    if (node.IsSequence())
-      for (const YAML::Node& child : node) pending.push_back(child);
-    if (node.IsMap())
-      for (const auto& child : node) pending.push_back(child.second);
-  }
-}
-
-std::vector<YAML::Node> readList(const YamlContext& context, const YAML::Node& node, const std::string& what) {
-  if (!node.IsDefined() || node.IsNull()) return {};
-  if (!node.IsSequence()) context.fail(node, what + ": expected a list of entries ('- ...'), got " + describe(node));
-  return {node.begin(), node.end()};
+std::vector<std::reference_wrapper<const YamlNode>> readList(const YamlContext& context, const YamlNode& node,
+                                                             const std::string& what) {
+  if (!node.isDefined() || node.isNull()) return {};
+  if (!node.isSequence()) context.fail(node, what + ": expected a list of entries ('- ...'), got " + describe(node));
+  std::vector<std::reference_wrapper<const YamlNode>> elements;
+  for (std::size_t i = 0; i < node.size(); ++i) elements.emplace_back(node[i]);
+  return elements;
 }
 
 }  // namespace mbsopt

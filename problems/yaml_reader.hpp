@@ -4,10 +4,12 @@
 
 #include <Eigen/Core>
 #include <initializer_list>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
+
+#include "problems/yaml_document.hpp"
 
 #include "problems/scene_file.hpp"
 
@@ -18,37 +20,37 @@ class YamlContext {
  public:
   explicit YamlContext(std::string path) : path_(std::move(path)) {}
   const std::string& path() const { return path_; }
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const;
-  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& what) const;
+  [[noreturn]] void fail(const YamlNode& node, const std::string& what) const;
+  [[noreturn]] void fail(const YamlMark& mark, const std::string& what) const;
   /// At `mark`, naming the overrides inside `node`.
-  [[noreturn]] void fail(const YAML::Node& node, const YAML::Mark& mark, const std::string& what) const;
-  void markOverridden(const YAML::Node& node, std::string origin);
+  [[noreturn]] void fail(const YamlNode& node, const YamlMark& mark, const std::string& what) const;
+  void markOverridden(const YamlNode& node, std::string origin);
 
  private:
   std::string path_;
-  std::vector<std::pair<YAML::Node, std::string>> overridden_;
+  std::vector<std::pair<const YamlNode*, std::string>> overridden_;
 };
 
 /// A number node: finite, else an error at the node.
-double readNumber(const YamlContext& context, const YAML::Node& node, const std::string& what);
+double readNumber(const YamlContext& context, const YamlNode& node, const std::string& what);
 
 /// Reads one YAML map, checking its keys: allowed ones only, no duplicates, required ones present.
 class MapReader {
  public:
   /// `what` names the map in messages ("body 'bob'", "settings").
-  MapReader(const YamlContext& context, const YAML::Node& node, std::string what);
+  MapReader(const YamlContext& context, const YamlNode& node, std::string what);
 
   /// Declares the allowed keys and reports the first one that is not, with a suggestion.
   void allowKeys(std::initializer_list<const char*> keys) const;
 
   bool has(const std::string& key) const;
-  const YAML::Node& node() const { return node_; }
+  const YamlNode& node() const { return node_; }
   const std::string& what() const { return what_; }
   const YamlContext& context() const { return context_; }
   /// The value of a key that must be present.
-  YAML::Node required(const std::string& key) const;
+  const YamlNode& required(const std::string& key) const;
   /// The location of a key (its value if present, else the map).
-  YAML::Mark markOf(const std::string& key) const;
+  YamlMark markOf(const std::string& key) const;
 
   double number(const std::string& key) const;
   double number(const std::string& key, double fallback) const;
@@ -67,15 +69,11 @@ class MapReader {
 
  private:
   const YamlContext& context_;
-  YAML::Node node_;
+  const YamlNode& node_;
   std::string what_;
 };
 
-/// Refuses anchors and aliases (and with them alias cycles): a node reachable by two paths would
-/// have two dotted names.
-void rejectAliases(const YamlContext& context, const YAML::Node& root);
-
 /// Reads a YAML sequence (an absent node reads as empty); anything else is an error.
-std::vector<YAML::Node> readList(const YamlContext& context, const YAML::Node& node, const std::string& what);
+std::vector<std::reference_wrapper<const YamlNode>> readList(const YamlContext& context, const YamlNode& node, const std::string& what);
 
 }  // namespace mbsopt

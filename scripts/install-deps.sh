@@ -5,11 +5,12 @@ set -euo pipefail
 
 packages=(
   g++ cmake make            # toolchain
+  clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer target (docs/fuzzing.md)
   libeigen3-dev             # dense linear algebra, AutoDiff
   libcli11-dev              # command line
   libgtest-dev              # tests
   libbenchmark-dev          # benchmarks
-  libyaml-cpp-dev           # scene files
+  libyaml-dev               # scene files (libyaml, the C reference parser)
   nlohmann-json3-dev        # machine-readable outputs
   libnlopt-cxx-dev          # SLSQP, MMA, CCSAQ
   coinor-libipopt-dev       # Ipopt 3.11

@@ -80,6 +80,7 @@ std::vector<std::string> fileLines(const fs::path& path) {
 /// What the message for one bad input must look like.
 struct Expectation {
   std::vector<int> lines;                // accepted lines (1-based)
+  bool any_line = false;                 // any line of the file is accepted
   bool line_optional = false;            // `FILE: error: ...` accepted too
   std::vector<std::string> fragments;    // lower case; one of them must occur
 };
@@ -258,6 +259,7 @@ void expectOneLineError(const std::string& scene_argument, const std::vector<std
     }
     if (expectation.line_optional) accepted += " (or no line)";
     const bool expected_line =
+        expectation.any_line ||
         std::find(expectation.lines.begin(), expectation.lines.end(), line_number) != expectation.lines.end();
     EXPECT_TRUE(expected_line) << "names line " << line_number << ", expected line" << accepted << ": " << line;
     if (!scene_lines.empty()) {
@@ -339,6 +341,50 @@ TEST(BadSceneSuite, ExistingOutputIsLeftUntouched) {
   ASSERT_TRUE(expectation.has_value());
   expectOneLineError(file.string(), {}, *expectation, kSourceDir, fileLines(file), "t,previous\n0,1\n");
 }
+
+// ---- the fuzzing regressions: every input that ever hung or crashed the program ----
+// tests/fuzz/regressions/ (docs/fuzzing.md) keeps them byte for byte, without an expectation line:
+// each must give one error line naming the file (any line, any message) and a non-zero exit, well
+// within the time limit. Their "#!" lines are command-line arguments, passed on as the fuzz target does.
+
+const fs::path kFuzzRegressions = kSourceDir / "tests" / "fuzz" / "regressions";
+
+std::vector<fs::path> fuzzRegressionFiles() {
+  std::vector<fs::path> files;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(kFuzzRegressions, error))
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// The words of the file's "#!" lines.
+std::vector<std::string> commandLineOf(const fs::path& file) {
+  std::vector<std::string> words;
+  for (const std::string& line : fileLines(file)) {
+    if (line.rfind("#!", 0) != 0) continue;
+    std::istringstream split(line.substr(2));
+    for (std::string word; split >> word;) words.push_back(word);
+  }
+  return words;
+}
+
+class FuzzRegression : public testing::TestWithParam<fs::path> {};
+
+TEST_P(FuzzRegression, OneLineErrorNoHang) {
+  const fs::path& file = GetParam();
+  Expectation any;
+  any.any_line = true;
+  any.line_optional = true;
+  any.fragments = {""};
+  std::vector<std::string> extra = commandLineOf(file);
+  extra.insert(extra.end(), {"--t-end", "0.05"});
+  expectOneLineError(file.string(), extra, any, kSourceDir, fileLines(file));
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, FuzzRegression, testing::ValuesIn(fuzzRegressionFiles()), testName);
+
+TEST(FuzzRegressionSuite, HoldsTheYamlCppHangs) { EXPECT_GE(fuzzRegressionFiles().size(), 3u) << "in " << kFuzzRegressions; }
 
 // ---- inputs that are not a bad file: a missing file, bad --set overrides ----
 
