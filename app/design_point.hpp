@@ -2,18 +2,30 @@
 // command line (`--design` in SI units, `--artificial` for b_{k+1}), in the optimizers' scaled variables.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "problems/scene_file.hpp"
 
 namespace mbsopt {
 
-/// initialPoint(problem) with the design variables replaced by `design` (SI, in the problem's order;
-/// empty: keep the scene's) and b_{k+1} by `artificial` (in the cost's units). A SceneError naming the
-/// scene when `design` has the wrong number of values.
-Eigen::VectorXd designPoint(const SceneSource& source, const DesignProblem& problem, const std::vector<double>& design,
-                            const std::optional<double>& artificial);
+/// `--design` and `--artificial` as typed.
+struct DesignPointArgument {
+  std::vector<double> design;        ///< SI values of the design variables, in the problem's order
+  std::optional<double> artificial;  ///< b_{k+1} in the cost's units
+};
+
+/// Adds `--design` and `--artificial` to `command`; `condition` ("With --gradients: ", or empty)
+/// starts their help. Returns the two options.
+std::pair<CLI::Option*, CLI::Option*> addDesignPointOptions(CLI::App& command, DesignPointArgument& argument,
+                                                            const std::string& condition = "");
+
+/// initialPoint(problem) with the design variables replaced by `argument.design` (empty: keep the
+/// scene's) and b_{k+1} by `argument.artificial`. A SceneError naming the scene when `design` has
+/// the wrong number of values or a value is not finite.
+Eigen::VectorXd designPoint(const SceneSource& source, const DesignProblem& problem, const DesignPointArgument& argument);
 
 }  // namespace mbsopt

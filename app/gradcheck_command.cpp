@@ -20,8 +20,7 @@ namespace {
 
 struct GradcheckOptions {
   SceneArgument problem;
-  std::vector<double> design;  ///< SI values of the design variables
-  std::optional<double> artificial;
+  DesignPointArgument point;
   double fd_step = 1e-6;
   std::string json;
 };
@@ -53,7 +52,7 @@ void gradcheck(const GradcheckOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
-  const Eigen::VectorXd x = designPoint(source, problem, options.design, options.artificial);
+  const Eigen::VectorXd x = designPoint(source, problem, options.point);
 
   const auto start = std::chrono::steady_clock::now();
   const DesignResponse response = evaluateDesign(problem, functionals, x);
@@ -134,10 +133,7 @@ void registerGradcheckCommand(CLI::App& app) {
       "forward and central differences), their differences from the adjoint, a sweep of central-difference steps "
       "from 1e-2 to 1e-9 (the V shape) and the time of each method");
   addSceneArgument(*command, options->problem, true);
-  command->add_option("--design", options->design,
-                      "Design variables in SI units, in the problem's order (default: the scene's values)")
-      ->delimiter(',');
-  command->add_option("--artificial", options->artificial, "b_{k+1} in the cost's units (default: the problem's)");
+  addDesignPointOptions(*command, options->point);
   command->add_option("--fd-step", options->fd_step, "Relative step of the forward and central differences")
       ->check(CLI::PositiveNumber);
   command->add_option("--json", options->json,

@@ -32,8 +32,7 @@ struct PrecisionOptions {
   std::vector<std::string> quantities;
   double alpha = 0.05;
   double fd_step = 1e-6;
-  std::vector<double> design;  ///< SI values of the design variables (--gradients)
-  std::optional<double> artificial;
+  DesignPointArgument point;  ///< --design, --artificial (with --gradients)
   std::optional<int> repeat;
   std::optional<double> target_error;
   std::string out;
@@ -193,7 +192,7 @@ void gradientStudy(const PrecisionOptions& options, const SceneSource& source,
                    const std::vector<ParameterOverride>& overrides) {
   const DesignProblem problem = loadDesignProblem(source, overrides);
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
-  const Eigen::VectorXd x = designPoint(source, problem, options.design, options.artificial);
+  const Eigen::VectorXd x = designPoint(source, problem, options.point);
   const std::vector<double> steps = ladder(options.steps.empty() ? kGradientSteps : options.steps);
   const std::vector<std::string> methods = options.variants.empty() ? gradientMethodNames() : options.variants;
   for (const std::string& method : methods) requireGradientMethod(method);
@@ -312,15 +311,9 @@ void registerPrecisionCommand(CLI::App& app) {
                       "With --gradients: the relative step of the finite-difference methods")
       ->check(CLI::PositiveNumber)
       ->needs(gradients);
-  command->add_option("--design", options->design,
-                      "With --gradients: the design variables in SI units, in the problem's order (default: the "
-                      "scene's values)")
-      ->delimiter(',')
-      ->needs(gradients);
-  command->add_option("--artificial", options->artificial,
-                      "With --gradients: b_{k+1} in the cost's units (default: the problem's); below the cost's peak "
-                      "it makes the cost's constraint active")
-      ->needs(gradients);
+  const auto [design, artificial] = addDesignPointOptions(*command, options->point, "With --gradients: ");
+  design->needs(gradients);
+  artificial->needs(gradients);
   gradients->excludes(reference)->excludes(quantities)->excludes(alpha);
   command->callback([options, command] {
     options->command_line = commandLine(*command);

@@ -266,7 +266,7 @@ SdccSettings sdccSettings(const NamedSettings& named) {
       settings.weights = Eigen::Map<const Eigen::VectorXd>(weights.data(), static_cast<Eigen::Index>(weights.size()));
       continue;
     }
-    const auto field = std::find_if(numbers.begin(), numbers.end(), [&](const auto& n) { return n.first == name; });
+    const auto field = std::find_if(numbers.begin(), numbers.end(), [&name = name](const auto& n) { return n.first == name; });
     if (field == numbers.end()) {
       std::vector<std::string> known{"weights"};
       for (const auto& n : numbers) known.push_back(n.first);

@@ -273,20 +273,22 @@ class SceneBuilder {
       index.emplace(name, pending.size());
       pending.push_back({std::move(e), name, type, parent});
     }
-    // Depth-first from each element to the ground: parents first, file order otherwise.
-    std::vector<std::size_t> chain;
-    const auto place = [&](auto&& self, std::size_t i) -> void {
-      PendingElement& p = pending[i];
-      if (p.state == PendingElement::State::Placed) return;
-      if (p.state == PendingElement::State::Placing) {
-        std::string cycle;
-        for (auto it = std::find(chain.begin(), chain.end(), i); it != chain.end(); ++it)
-          cycle += pending[*it].name + " → ";
-        p.entry.fail("parent", "the elements " + cycle + p.name + " form a cycle: every chain must start at the ground");
-      }
-      p.state = PendingElement::State::Placing;
-      chain.push_back(i);
-      if (p.parent != "ground") {
+    // From each element up to the ground or a placed ancestor, then placed downwards: parents
+    // first, file order otherwise. A loop, not a recursion: a chain as long as the file allows
+    // must not exhaust the stack.
+    for (std::size_t start = 0; start < pending.size(); ++start) {
+      std::vector<std::size_t> chain;  // start, its parent, ... (unplaced)
+      for (std::size_t i = start; pending[i].state != PendingElement::State::Placed;) {
+        PendingElement& p = pending[i];
+        if (p.state == PendingElement::State::Placing) {
+          std::string cycle;
+          for (auto it = std::find(chain.begin(), chain.end(), i); it != chain.end(); ++it)
+            cycle += pending[*it].name + " → ";
+          p.entry.fail("parent", "the elements " + cycle + p.name + " form a cycle: every chain must start at the ground");
+        }
+        p.state = PendingElement::State::Placing;
+        chain.push_back(i);
+        if (p.parent == "ground") break;
         const auto parent = index.find(p.parent);
         if (parent == index.end()) {
           std::vector<std::string> names{"ground"};
@@ -294,13 +296,14 @@ class SceneBuilder {
           p.entry.fail("parent", "parent '" + p.parent + "' does not exist" + suggestion(p.parent, names) +
                                      " (it must be 'ground' or an element)");
         }
-        self(self, parent->second);
+        i = parent->second;
       }
-      addElement(p.entry, p.name, p.type, p.parent);
-      chain.pop_back();
-      p.state = PendingElement::State::Placed;
-    };
-    for (std::size_t i = 0; i < pending.size(); ++i) place(place, i);
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        PendingElement& p = pending[*it];
+        addElement(p.entry, p.name, p.type, p.parent);
+        p.state = PendingElement::State::Placed;
+      }
+    }
   }
 
   void addElement(const MapReader& e, const std::string& name, const std::string& type,

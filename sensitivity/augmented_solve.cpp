@@ -35,15 +35,18 @@ void solveAugmentedTransposed(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B
   // t̄ = x̄ V₂R⁻¹V₂ᵀ and b̄ = (x̄ − t̄ J) V₁S₁⁻¹U₁ᵀ: exactly the partition's solution of the system
   // with Jᵀ, right-hand side [x̄ᵀ; 0], its Δx being t̄ᵀ and its minimum-norm Δμ being b̄ᵀ.
   const SvdPartition partition = factor(J.transpose(), B, threshold);
-  tbar.resize(xbar.rows(), xbar.cols());
-  bbar.resize(xbar.rows(), B.rows());
+  // Filled by columns of the transposes: a row of bbar without constraints (B.rows() = 0) would be
+  // an offset from Eigen's null data pointer.
+  Eigen::MatrixXd tbar_t(xbar.cols(), xbar.rows()), bbar_t(B.rows(), xbar.rows());
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(B.rows());
   Eigen::VectorXd dx, dmu;
   for (Eigen::Index r = 0; r < xbar.rows(); ++r) {
     partition.solve(-xbar.row(r).transpose(), zero, dx, dmu);
-    tbar.row(r) = dx.transpose();
-    bbar.row(r) = dmu.transpose();
+    tbar_t.col(r) = dx;
+    bbar_t.col(r) = dmu;
   }
+  tbar = tbar_t.transpose();
+  bbar = bbar_t.transpose();
 }
 
 }  // namespace mbsopt
