@@ -30,7 +30,9 @@ if [ -z "$binary" ]; then
   cmake --build --preset fuzz -j "$(nproc)"
   binary="$root/build/sanitize/tests/fuzz/fuzz_scene_input"
 fi
+binary="$(realpath "$binary")"
 mkdir -p "$work/corpus" "$work/findings"
+work="$(realpath "$work")"
 rm -f "$work"/findings/* "$work"/fuzz-*.log
 
 # The output corpus first (new inputs go there), then the read-only seed directories.
