@@ -89,7 +89,24 @@ class SceneBuilder {
   Model& model() { return result_.scene.model; }
 
   std::vector<std::reference_wrapper<const YamlNode>> list(const std::string& section) const {
-    return readList(context_, root_.node()[section], section);
+    auto entries = readList(context_, root_.node()[section], section);
+    if (entries.size() > kSceneLimits.entries_per_section)
+      context_.fail(entries[kSceneLimits.entries_per_section].get(),
+                    section + ": more than " + std::to_string(kSceneLimits.entries_per_section) +
+                        " entries, the limit of a section");
+    return entries;
+  }
+
+  /// The model's size against kSceneLimits, at the entry (element or cut) that exceeds it.
+  void checkModelSize(const MapReader& entry) const {
+    const Model& m = result_.scene.model;
+    if (m.coordinateCount() > kSceneLimits.coordinates)
+      context_.fail(entry.node(), entry.what() + ": the model has more than " +
+                                      std::to_string(kSceneLimits.coordinates) + " joint coordinates, the limit");
+    if (m.constraintCount() > kSceneLimits.closure_equations)
+      context_.fail(entry.node(), entry.what() + ": the model has more than " +
+                                      std::to_string(kSceneLimits.closure_equations) +
+                                      " loop-closure equations, the limit");
   }
 
   /// An entry of a named section: a map with a unique `name` and a `type` among `types`.
@@ -301,6 +318,7 @@ class SceneBuilder {
       for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
         PendingElement& p = pending[*it];
         addElement(p.entry, p.name, p.type, p.parent);
+        checkModelSize(p.entry);
         p.state = PendingElement::State::Placed;
       }
     }
@@ -385,6 +403,7 @@ class SceneBuilder {
       });
     }
     cut_marks_.resize(model().cuts().size(), c.node().mark());
+    checkModelSize(c);
   }
 
   void readForce(const YamlNode& node) {

@@ -14,6 +14,15 @@
 
 namespace mbsopt {
 
+/// The size of a model a scene file may describe (problems/scenes/README.md, "Limits"): the
+/// integrator's matrices are dense, n × n in the coordinates and m × n in the closure equations.
+struct SceneLimits {
+  std::size_t entries_per_section = 10000;  ///< tracks, elements, bodies, forces, cuts, sensors
+  int coordinates = 2000;                   ///< joint coordinates n
+  int closure_equations = 2000;             ///< loop-closure equations m
+};
+inline constexpr SceneLimits kSceneLimits{};
+
 /// A scene file's text and the path under which errors name it.
 struct SceneSource {
   std::string path;

@@ -226,5 +226,53 @@ TEST(SceneFile, ErrorsNameTheLine) {
   }
 }
 
+// ---- the size limits of problems/scenes/README.md, "Limits" ----
+
+/// A pendulum whose `bodies:` section lists `count` point masses on the one joint (from line 5).
+std::string pendulumWithBodies(std::size_t count) {
+  std::string text =
+      "gravity: [0, 0, -9.81]\n"
+      "elements:\n"
+      "  - {name: arm, type: revolute, parent: ground, axis: [0, 1, 0], q0: 30 deg}\n"
+      "bodies:\n";
+  for (std::size_t i = 0; i < count; ++i)
+    text += "  - {name: b" + std::to_string(i) + ", frame: arm, mass: 1.0, com: [0, 0, -1], Ixx: 0, Iyy: 0, Izz: 0}\n";
+  return text;
+}
+
+// Two-sided: a section of exactly the limit loads (and is the same pendulum), one more entry is
+// refused at that entry's line.
+TEST(SceneLimits, SectionEntriesLimitIsExact) {
+  const std::size_t limit = kSceneLimits.entries_per_section;
+  EXPECT_EQ(loadText(pendulumWithBodies(limit)).scene.model.coordinateCount(), 1);
+  try {
+    loadText(pendulumWithBodies(limit + 1));
+    FAIL() << "a section of " << limit + 1 << " entries was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 5 + static_cast<int>(limit)) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than " + std::to_string(limit) + " entries"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A chain of one joint more than the limit is refused at that joint, before any dynamics is built.
+TEST(SceneLimits, CoordinateLimitNamesTheJointBeyondIt) {
+  std::string text = "elements:\n";  // line 1; joint j_k on line k + 1
+  std::string parent = "ground";
+  for (int k = 1; k <= kSceneLimits.coordinates + 1; ++k) {
+    text += "  - {name: j" + std::to_string(k) + ", type: revolute, parent: " + parent + ", axis: [0, 1, 0]}\n";
+    parent = "j" + std::to_string(k);
+  }
+  text += "bodies:\n  - {name: b, frame: j1, mass: 1.0, com: [0, 0, -1], Ixx: 0.01, Iyy: 0.01, Izz: 0.01}\n";
+  try {
+    loadText(text);
+    FAIL() << "a model of " << kSceneLimits.coordinates + 1 << " coordinates was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), kSceneLimits.coordinates + 2) << e.what();
+    EXPECT_NE(std::string(e.what()).find("j" + std::to_string(kSceneLimits.coordinates + 1)), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mbsopt
