@@ -38,7 +38,7 @@ rm -f "$work"/findings/* "$work"/fuzz-*.log
 # The output corpus first (new inputs go there), then the read-only seed directories.
 seeds=("$root/problems/scenes" "$root/problems/scenes/hard" "$root/tests/scenes/bad" "$root/tests/fuzz/seeds"
        "$root/tests/fuzz/regressions")
-options=(-max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=65536 -seed="$seed"
+options=(-max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=16384 -seed="$seed"
          -dict="$root/tests/fuzz/scene.dict" -artifact_prefix="$work/findings/" -print_final_stats=1)
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}" UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 status=0
