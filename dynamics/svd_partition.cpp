@@ -66,10 +66,22 @@ double SvdPartition::reducedReciprocalCondition() const {
 
 // The products below use lazyProduct (coefficient by coefficient): the matrices have a few rows
 // and columns, where the blocked matrix-vector kernels cost more than the arithmetic.
+
+namespace {
+
+/// dx = V₁ x_r. Without constraints (rank 0) V₁ is n × 0 and Eigen's null data pointer: each
+/// coefficient of the lazy product would offset it by its row (undefined behaviour), so zero.
+void rangeStep(const Eigen::MatrixXd& v1, const Eigen::VectorXd& x_r, Eigen::VectorXd& dx) {
+  if (v1.cols() == 0) dx.setZero(v1.rows());
+  else dx.noalias() = v1.lazyProduct(x_r);
+}
+
+}  // namespace
+
 void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
                          Eigen::VectorXd& dmu) const {
   x_r_.noalias() = -(inverse_s1_.asDiagonal() * u1_.transpose().lazyProduct(g));
-  dx.noalias() = v1_.lazyProduct(x_r_);
+  rangeStep(v1_, x_r_, dx);
   if (v2_.cols() > 0) {
     work_.noalias() = r + J_.lazyProduct(dx);
     reduced_rhs_.noalias() = -v2_.transpose().lazyProduct(work_);
@@ -83,7 +95,7 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
   x_r_.noalias() = inverse_s1_.asDiagonal() * u1_.transpose().lazyProduct(c);
-  dx.noalias() = v1_.lazyProduct(x_r_);
+  rangeStep(v1_, x_r_, dx);
 }
 
 }  // namespace mbsopt
