@@ -2,51 +2,68 @@
 
 #include <stdexcept>
 
-#include "dynamics/svd_partition.hpp"
-
 namespace mbsopt {
 
-namespace {
-
-SvdPartition factor(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, double threshold) {
-  SvdPartition partition(threshold);
-  partition.setConstraintJacobian(B);
-  if (!partition.setIterationMatrix(J)) throw std::runtime_error("exact gradients: singular step matrix");
-  return partition;
+AugmentedSolver::AugmentedSolver(const Eigen::MatrixXd& B, double threshold)
+    : partition_(threshold), constraints_(B.rows()) {
+  partition_.setConstraintJacobian(B);
 }
 
-}  // namespace
+void AugmentedSolver::setMatrix(const Eigen::MatrixXd& J) {
+  factored_ = Factored::None;
+  if (!partition_.setIterationMatrix(J)) throw std::runtime_error("exact gradients: singular step matrix");
+  factored_ = Factored::Matrix;
+}
 
-Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
-                               const Eigen::MatrixXd& bottom, double threshold) {
-  const SvdPartition partition = factor(J, B, threshold);
+void AugmentedSolver::setTransposedMatrix(const Eigen::MatrixXd& J) {
+  factored_ = Factored::None;
+  if (!partition_.setIterationMatrix(J.transpose())) throw std::runtime_error("exact gradients: singular step matrix");
+  factored_ = Factored::Transposed;
+}
+
+Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::MatrixXd& bottom) const {
+  if (factored_ != Factored::Matrix) throw std::logic_error("AugmentedSolver::solve needs setMatrix");
   Eigen::MatrixXd X(top.rows(), top.cols());
   Eigen::VectorXd dx, dmu;
   for (Eigen::Index c = 0; c < top.cols(); ++c) {
-    partition.solve(-top.col(c), -bottom.col(c), dx, dmu);  // it solves for −[r; g]
+    partition_.solve(-top.col(c), -bottom.col(c), dx, dmu);  // it solves for −[r; g]
     X.col(c) = dx;
   }
   return X;
 }
 
-void solveAugmentedTransposed(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& xbar,
-                              double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) {
+void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const {
   // With X = V₁S₁⁻¹U₁ᵀ bottom + V₂R⁻¹V₂ᵀ(top − J V₁S₁⁻¹U₁ᵀ bottom), R = V₂ᵀJV₂, the transpose is
   // t̄ = x̄ V₂R⁻¹V₂ᵀ and b̄ = (x̄ − t̄ J) V₁S₁⁻¹U₁ᵀ: exactly the partition's solution of the system
   // with Jᵀ, right-hand side [x̄ᵀ; 0], its Δx being t̄ᵀ and its minimum-norm Δμ being b̄ᵀ.
-  const SvdPartition partition = factor(J.transpose(), B, threshold);
+  if (factored_ != Factored::Transposed)
+    throw std::logic_error("AugmentedSolver::solveTransposed needs setTransposedMatrix");
   // Filled by columns of the transposes: a row of bbar without constraints (B.rows() = 0) would be
   // an offset from Eigen's null data pointer.
-  Eigen::MatrixXd tbar_t(xbar.cols(), xbar.rows()), bbar_t(B.rows(), xbar.rows());
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(B.rows());
+  Eigen::MatrixXd tbar_t(xbar.cols(), xbar.rows()), bbar_t(constraints_, xbar.rows());
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(constraints_);
   Eigen::VectorXd dx, dmu;
   for (Eigen::Index r = 0; r < xbar.rows(); ++r) {
-    partition.solve(-xbar.row(r).transpose(), zero, dx, dmu);
+    partition_.solve(-xbar.row(r).transpose(), zero, dx, dmu);
     tbar_t.col(r) = dx;
     bbar_t.col(r) = dmu;
   }
   tbar = tbar_t.transpose();
   bbar = bbar_t.transpose();
+}
+
+Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
+                               const Eigen::MatrixXd& bottom, double threshold) {
+  AugmentedSolver solver(B, threshold);
+  solver.setMatrix(J);
+  return solver.solve(top, bottom);
+}
+
+void solveAugmentedTransposed(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& xbar,
+                              double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) {
+  AugmentedSolver solver(B, threshold);
+  solver.setTransposedMatrix(J);
+  solver.solveTransposed(xbar, tbar, bbar);
 }
 
 }  // namespace mbsopt

@@ -7,13 +7,39 @@
 
 #include <Eigen/Core>
 
+#include "dynamics/svd_partition.hpp"
+
 namespace mbsopt {
 
-/// Columns of X, one per column of top (n × p) and bottom (m × p); B may have no rows.
+/// The systems of one step: B's SVD once, then one factorisation per matrix J (a step solves with
+/// M twice and with the iteration matrix once, all at the same B).
+class AugmentedSolver {
+ public:
+  /// B may have no rows.
+  AugmentedSolver(const Eigen::MatrixXd& B, double threshold);
+
+  /// Factors J for solve(); throws std::runtime_error when it is singular on B's null space.
+  void setMatrix(const Eigen::MatrixXd& J);
+  /// Factors Jᵀ for solveTransposed(); throws std::runtime_error when it is singular.
+  void setTransposedMatrix(const Eigen::MatrixXd& J);
+
+  /// Columns of X, one per column of top (n × p) and bottom (m × p). Needs setMatrix.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& top, const Eigen::MatrixXd& bottom) const;
+  /// Rows of t̄ (r × n) and b̄ (r × m), one per row of x̄ (r × n). Needs setTransposedMatrix.
+  void solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const;
+
+ private:
+  enum class Factored { None, Matrix, Transposed };
+  SvdPartition partition_;
+  Eigen::Index constraints_;
+  Factored factored_ = Factored::None;
+};
+
+/// X = L(top, bottom) with a solver of its own.
 Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
                                const Eigen::MatrixXd& bottom, double threshold);
 
-/// Rows of t̄ (r × n) and b̄ (r × m), one per row of x̄ (r × n).
+/// (t̄, b̄) for x̄ with a solver of its own.
 void solveAugmentedTransposed(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& xbar,
                               double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar);
 

@@ -35,9 +35,10 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     ClosureDerivatives c;
     c.jacobian.resize(0, nf);
     if (m > 0) c = d.closure(k);
+    AugmentedSolver solver(c.jacobian, settings.svd_threshold);  // B's SVD once for the three solves
+    solver.setMatrix(iteration);
     const Eigen::MatrixXd Sa_newton =
-        solveAugmented(iteration, c.jacobian, -(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred),
-                       -c.jacobian * Sq_pred / (beta * h * h), settings.svd_threshold);
+        solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -c.jacobian * Sq_pred / (beta * h * h));
     Sq = Sq_pred + beta * h * h * Sa_newton;
     Sv = Sv_pred + gamma * h * Sa_newton;
     Sa = Sa_newton;
@@ -45,11 +46,10 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
       // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
       // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q], then the same for q̈ with
       // ∂b̈/∂(q, q̇).
-      Sv = solveAugmented(s.mass, c.jacobian, s.mass * Sv - c.velocity_projection * Sq - c.velocity_projection_parameters,
-                          -c.velocity_q * Sq, settings.svd_threshold);
-      Sa = solveAugmented(s.mass, c.jacobian,
-                          s.mass * Sa_newton - c.acceleration_projection * Sq - c.acceleration_projection_parameters,
-                          -(c.acceleration_q * Sq + c.acceleration_v * Sv), settings.svd_threshold);
+      solver.setMatrix(s.mass);
+      Sv = solver.solve(s.mass * Sv - c.velocity_projection * Sq - c.velocity_projection_parameters, -c.velocity_q * Sq);
+      Sa = solver.solve(s.mass * Sa_newton - c.acceleration_projection * Sq - c.acceleration_projection_parameters,
+                        -(c.acceleration_q * Sq + c.acceleration_v * Sv));
     }
     accumulate(k, Sq, Sv, Sa);
   }
