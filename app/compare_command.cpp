@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <sstream>
 
 #include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
+#include "app/parallel_runs.hpp"
 #include "app/scene_argument.hpp"
 
 namespace mbsopt {
@@ -24,6 +26,7 @@ struct CompareOptions {
   int max_iterations = 100;
   std::vector<std::string> settings;  ///< passed to every optimizer that takes them
   std::string out;
+  int jobs = machineThreads();  ///< runs at once
 };
 
 /// The formulation with its ε when there is one: "positive_part", "positive_part ε=1e-06".
@@ -134,22 +137,26 @@ void compare(const CompareOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
   if (!options.out.empty()) std::filesystem::create_directories(options.out);
-  std::vector<OptimizationRun> runs;
+  std::vector<RunChoice> choices;
   for (const std::string& formulation : options.formulations)
     for (const std::string& gradient : options.gradients)
-      for (const std::string& optimizer : options.optimizers) {
-        const RunChoice choice{optimizer, gradient, formulation, options.tolerance, options.max_iterations,
-                               options.settings};
-        std::printf("%-40s ", runName(choice).c_str());
-        std::fflush(stdout);
-        runs.push_back(runOptimization(problem, choice, {}));
-        const OptimizerResult& r = runs.back().result;
-        std::printf("%-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", toString(r.status).c_str(), r.cost,
-                    r.max_violation, r.value_evaluations, r.wall_time_s);
-        if (!options.out.empty())
-          writeAtomically(options.out + "/" + runFileName(runs.back().choice),
-                          [&](std::ostream& out) { out << toJson(runs.back(), source.path).dump(2) << '\n'; });
-      }
+      for (const std::string& optimizer : options.optimizers)
+        choices.push_back({optimizer, gradient, formulation, options.tolerance, options.max_iterations, options.settings});
+  // Each run on its own copy of the problem (its own model and workspaces): the runs are
+  // independent, and their results do not depend on --jobs. A line per run as it finishes.
+  std::vector<OptimizationRun> runs(choices.size());
+  std::mutex output;
+  runInParallel(choices.size(), options.jobs, [&](std::size_t i) {
+    runs[i] = runOptimization(problem, choices[i], {});
+    const OptimizerResult& r = runs[i].result;
+    if (!options.out.empty())
+      writeAtomically(options.out + "/" + runFileName(runs[i].choice),
+                      [&](std::ostream& out) { out << toJson(runs[i], source.path).dump(2) << '\n'; });
+    const std::scoped_lock lock(output);
+    std::printf("%-40s %-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", runName(choices[i]).c_str(),
+                toString(r.status).c_str(), r.cost, r.max_violation, r.value_evaluations, r.wall_time_s);
+    std::fflush(stdout);
+  });
   const std::string& cost_key = runs.front().cost_response;
   const std::string table = markdownTable(runs, cost_key);
   std::printf("\n%s", table.c_str());
@@ -190,6 +197,11 @@ void registerCompareCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   addSettingOption(*command, options->settings);
+  command->add_option("--jobs", options->jobs,
+                      "Runs at once, each on its own thread (default: this machine's hardware threads). Ipopt runs "
+                      "one at a time (its linear solver MUMPS is not thread-safe); the results do not depend on it")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->add_option("--out", options->out,
                       "Directory for comparison.md, comparison.csv, convergence.png (with its .dat and .gp) and one "
                       "JSON per run (created if missing)");

@@ -46,7 +46,7 @@ struct OptimizationRun {
   /// units (angles in degrees): ≤ 0 when every limit holds on the grid, whatever the formulation.
   double limit_excess = 0.0;
   double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
-  double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the faster of two)
+  double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
   /// The optimizer's evaluations (simulations and gradients) in simulations: their wall time over
   /// simulation_s (DESIGN.md §5).
   double simulation_equivalents = 0.0;

@@ -23,12 +23,15 @@ double maxViolation(const NlpProblem& problem, const Eigen::VectorXd& x, const N
 }
 
 const NlpEvaluation& EvaluationCache::at(const Eigen::VectorXd& x, bool gradients) {
+  // The best point stays known however many points came after it (the verdict asks for it).
+  if (has_best_ && best_.x == x && (best_.has_gradients || !gradients)) return best_.values;
   const auto hit = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.x == x; });
   if (hit != entries_.end() && (hit->has_gradients || !gradients)) return hit->values;
+  const bool values_known = hit != entries_.end() || (has_best_ && best_.x == x);
   if (hit != entries_.end()) entries_.erase(hit);
   Entry entry{x, {}, gradients, 0.0};
   problem_.evaluate(x, gradients, entry.values);
-  ++value_evaluations_;
+  if (!values_known) ++value_evaluations_;  // the gradients of a known point: its simulation is reused
   if (gradients) ++gradient_evaluations_;
   entry.violation = maxViolation(problem_, x, entry.values);
   consider(entry);
@@ -41,7 +44,8 @@ void EvaluationCache::consider(const Entry& entry) {
   const double tolerance = options_.feasibility_tolerance;
   const bool feasible = entry.violation <= tolerance, best_feasible = has_best_ && best_.violation <= tolerance;
   const bool better = !has_best_ || (feasible && (!best_feasible || entry.values.cost < best_.values.cost)) ||
-                      (!feasible && !best_feasible && entry.violation < best_.violation);
+                      (!feasible && !best_feasible && entry.violation < best_.violation) ||
+                      (entry.x == best_.x && entry.has_gradients);  // the best point, now with gradients
   if (better) {
     best_ = entry;
     has_best_ = true;

@@ -3,6 +3,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -161,6 +162,10 @@ OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& o
   result.optimizer = "Ipopt (L-BFGS Hessian)";
   EvaluationCache cache(problem, options);
   const Ipopt::SmartPtr<ProblemAsTnlp> tnlp = new ProblemAsTnlp(cache, result);
+  // One Ipopt application at a time in a process: its linear solver (MUMPS, sequential) keeps
+  // global state, and so may its option registry.
+  static std::mutex one_at_a_time;
+  const std::scoped_lock lock(one_at_a_time);
   const Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->Options()->SetStringValue("hessian_approximation", "limited-memory");
   app->Options()->SetStringValue("sb", "yes");  // no banner

@@ -213,12 +213,13 @@ class SdccRun {
                              penalty_ * (predictedViolation(constraints_, taken) - violation_);  // (9)
     if (!(predicted < 0.0)) return shrink();  // nothing to gain at this ξ (e.g. the bounds clip the step away)
     try {
-      const NlpEvaluation& values = cache_.at(trial, true);
+      // Values first: a rejected trial needs no gradient (the accepted one's reuses its simulation).
+      const NlpEvaluation& values = cache_.at(trial, false);
       const double achieved = values.cost + penalty_ * maxViolation(problem_, trial, values) -
                               (values_.cost + penalty_ * violation_);
       const double ratio = achieved / predicted;
       if (!(ratio >= settings_.acceptance_ratio)) return shrink();  // NaN is rejected too
-      accept(trial, values);
+      accept(trial, cache_.at(trial, true));
       if (ratio >= settings_.growth_ratio) step_bound_ *= settings_.growth_factor;
     } catch (const std::exception& e) {
       last_failure_ = e.what();

@@ -54,7 +54,7 @@ Eigen::MatrixXd independentDirections(const Eigen::MatrixXd& B, double threshold
 
 DesignGradient continuousAdjointGradient(const DesignProblem& problem,
                                          const std::vector<ConstraintFunctional>& functionals,
-                                         const Eigen::VectorXd& x) {
+                                         const Eigen::VectorXd& x, const DesignResponse* simulated) {
   // The sensitivity equations of the loop-closed motion, first order in (s, u) = d(q, q̇)/db:
   //   M u̇ + C u + K s + Bᵀσ + ∂f/∂b = 0,  ṡ − u = 0,  B s = 0,   s(0) = u(0) = 0,
   // with K including the loop forces' geometric stiffness (the paper's (58) with (57)'s closure).
@@ -71,7 +71,7 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   // alone would make it first order). Eliminating p_k: w_k A + ½h ν̄ B̄ = R with A = M + ½h C + ¼h² K,
   // the transposed trapezoidal Newmark matrix. So w_k = ξ V₂ᵀ with V₂ the independent directions of
   // B_k, and ν̄ drops out against those of B̄: ξ (V₂ᵀ Aᵀ V̄₂) = R V̄₂.
-  TrajectoryDerivatives d(problem, functionals, x);
+  TrajectoryDerivatives d(problem, functionals, x, simulated);
   const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;
   const Eigen::Index N = d.timePoints() - 1, rows = d.functionalCount(), nf = d.freeCount();
   // The trapezoidal rule's weights on the uniform grid: h/2 at both ends, h inside.

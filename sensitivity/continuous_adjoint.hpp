@@ -13,8 +13,9 @@ namespace mbsopt {
 /// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
 /// Throws std::invalid_argument for loops closed at acceleration level, and where the rank of the
 /// closure changes within a step (a singular configuration), where the method does not apply.
+/// `simulated`: the simulation at x when the caller has it (evaluateDesign's), so none is run again.
 DesignGradient continuousAdjointGradient(const DesignProblem& problem,
                                          const std::vector<ConstraintFunctional>& functionals,
-                                         const Eigen::VectorXd& x);
+                                         const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr);
 
 }  // namespace mbsopt

@@ -45,14 +45,16 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
 
 DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
                                         const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
-                                        double relative_step, bool central) {
+                                        double relative_step, bool central, const DesignResponse* simulated) {
   if (!(relative_step > 0.0)) throw std::invalid_argument("finite differences: the relative step must be positive");
   const Eigen::Index n = x.size(), m = static_cast<Eigen::Index>(functionals.size());
   DesignGradient out;
   out.cost = Eigen::VectorXd::Zero(n);
   out.cost[n - 1] = problem.design.artificial.scale;  // the cost is b_{k+1} = x_{k+1} · scale
   out.constraints.resize(m, n);
-  const DesignResponse base = evaluateDesign(problem, functionals, x);
+  std::optional<DesignResponse> own;
+  if (!simulated) own = evaluateDesign(problem, functionals, x);
+  const DesignResponse& base = simulated ? *simulated : *own;
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
     const double step = relative_step * std::max(std::abs(x[i]), 1.0);
     Eigen::VectorXd up = x;

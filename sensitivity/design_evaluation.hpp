@@ -47,9 +47,10 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
                                  const DesignResponse& response);
 
 /// Forward (one simulation per variable) or central (two) differences in the design variables with
-/// step relative_step · max(|x_i|, 1); the artificial column is exact.
+/// step relative_step · max(|x_i|, 1); the artificial column is exact. `simulated`: the simulation
+/// at x when the caller has it.
 DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
                                         const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
-                                        double relative_step, bool central);
+                                        double relative_step, bool central, const DesignResponse* simulated = nullptr);
 
 }  // namespace mbsopt

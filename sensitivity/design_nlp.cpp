@@ -1,5 +1,6 @@
 #include "sensitivity/design_nlp.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "sensitivity/design_evaluation.hpp"
@@ -25,21 +26,38 @@ Eigen::VectorXd DesignNlp::scaledBounds(double DesignVariable::*variable_bound,
   return bounds;
 }
 
+const DesignResponse* DesignNlp::keptSimulation(const Eigen::VectorXd& x) const {
+  if (first_ && first_->first == x) return &first_->second;
+  for (const auto& [point, response] : recent_)
+    if (point == x) return &response;
+  return nullptr;
+}
+
+const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
+  if (const DesignResponse* kept = keptSimulation(x)) return *kept;
+  const auto start_time = std::chrono::steady_clock::now();
+  DesignResponse response = evaluateDesign(problem_, functionals_, x);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  fastest_simulation_s_ = fastest_simulation_s_ > 0.0 ? std::min(fastest_simulation_s_, seconds) : seconds;
+  if (!first_) {
+    first_.emplace(x, std::move(response));
+    return first_->second;
+  }
+  recent_.emplace_front(x, std::move(response));
+  if (recent_.size() > kKeptSimulations) recent_.pop_back();
+  return recent_.front().second;
+}
+
 void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) {
   const auto start_time = std::chrono::steady_clock::now();
-  std::optional<DesignValues> values;
-  if (gradients) {
-    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_);
+  const DesignResponse& response = simulation(x);
+  if (gradients) {  // on the simulation just run or kept: the values' simulation is not paid twice
+    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_, &response);
     out.cost_gradient = std::move(g.cost);
     out.constraint_jacobian = std::move(g.constraints);
-    values = std::move(g.values);  // the exact methods' own simulation: no second one
   }
-  if (!values) {
-    const DesignResponse response = evaluateDesign(problem_, functionals_, x);
-    values = DesignValues{response.cost, response.constraints};
-  }
-  out.cost = values->cost;
-  out.constraints = std::move(values->constraints);
+  out.cost = response.cost;
+  out.constraints = response.constraints;
   evaluation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
 }
 

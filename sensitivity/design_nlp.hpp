@@ -3,11 +3,15 @@
 // with the gradients of the named method. One value evaluation is one simulation.
 #pragma once
 
+#include <deque>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "optimizers/nlp_problem.hpp"
 #include "problems/design_problem.hpp"
+#include "sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 
@@ -27,17 +31,32 @@ class DesignNlp : public NlpProblem {
   const DesignProblem& problem() const { return problem_; }
   /// Wall time spent in evaluate() so far: simulations and gradients [s].
   double evaluationSeconds() const { return evaluation_seconds_; }
+  /// The fastest of the simulations evaluate() ran [s] (interference only ever slows one down);
+  /// 0 before the first.
+  double simulationSeconds() const { return fastest_simulation_s_; }
+  /// The simulation at x when it is one of those kept (the first point evaluated and the
+  /// kKeptSimulations most recent), else nullptr.
+  const DesignResponse* keptSimulation(const Eigen::VectorXd& x) const;
+  static constexpr std::size_t kKeptSimulations = 4;
   const std::vector<ConstraintFunctional>& functionals() const { return functionals_; }
 
  private:
   /// One bound of every variable, in the scaled units the optimizers see.
   Eigen::VectorXd scaledBounds(double DesignVariable::*variable_bound, double ArtificialVariable::*artificial_bound) const;
 
+  /// The simulation at x: a kept one, or a new one (timed, then kept).
+  const DesignResponse& simulation(const Eigen::VectorXd& x);
+
   DesignProblem problem_;
   std::vector<ConstraintFunctional> functionals_;
   std::string gradient_method_;
   double fd_step_;
   double evaluation_seconds_ = 0.0;
+  double fastest_simulation_s_ = 0.0;
+  /// Simulations by point: the first one evaluated, then the most recent, newest first. The
+  /// gradients of a point whose values were asked for first reuse its simulation.
+  std::optional<std::pair<Eigen::VectorXd, DesignResponse>> first_;
+  std::deque<std::pair<Eigen::VectorXd, DesignResponse>> recent_;
 };
 
 }  // namespace mbsopt

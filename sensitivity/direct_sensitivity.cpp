@@ -6,8 +6,8 @@
 namespace mbsopt {
 
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                              const Eigen::VectorXd& x) {
-  TrajectoryDerivatives d(problem, functionals, x);
+                              const Eigen::VectorXd& x, const DesignResponse* simulated) {
+  TrajectoryDerivatives d(problem, functionals, x, simulated);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();

@@ -70,8 +70,8 @@ ResponseSeeds rowsOf(const ResponseSeeds& bar, const std::vector<Eigen::Index>& 
 }  // namespace
 
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                               const Eigen::VectorXd& x) {
-  TrajectoryDerivatives d(problem, functionals, x);
+                               const Eigen::VectorXd& x, const DesignResponse* simulated) {
+  TrajectoryDerivatives d(problem, functionals, x, simulated);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index N = d.timePoints() - 1;

@@ -10,7 +10,8 @@ namespace mbsopt {
 
 /// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
 /// Throws std::invalid_argument for loops closed at acceleration level.
+/// `simulated`: the simulation at x when the caller has it (evaluateDesign's), so none is run again.
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                               const Eigen::VectorXd& x);
+                               const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr);
 
 }  // namespace mbsopt

@@ -16,13 +16,13 @@ const std::vector<std::string>& gradientMethodNames() {
 
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
-                              double fd_step) {
-  if (method == "adjoint") return adjointGradient(problem, functionals, x);
-  if (method == "continuous-adjoint") return continuousAdjointGradient(problem, functionals, x);
-  if (method == "direct") return directGradient(problem, functionals, x);
-  if (method == "fd_forward") return finiteDifferenceGradient(problem, functionals, x, fd_step, false);
+                              double fd_step, const DesignResponse* simulated) {
+  if (method == "adjoint") return adjointGradient(problem, functionals, x, simulated);
+  if (method == "continuous-adjoint") return continuousAdjointGradient(problem, functionals, x, simulated);
+  if (method == "direct") return directGradient(problem, functionals, x, simulated);
+  if (method == "fd_forward") return finiteDifferenceGradient(problem, functionals, x, fd_step, false, simulated);
   requireGradientMethod(method);
-  return finiteDifferenceGradient(problem, functionals, x, fd_step, true);  // fd_central
+  return finiteDifferenceGradient(problem, functionals, x, fd_step, true, simulated);  // fd_central
 }
 
 void requireGradientMethod(const std::string& method) {

@@ -17,9 +17,10 @@ void requireGradientMethod(const std::string& method);
 
 /// The cost's and every constraint's gradient at the scaled point x by the named method;
 /// `fd_step` is the finite differences' relative step. Throws std::invalid_argument for an unknown
-/// name (the message lists the known ones) and where a method does not apply.
+/// name (the message lists the known ones) and where a method does not apply. `simulated`: the
+/// simulation at x when the caller has it, so that no method simulates x again.
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
-                              double fd_step = 1e-6);
+                              double fd_step = 1e-6, const DesignResponse* simulated = nullptr);
 
 }  // namespace mbsopt

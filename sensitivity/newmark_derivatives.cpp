@@ -28,12 +28,12 @@ Model checkedModel(const DesignProblem& problem, const Eigen::VectorXd& x) {
 
 TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
                                              const std::vector<ConstraintFunctional>& functionals,
-                                             const Eigen::VectorXd& x)
+                                             const Eigen::VectorXd& x, const DesignResponse* simulated)
     : problem_(problem),
       functionals_(functionals),
       x_(x),
       model_(checkedModel(problem, x)),
-      response_(evaluateDesign(problem, functionals, x)),
+      response_(simulated ? *simulated : evaluateDesign(problem, functionals, x)),
       ws_(model_),
       plain_ws_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);

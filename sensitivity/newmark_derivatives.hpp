@@ -39,9 +39,10 @@ struct ResponseSeeds {
 
 class TrajectoryDerivatives {
  public:
-  /// Simulates at x; throws std::invalid_argument for cut joints closed at acceleration level.
+  /// Simulates at x, unless `simulated` is that simulation (then copied); throws
+  /// std::invalid_argument for cut joints closed at acceleration level.
   TrajectoryDerivatives(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                        const Eigen::VectorXd& x);
+                        const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr);
 
   Eigen::Index timePoints() const { return response_.trajectory.time.size(); }
   double time(Eigen::Index k) const { return response_.trajectory.time[k]; }

@@ -1,7 +1,7 @@
 // A design problem as the optimizers see it (sensitivity/design_nlp.hpp): scaled bounds and start,
-// and the same values whether or not gradients are asked for (the exact methods hand back the
-// values of their own simulation, finite differences leave them to a separate one; both are the
-// same deterministic simulation of the same x, so equal to the last bit).
+// the same values whether or not gradients are asked for, and the gradients of a point whose values
+// were asked for first computed on that point's simulation (kept), equal to the last bit to those
+// of a fresh evaluation (the simulation is deterministic).
 #include <gtest/gtest.h>
 
 #include "problems/scene_file.hpp"
@@ -40,6 +40,37 @@ TEST(DesignNlp, ValuesDoNotDependOnWhetherGradientsAreAskedFor) {
     EXPECT_EQ(with_gradients.constraint_jacobian.rows(), nlp.inequalityCount()) << method;
     EXPECT_EQ(with_gradients.cost_gradient.size(), nlp.variableCount()) << method;
   }
+}
+
+TEST(DesignNlp, GradientsAfterValuesReuseThePointsSimulation) {
+  for (const char* method : {"adjoint", "direct", "fd_forward"}) {
+    DesignNlp fresh(chain(), method), reusing(chain(), method);
+    const Eigen::VectorXd x = fresh.start(), y = 1.01 * x;
+    NlpEvaluation direct, values, reused;
+    fresh.evaluate(x, true, direct);
+    reusing.evaluate(x, false, values);
+    reusing.evaluate(y, false, values);  // a second point in between: x stays kept
+    ASSERT_NE(reusing.keptSimulation(x), nullptr) << method;
+    reusing.evaluate(x, true, reused);
+    EXPECT_EQ(direct.cost, reused.cost) << method;
+    EXPECT_EQ(direct.cost_gradient, reused.cost_gradient) << method;
+    EXPECT_EQ(direct.constraint_jacobian, reused.constraint_jacobian) << method;
+  }
+}
+
+TEST(DesignNlp, KeepsTheFirstPointAndTheMostRecentOnes) {
+  DesignNlp nlp(chain(), "adjoint");
+  const Eigen::VectorXd start = nlp.start();
+  NlpEvaluation out;
+  std::vector<Eigen::VectorXd> points;
+  for (std::size_t k = 0; k <= DesignNlp::kKeptSimulations + 1; ++k) {
+    points.push_back((1.0 + 0.001 * static_cast<double>(k)) * start);
+    nlp.evaluate(points.back(), false, out);
+  }
+  EXPECT_NE(nlp.keptSimulation(points[0]), nullptr);  // the first, for the report's "at the start"
+  EXPECT_EQ(nlp.keptSimulation(points[1]), nullptr);  // pushed out by the newer ones
+  for (std::size_t k = 2; k < points.size(); ++k) EXPECT_NE(nlp.keptSimulation(points[k]), nullptr) << k;
+  EXPECT_GT(nlp.simulationSeconds(), 0.0);
 }
 
 TEST(DesignNlp, AnUnknownGradientMethodIsAnErrorThatListsTheKnownOnes) {

@@ -145,28 +145,55 @@ TEST_P(EveryOptimizer, NeverCallsAPointItCannotLeaveConverged) {
 }
 
 /// The quadratic, remembering every point it is evaluated at and failing beyond x₀ = 0.9.
-class Recording : public test::BoundedQuadratic {
+/// A problem that records every call the optimizer makes: the point and whether it asked for gradients.
+template <class Problem>
+class Recording : public Problem {
  public:
   std::vector<std::pair<Eigen::VectorXd, bool>> calls;
   bool fail_beyond = false;
   void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
     calls.emplace_back(x, gradients);
     if (fail_beyond && x[0] > 0.9) throw std::runtime_error("simulation diverged at x0 = " + std::to_string(x[0]));
-    BoundedQuadratic::evaluate(x, gradients, out);
+    Problem::evaluate(x, gradients, out);
   }
 };
 
+std::vector<double> asKey(const Eigen::VectorXd& x) { return {x.data(), x.data() + x.size()}; }
+
+// Every point's values are computed once and its gradients at most once (a design problem reuses
+// the point's simulation for them), never values again after gradients; the counts are of points.
 TEST_P(EveryOptimizer, EvaluatesNoPointTwice) {
-  Recording problem;
+  Recording<test::BoundedQuadratic> problem;
   const OptimizerResult r = minimize(GetParam(), problem, tightOptions());
-  std::set<std::pair<std::vector<double>, bool>> seen;
-  for (const auto& [x, gradients] : problem.calls)
-    EXPECT_TRUE(seen.insert({std::vector<double>(x.data(), x.data() + x.size()), gradients}).second);
-  EXPECT_EQ(r.value_evaluations, static_cast<long>(problem.calls.size()));
+  std::set<std::vector<double>> points, with_gradients;
+  for (const auto& [x, gradients] : problem.calls) {
+    EXPECT_FALSE(with_gradients.count(asKey(x))) << "asked again at a point whose gradients it has";
+    if (gradients) with_gradients.insert(asKey(x));
+    else EXPECT_TRUE(points.insert(asKey(x)).second) << "asked twice for the values of one point";
+    points.insert(asKey(x));
+  }
+  EXPECT_EQ(r.value_evaluations, static_cast<long>(points.size()));
+  EXPECT_EQ(r.gradient_evaluations, static_cast<long>(with_gradients.size()));
+}
+
+// SDCC needs a gradient only where it linearises, at the points it accepts (the history); a
+// rejected trial point costs its values alone. On Rosenbrock's valley it rejects trials.
+TEST(Optimizers, SdccAsksForGradientsOnlyAtThePointsItAccepts) {
+  Recording<test::RosenbrockInDisc> problem;
+  const OptimizerResult r = minimize("sdcc", problem, tightOptions());
+  std::set<std::vector<double>> accepted;
+  for (const IterationRecord& h : r.history) accepted.insert(asKey(h.x));
+  long rejected = 0;
+  for (const auto& [x, gradients] : problem.calls) {
+    if (gradients) EXPECT_TRUE(accepted.count(asKey(x))) << "a gradient at a point SDCC did not accept";
+    else if (!accepted.count(asKey(x))) ++rejected;
+  }
+  EXPECT_GT(rejected, 0);
+  EXPECT_EQ(r.gradient_evaluations, static_cast<long>(accepted.size()));
 }
 
 TEST_P(EveryOptimizer, ReportsAFailedEvaluationWithItsReason) {
-  Recording problem;
+  Recording<test::BoundedQuadratic> problem;
   problem.fail_beyond = true;
   OptimizerOptions options = tightOptions();
   options.max_iterations = 100;
@@ -194,7 +221,7 @@ TEST(Optimizers, IpoptTakesItsOwnOptionsByName) {
 }
 
 TEST_P(EveryOptimizer, RefusesASettingItDoesNotKnowBeforeEvaluatingAnything) {
-  Recording problem;
+  Recording<test::BoundedQuadratic> problem;
   OptimizerOptions options = tightOptions();
   options.settings = {{"no_such_setting", "1"}};
   EXPECT_THROW(minimize(GetParam(), problem, options), std::invalid_argument);
