@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/precision_run.hpp"
-#include "problems/design_problem.hpp"
+#include "sensitivity/design_problem.hpp"
 #include "sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {

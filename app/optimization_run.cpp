@@ -7,7 +7,7 @@
 #include <variant>
 
 #include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/design_nlp.hpp"
+#include "problems/design_nlp.hpp"
 #include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {

@@ -11,7 +11,7 @@
 
 #include "app/gnuplot.hpp"
 #include "optimizers/optimizer.hpp"
-#include "problems/design_problem.hpp"
+#include "sensitivity/design_problem.hpp"
 
 namespace mbsopt {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/precision_run.hpp"
-#include "problems/scene.hpp"
+#include "dynamics/scene.hpp"
 
 namespace mbsopt {
 

@@ -15,7 +15,7 @@
 #include "dynamics/residual.hpp"
 #include "dynamics/tangent.hpp"
 #include "dynamics/workspace.hpp"
-#include "problems/scene.hpp"
+#include "dynamics/scene.hpp"
 #include "problems/tramway.hpp"
 
 namespace mbsopt {

@@ -1,7 +1,7 @@
 // The `design:` section of a scene file (problems/scenes/README.md, "Design problems").
 #pragma once
 
-#include "problems/design_problem.hpp"
+#include "sensitivity/design_problem.hpp"
 #include "problems/yaml_reader.hpp"
 
 namespace mbsopt {

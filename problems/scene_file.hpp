@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "problems/design_problem.hpp"
-#include "problems/scene.hpp"
+#include "sensitivity/design_problem.hpp"
+#include "dynamics/scene.hpp"
 
 namespace mbsopt {
 

@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "dynamics/track.hpp"
-#include "problems/design_problem.hpp"
-#include "problems/scene.hpp"
+#include "sensitivity/design_problem.hpp"
+#include "dynamics/scene.hpp"
 
 namespace mbsopt {
 

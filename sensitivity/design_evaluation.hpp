@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "dynamics/newmark.hpp"
-#include "problems/design_problem.hpp"
+#include "sensitivity/design_problem.hpp"
 #include "sensitivity/time_functional.hpp"
 
 namespace mbsopt {

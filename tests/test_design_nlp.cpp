@@ -1,11 +1,11 @@
-// A design problem as the optimizers see it (sensitivity/design_nlp.hpp): scaled bounds and start,
+// A design problem as the optimizers see it (problems/design_nlp.hpp): scaled bounds and start,
 // the same values whether or not gradients are asked for, and the gradients of a point whose values
 // were asked for first computed on that point's simulation (kept), equal to the last bit to those
 // of a fresh evaluation (the simulation is deterministic).
 #include <gtest/gtest.h>
 
 #include "problems/scene_file.hpp"
-#include "sensitivity/design_nlp.hpp"
+#include "problems/design_nlp.hpp"
 #include "sensitivity/gradient_method.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

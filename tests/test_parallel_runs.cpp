@@ -11,7 +11,7 @@
 #include "app/parallel_runs.hpp"
 #include "optimizers/optimizer.hpp"
 #include "problems/scene_file.hpp"
-#include "sensitivity/design_nlp.hpp"
+#include "problems/design_nlp.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

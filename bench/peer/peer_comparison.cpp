@@ -43,7 +43,7 @@
 #include "bench/peer/simbody_models.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/newmark.hpp"
-#include "problems/scene.hpp"
+#include "dynamics/scene.hpp"
 #include "problems/scene_file.hpp"
 
 namespace {

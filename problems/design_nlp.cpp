@@ -1,4 +1,4 @@
-#include "sensitivity/design_nlp.hpp"
+#include "problems/design_nlp.hpp"
 
 #include <algorithm>
 #include <chrono>

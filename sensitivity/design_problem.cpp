@@ -1,4 +1,4 @@
-#include "problems/design_problem.hpp"
+#include "sensitivity/design_problem.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "problems/scene.hpp"
+#include "dynamics/scene.hpp"
 #include "sensitivity/time_functional.hpp"
 
 namespace mbsopt {

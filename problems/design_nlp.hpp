@@ -1,6 +1,8 @@
 // A design problem as the optimizers see it (DESIGN.md §5): min b_{k+1} over the scaled design
 // variables and b_{k+1}, subject to every transcribed constraint ≤ 0 and the variables' bounds,
-// with the gradients of the named method. One value evaluation is one simulation.
+// with the gradients of the named method. One value evaluation is one simulation. The adapter
+// between the two layers below, which know nothing of each other: optimizers/ (an NlpProblem) and
+// sensitivity/ (simulations and gradients of a design problem).
 #pragma once
 
 #include <deque>
@@ -10,7 +12,6 @@
 #include <vector>
 
 #include "optimizers/nlp_problem.hpp"
-#include "problems/design_problem.hpp"
 #include "sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
