@@ -11,7 +11,8 @@ namespace {
 
 /// The constraints whose adjoint is not exactly zero at this step. Every operation of a backward
 /// step maps each constraint's row on its own (linear, row by row), so a zero row stays zero and a
-/// step without a non-zero row adds nothing: both are skipped, and the result is the same to the bit.
+/// step without a non-zero row adds nothing: both are skipped. The result is the same to round-off
+/// (the same operations on fewer rows; Eigen's kernels may sum in another order).
 std::vector<Eigen::Index> nonZeroRows(const ResponseSeeds& bar) {
   std::vector<Eigen::Index> rows;
   for (Eigen::Index j = 0; j < bar.position.rows(); ++j)

@@ -7,12 +7,18 @@ set title 'positive_part ε=1e-06, adjoint'
 set xlabel 'simulations'
 set ylabel 'cost'
 unset logscale y
+set format y
+unset logscale x
+set format x
 set yrange [*:3]
 plot 'convergence.dat' index 0 with linespoints title 'sdcc', 'convergence.dat' index 1 with linespoints title 'slsqp', 'convergence.dat' index 2 with linespoints title 'mma', 'convergence.dat' index 3 with linespoints title 'ccsaq', 'convergence.dat' index 4 with linespoints title 'ipopt'
 set title 'positive_part ε=1e-06, adjoint'
 set xlabel 'simulations'
 set ylabel 'max violation (0 drawn at 1e-12)'
 set logscale y
+set format y "%.0e"
+unset logscale x
+set format x
 set yrange [*:*]
 plot 'convergence.dat' index 5 with linespoints title 'sdcc', 'convergence.dat' index 6 with linespoints title 'slsqp', 'convergence.dat' index 7 with linespoints title 'mma', 'convergence.dat' index 8 with linespoints title 'ccsaq', 'convergence.dat' index 9 with linespoints title 'ipopt'
 unset multiplot
