@@ -1,13 +1,12 @@
 #include "app/optimization_run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 #include <numbers>
 #include <variant>
 
-#include "sensitivity/design_evaluation.hpp"
 #include "problems/design_nlp.hpp"
+#include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
@@ -73,15 +72,6 @@ std::vector<double> designInSi(const DesignProblem& problem, const Eigen::Vector
   return design;
 }
 
-/// The simulation at x: the one the optimisation kept (DesignNlp::keptSimulation), or a new one.
-DesignResponse simulationAt(const DesignNlp& nlp, const Eigen::VectorXd& x, double& seconds) {
-  if (const DesignResponse* kept = nlp.keptSimulation(x)) return *kept;
-  const auto start_time = std::chrono::steady_clock::now();
-  DesignResponse response = evaluateDesign(nlp.problem(), nlp.functionals(), x);
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  return response;
-}
-
 }  // namespace
 
 const std::vector<std::string>& formulationNames() {
@@ -126,12 +116,10 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.design = designInSi(nlp.problem(), run.result.x);
   for (const IterationRecord& h : run.result.history)
     run.iterate_designs.push_back(h.x.size() > 0 ? designInSi(nlp.problem(), h.x) : std::vector<double>{});
-  double initial_s = 0.0, final_s = 0.0;  // stay 0 for a kept simulation
-  const DesignResponse initial = simulationAt(nlp, nlp.start(), initial_s);
-  const DesignResponse final = simulationAt(nlp, run.result.x, final_s);
+  // The points the run knows are not simulated again; copies, as a new simulation may push one out.
+  const DesignResponse initial = nlp.simulation(nlp.start());
+  const DesignResponse final = nlp.simulation(run.result.x);
   run.simulation_s = nlp.simulationSeconds();  // the fastest: interference only ever slows a run down
-  for (const double seconds : {initial_s, final_s})
-    if (seconds > 0.0 && (run.simulation_s == 0.0 || seconds < run.simulation_s)) run.simulation_s = seconds;
   run.simulation_equivalents = nlp.evaluationSeconds() / run.simulation_s;
   run.responses = responses(nlp, final);
   run.limit_excess = limitExcess(nlp, final);

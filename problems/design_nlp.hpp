@@ -38,15 +38,15 @@ class DesignNlp : public NlpProblem {
   /// The simulation at x when it is one of those kept (the first point evaluated and the
   /// kKeptSimulations most recent), else nullptr.
   const DesignResponse* keptSimulation(const Eigen::VectorXd& x) const;
+  /// The simulation at x: a kept one, or a new one (timed, then kept). The reference holds until
+  /// kKeptSimulations more points are simulated.
+  const DesignResponse& simulation(const Eigen::VectorXd& x);
   static constexpr std::size_t kKeptSimulations = 4;
   const std::vector<ConstraintFunctional>& functionals() const { return functionals_; }
 
  private:
   /// One bound of every variable, in the scaled units the optimizers see.
   Eigen::VectorXd scaledBounds(double DesignVariable::*variable_bound, double ArtificialVariable::*artificial_bound) const;
-
-  /// The simulation at x: a kept one, or a new one (timed, then kept).
-  const DesignResponse& simulation(const Eigen::VectorXd& x);
 
   DesignProblem problem_;
   std::vector<ConstraintFunctional> functionals_;

@@ -33,6 +33,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/fuzz/input_arguments.hpp"
+
 extern char** environ;
 
 namespace mbsopt {
@@ -359,17 +361,6 @@ std::vector<fs::path> fuzzRegressionFiles() {
   return files;
 }
 
-/// The words of the file's "#!" lines.
-std::vector<std::string> commandLineOf(const fs::path& file) {
-  std::vector<std::string> words;
-  for (const std::string& line : fileLines(file)) {
-    if (line.rfind("#!", 0) != 0) continue;
-    std::istringstream split(line.substr(2));
-    for (std::string word; split >> word;) words.push_back(word);
-  }
-  return words;
-}
-
 class FuzzRegression : public testing::TestWithParam<fs::path> {};
 
 TEST_P(FuzzRegression, OneLineErrorNoHang) {
@@ -378,7 +369,7 @@ TEST_P(FuzzRegression, OneLineErrorNoHang) {
   any.any_line = true;
   any.line_optional = true;
   any.fragments = {""};
-  std::vector<std::string> extra = commandLineOf(file);
+  std::vector<std::string> extra = fuzz::inputArguments(readText(file));
   extra.insert(extra.end(), {"--t-end", "0.05"});
   TemporaryDirectory temporary;
   std::vector<std::string> args{"simulate", file.string()};

@@ -24,23 +24,12 @@
 #include "app/scene_argument.hpp"
 #include "dynamics/newmark.hpp"
 #include "problems/scene_file.hpp"
+#include "tests/fuzz/input_arguments.hpp"
 
 namespace {
 
 constexpr const char* kPath = "fuzz.yaml";
 constexpr int kSteps = 3;
-
-/// The words of the "#!" lines, in order.
-std::vector<std::string> commandLine(const std::string& text) {
-  std::vector<std::string> words;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (!line.starts_with("#!")) continue;
-    std::istringstream split(line.substr(2));
-    for (std::string word; split >> word;) words.push_back(word);
-  }
-  return words;
-}
 
 /// A message the program would print: one line, naming the file.
 void checkMessage(const std::string& message) {
@@ -53,7 +42,7 @@ void run(const std::string& text) {
   mbsopt::DesignPointArgument point;
   mbsopt::addSceneArgument(app, scene, true);
   mbsopt::addDesignPointOptions(app, point);
-  std::vector<std::string> arguments = commandLine(text);
+  std::vector<std::string> arguments = mbsopt::fuzz::inputArguments(text);
   arguments.emplace_back(kPath);
   std::reverse(arguments.begin(), arguments.end());  // CLI11 parses a reversed vector
   try {
