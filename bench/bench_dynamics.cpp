@@ -1,6 +1,7 @@
 // Timings of the dynamics core: one residual, the AD tangent matrices, the constraint Jacobian, one
 // Newmark step and a whole simulation on the tramway scene; residual and tangents on a planar chain
-// of N links to show how the cost grows with the number of coordinates.
+// of N links, and one Newmark step of that chain closed into a loop, to show how the cost grows
+// with the number of coordinates.
 //
 // Residual/tangent timings use a state from a short simulated run (moving, loaded, mid-curve), not
 // zeros, so no branch or AD derivative is trivially empty.
@@ -71,6 +72,24 @@ Scene chainScene(int links) {
   return scene;
 }
 
+/// The planar chain of `links` links bent by 2/links rad per joint (2 rad in all, whatever N), its
+/// tip pinned where it starts by a spherical cut to the ground: one loop, 3 closure equations of
+/// rank 2 (the z row is identically zero in the plane), N − 2 degrees of freedom.
+Scene closedChainScene(int links) {
+  Scene scene = chainScene(links);
+  Model& m = scene.model;
+  scene.q0.setConstant(2.0 / links);
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+  double heading = 0.0;
+  for (int i = 0; i < links; ++i) {
+    heading += scene.q0[i];
+    tip += 0.5 * Eigen::Vector3d(std::cos(heading), std::sin(heading), 0.0);
+  }
+  const FrameIndex anchor = m.addOffset("anchor", Model::ground, tip);
+  m.addSphericalCut("pin", anchor, m.frame("tip" + std::to_string(links - 1)));
+  return scene;
+}
+
 /// Chain state after 0.2 s of free swinging, one per size (built on first use, kept alive).
 const SceneState& chainState(int links) {
   static std::map<int, SceneState> states;
@@ -103,6 +122,26 @@ void timeTangentMatrices(benchmark::State& bench, const SceneState& s) {
   bench.counters["coordinates"] = static_cast<double>(s.scene.model.coordinateCount());
 }
 
+/// One Newmark step per iteration, from the scene's start; the run restarts (not timed) when its end
+/// is reached. Counts the Newton iterations per step.
+void timeNewmarkSteps(benchmark::State& bench, const Scene& scene) {
+  NewmarkIntegrator integrator(scene.model, scene.settings);
+  integrator.initialize(scene.q0, scene.v0);
+  const double last_start = scene.settings.end_time - scene.settings.step;
+  long newton_iterations = 0;
+  for (auto _ : bench) {
+    if (integrator.time() >= last_start) {
+      bench.PauseTiming();
+      integrator.initialize(scene.q0, scene.v0);
+      bench.ResumeTiming();
+    }
+    integrator.step();
+    newton_iterations += integrator.lastNewtonIterations();
+  }
+  bench.counters["newton/step"] =
+      benchmark::Counter(static_cast<double>(newton_iterations), benchmark::Counter::kAvgIterations);
+}
+
 // ---- tramway ----
 
 void BM_TramwayResidual(benchmark::State& bench) { timeResidual(bench, tramwayState()); }
@@ -124,24 +163,7 @@ void BM_TramwayConstraintJacobian(benchmark::State& bench) {
 }
 BENCHMARK(BM_TramwayConstraintJacobian);
 
-void BM_TramwayNewmarkStep(benchmark::State& bench) {
-  const Scene& scene = tramwayState().scene;
-  NewmarkIntegrator integrator(scene.model, scene.settings);
-  integrator.initialize(scene.q0, scene.v0);
-  const double last_start = scene.settings.end_time - scene.settings.step;
-  long newton_iterations = 0;
-  for (auto _ : bench) {
-    if (integrator.time() >= last_start) {  // the track ends: start the run over (not timed)
-      bench.PauseTiming();
-      integrator.initialize(scene.q0, scene.v0);
-      bench.ResumeTiming();
-    }
-    integrator.step();
-    newton_iterations += integrator.lastNewtonIterations();
-  }
-  bench.counters["newton/step"] =
-      benchmark::Counter(static_cast<double>(newton_iterations), benchmark::Counter::kAvgIterations);
-}
+void BM_TramwayNewmarkStep(benchmark::State& bench) { timeNewmarkSteps(bench, tramwayState().scene); }
 BENCHMARK(BM_TramwayNewmarkStep);
 
 /// Arg 0: Newton converged at every step (the default); arg 1: first iterates accepted by the
@@ -179,6 +201,15 @@ void BM_ChainTangentMatrices(benchmark::State& bench) {
   bench.SetComplexityN(links);
 }
 BENCHMARK(BM_ChainTangentMatrices)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Complexity();
+
+/// One Newmark step of the closed chain (position-level closure, the defaults): Newton on the
+/// augmented system, B and its SVD, the projections.
+void BM_ClosedChainNewmarkStep(benchmark::State& bench) {
+  const int links = static_cast<int>(bench.range(0));
+  timeNewmarkSteps(bench, closedChainScene(links));
+  bench.SetComplexityN(links);
+}
+BENCHMARK(BM_ClosedChainNewmarkStep)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Complexity()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace mbsopt

@@ -4,23 +4,10 @@
 
 namespace mbsopt {
 
-namespace {
-
-/// ‖x‖₁ of column j of (LU)⁻¹, i.e. of the solution of LUx = e_j by forward (unit L) and back
-/// substitution on the packed factors `lu`; x is the buffer.
-double inverseColumnOneNorm(const Eigen::MatrixXd& lu, Eigen::Index j, Eigen::VectorXd& x) {
-  const Eigen::Index n = lu.rows();
-  x.setUnit(n, j);
-  for (Eigen::Index i = j + 1; i < n; ++i) x[i] -= lu.row(i).segment(j, i - j).dot(x.segment(j, i - j));
-  for (Eigen::Index i = n; i-- > 0;) x[i] = (x[i] - lu.row(i).tail(n - 1 - i).dot(x.tail(n - 1 - i))) / lu(i, i);
-  return x.lpNorm<1>();
-}
-
-}  // namespace
-
 void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
-  const Eigen::Index n = B.cols();
-  if (B.rows() == 0) {
+  const Eigen::Index m = B.rows(), n = B.cols();
+  reflectors_ = 0;
+  if (m == 0) {
     rank_ = 0;
     singular_values_.resize(0);
     u1_.resize(0, 0);
@@ -29,39 +16,54 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
     inverse_s1_.resize(0);
     return;
   }
-  svd_.compute(B, Eigen::ComputeFullU | Eigen::ComputeFullV);  // (43)
-  singular_values_ = svd_.singularValues();
+  // (43) in two stages, as Eigen's JacobiSVD does for a wide matrix: Bᵀ P = Q R by Householder QR
+  // with column pivoting (k = min(m, n) reflectors, R = [R_k; 0]), so B = (P R_kᵀ) Q_kᵀ; then the
+  // SVD of the small m × k matrix P R_kᵀ = Ũ S W̃ᵀ gives B = Ũ S (Q_k W̃)ᵀ: U = Ũ, and in the
+  // coordinates of Q the right singular vectors are W̃ on the first k and the identity on the rest.
+  // Keeping Q as its reflectors lets setIterationMatrix form V₂ᵀ J V₂ in O(n² k), not O(n³).
+  qr_.compute(B.transpose());
+  reflectors_ = std::min(m, n);
+  small_ = qr_.matrixQR().topRows(reflectors_).triangularView<Eigen::Upper>().transpose();
+  permuted_small_.noalias() = qr_.colsPermutation() * small_;
+  small_svd_.compute(permuted_small_, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  singular_values_ = small_svd_.singularValues();
   const double largest = singular_values_.size() > 0 ? singular_values_[0] : 0.0;
   rank_ = 0;
   while (rank_ < singular_values_.size() && singular_values_[rank_] > threshold_ * largest && largest > 0.0) ++rank_;
-  u1_ = svd_.matrixU().leftCols(rank_);
-  v1_ = svd_.matrixV().leftCols(rank_);
-  v2_ = svd_.matrixV().rightCols(n - rank_);
+  u1_ = small_svd_.matrixU().leftCols(rank_);
+  v_.setIdentity(n, n);
+  v_.topLeftCorner(reflectors_, reflectors_) = small_svd_.matrixV();
+  qr_.householderQ().applyThisOnTheLeft(v_, householder_workspace_);  // V = Q diag(W̃, I)
+  v1_ = v_.leftCols(rank_);
+  v2_ = v_.rightCols(n - rank_);
   inverse_s1_ = singular_values_.head(rank_).cwiseInverse();
   x_r_.resize(rank_);
 }
 
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   J_ = J;
-  if (v2_.cols() == 0) return true;
-  j_v2_.noalias() = J * v2_;
-  reduced_matrix_.noalias() = v2_.transpose() * j_v2_;
-  reduced_.compute(reduced_matrix_);
-  const double reciprocal_condition = reducedReciprocalCondition();
-  return reciprocal_condition > 1e-13 && std::isfinite(reciprocal_condition);
-}
-
-double SvdPartition::reducedReciprocalCondition() const {
-  // 1 / (‖A‖₁ ‖A⁻¹‖₁), exact (Eigen's estimator rcond() allocates on every call; these matrices are
-  // small). With PA = LU, A⁻¹ = U⁻¹L⁻¹P: P only reorders the columns, so ‖A⁻¹‖₁ = ‖U⁻¹L⁻¹‖₁.
-  const Eigen::MatrixXd& lu = reduced_.matrixLU();
-  double inverse_norm = 0.0;
-  for (Eigen::Index j = 0; j < lu.cols(); ++j) {
-    const double column_norm = inverseColumnOneNorm(lu, j, x_n_);
-    if (!std::isfinite(column_norm)) return 0.0;
-    inverse_norm = std::max(inverse_norm, column_norm);
+  const Eigen::Index free = v2_.cols(), k = reflectors_;
+  if (free == 0) return true;
+  if (k == 0) {
+    reduced_matrix_ = J;  // V₂ = I
+  } else if (J.rows() <= kReflectorsFrom) {
+    j_v2_.noalias() = J.lazyProduct(v2_);
+    reduced_matrix_.noalias() = v2_.transpose().lazyProduct(j_v2_);
+  } else {
+    // V₂ᵀ J V₂, the last n − rank rows and columns of Vᵀ J V with V = Q diag(W̃, I): T = Qᵀ J Q by the
+    // k reflectors on either side, then W̃ on the first k rows and columns of T.
+    rotated_ = J;
+    qr_.householderQ().transpose().applyThisOnTheLeft(rotated_, householder_workspace_);
+    qr_.householderQ().applyThisOnTheRight(rotated_, householder_workspace_);
+    rows_k_.noalias() = small_svd_.matrixV().transpose() * rotated_.topRows(k);
+    rotated_.topRows(k) = rows_k_;
+    columns_k_.noalias() = rotated_.leftCols(k) * small_svd_.matrixV();
+    rotated_.leftCols(k) = columns_k_;
+    reduced_matrix_ = rotated_.bottomRightCorner(free, free);
   }
-  return 1.0 / (reduced_matrix_.cwiseAbs().colwise().sum().maxCoeff() * inverse_norm);
+  reduced_.compute(reduced_matrix_);
+  const double reciprocal_condition = condition_.reciprocalCondition(reduced_matrix_, reduced_);
+  return reciprocal_condition > 1e-13 && std::isfinite(reciprocal_condition);
 }
 
 // The products below use lazyProduct (coefficient by coefficient): the matrices have a few rows

@@ -11,7 +11,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <Eigen/SVD>
+
+#include "dynamics/condition_estimate.hpp"
 
 namespace mbsopt {
 
@@ -21,8 +24,9 @@ class SvdPartition {
 
   /// SVD of B (m × n, m may be 0). Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
-  /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular (reciprocal condition
-  /// number in the 1-norm below 1e-13). Needs setConstraintJacobian first.
+  /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition
+  /// number in the 1-norm, as Hager and Higham's O(n²) estimator gives it (condition_estimate.hpp),
+  /// below 1e-13, or not finite. Needs setConstraintJacobian first.
   bool setIterationMatrix(const Eigen::MatrixXd& J);
 
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
@@ -36,18 +40,26 @@ class SvdPartition {
   const Eigen::MatrixXd& freeDirections() const { return v2_; }
 
  private:
-  double reducedReciprocalCondition() const;
+  /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat
+  /// applying reflectors); from there on by the reflectors, O(n² k) instead of O(n³)
+  /// (bench_dynamics: BM_ClosedChainNewmarkStep, BM_TramwaySimulation).
+  static constexpr Eigen::Index kReflectorsFrom = 16;
 
   double threshold_;
   int rank_ = 0;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;  ///< of Bᵀ: its reflectors are Q
+  Eigen::Index reflectors_ = 0;                     ///< k = min(m, n), 0 without constraints
+  Eigen::MatrixXd small_, permuted_small_;          ///< R_kᵀ and P R_kᵀ
+  Eigen::JacobiSVD<Eigen::MatrixXd> small_svd_;     ///< P R_kᵀ = Ũ S W̃ᵀ
   Eigen::VectorXd singular_values_;
-  Eigen::MatrixXd u1_, v1_, v2_;
+  Eigen::MatrixXd u1_, v_, v1_, v2_;
   Eigen::VectorXd inverse_s1_;
   Eigen::MatrixXd J_;
-  Eigen::MatrixXd j_v2_, reduced_matrix_;
+  Eigen::MatrixXd j_v2_, rotated_, rows_k_, columns_k_, reduced_matrix_;  ///< J V₂; Qᵀ J Q and its pieces; V₂ᵀ J V₂
+  Eigen::VectorXd householder_workspace_;
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
-  mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of solve() and the condition number: no allocation
+  ConditionEstimator condition_;
+  mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of solve(): no allocation
 };
 
 }  // namespace mbsopt

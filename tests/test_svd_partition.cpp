@@ -1,0 +1,83 @@
+// The augmented solve of SvdPartition (dynamics/svd_partition.hpp) against the equations it
+// solves, [J Bᵀ; B 0][Δx; Δμ] = −[r; g], on random systems with consistent right-hand sides: full
+// row rank and with a dependent row, with few coordinates (V₂ᵀ J V₂ from the explicit V₂) and with
+// many (from the Householder reflectors of Bᵀ). The residuals must vanish to round-off.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "dynamics/svd_partition.hpp"
+
+namespace mbsopt {
+namespace {
+
+struct System {
+  Eigen::MatrixXd J, B;
+  Eigen::VectorXd r, g;
+};
+
+/// J = AᵀA + I (n × n, well conditioned), B m × n random with its last row `dependent` on the first
+/// two when asked, g = B x₀ (consistent: in the range of B).
+System randomSystem(Eigen::Index n, Eigen::Index m, bool dependent, unsigned seed) {
+  std::mt19937 generator(seed);
+  std::uniform_real_distribution<double> entry(-1.0, 1.0);
+  const auto random = [&](Eigen::Index rows, Eigen::Index cols) {
+    return Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return entry(generator); }).eval();
+  };
+  System s;
+  const Eigen::MatrixXd a = random(n, n);
+  s.J = a.transpose() * a + Eigen::MatrixXd::Identity(n, n);
+  s.B = random(m, n);
+  if (dependent) s.B.row(m - 1) = 0.5 * s.B.row(0) - 2.0 * s.B.row(1);
+  s.r = random(n, 1);
+  s.g = s.B * random(n, 1);
+  return s;
+}
+
+void expectSolves(const System& s, int expected_rank) {
+  SvdPartition partition(1e-8);
+  partition.setConstraintJacobian(s.B);
+  ASSERT_EQ(partition.rank(), expected_rank);
+  const Eigen::MatrixXd& v2 = partition.freeDirections();
+  const Eigen::Index n = s.J.rows();
+  // V₂: orthonormal, and B does not move along it.
+  EXPECT_LT((v2.transpose() * v2 - Eigen::MatrixXd::Identity(v2.cols(), v2.cols())).cwiseAbs().maxCoeff(), 1e-13);
+  EXPECT_LT((s.B * v2).cwiseAbs().maxCoeff(), 1e-13 * s.B.norm());
+  ASSERT_TRUE(partition.setIterationMatrix(s.J));
+  Eigen::VectorXd dx, dmu;
+  partition.solve(s.r, s.g, dx, dmu);
+  // Backward errors, relative to the data: a few hundred ε for these condition numbers (κ(J) ≲ 1e4).
+  const double scale = s.J.norm() * dx.norm() + s.B.norm() * dmu.norm() + s.r.norm();
+  EXPECT_LT((s.J * dx + s.B.transpose() * dmu + s.r).norm(), 1e-12 * scale) << "n = " << n;
+  EXPECT_LT((s.B * dx + s.g).norm(), 1e-12 * (s.B.norm() * dx.norm() + s.g.norm())) << "n = " << n;
+}
+
+TEST(SvdPartition, SolvesTheAugmentedSystemWithFewCoordinates) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    expectSolves(randomSystem(5, 3, false, seed), 3);
+    expectSolves(randomSystem(5, 3, true, seed), 2);
+  }
+}
+
+TEST(SvdPartition, SolvesTheAugmentedSystemWithManyCoordinates) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    expectSolves(randomSystem(40, 3, false, seed), 3);
+    expectSolves(randomSystem(40, 6, true, seed), 5);
+    expectSolves(randomSystem(64, 12, false, seed), 12);
+  }
+}
+
+// Without constraints the partition is J itself.
+TEST(SvdPartition, WithoutConstraintsSolvesJ) {
+  const System s = randomSystem(30, 0, false, 7);
+  SvdPartition partition(1e-8);
+  partition.setConstraintJacobian(s.B);
+  ASSERT_TRUE(partition.setIterationMatrix(s.J));
+  Eigen::VectorXd dx, dmu;
+  partition.solve(s.r, Eigen::VectorXd(0), dx, dmu);
+  EXPECT_LT((s.J * dx + s.r).norm(), 1e-12 * (s.J.norm() * dx.norm() + s.r.norm()));
+  EXPECT_EQ(dmu.size(), 0);
+}
+
+}  // namespace
+}  // namespace mbsopt
