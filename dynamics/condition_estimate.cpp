@@ -12,19 +12,24 @@ double signOf(double v) { return v >= 0.0 ? 1.0 : -1.0; }
 
 }  // namespace
 
-// The solves by plain substitution on the packed factors (PA = LU, L unit lower): on the small
-// matrices of a step this beats the dispatch of Eigen's triangular solvers several times over.
+// The solves by plain substitution on the packed factors (PA = LU, L unit lower), column by column
+// (contiguous in Eigen's column-major storage): on the small matrices of a step this beats the
+// dispatch of Eigen's triangular solvers several times over.
 
 void ConditionEstimator::solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b) {
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
   y_.noalias() = lu.permutationP() * b;
-  for (Eigen::Index i = 1; i < n; ++i) y_[i] -= f.row(i).head(i).dot(y_.head(i));
-  for (Eigen::Index i = n; i-- > 0;) y_[i] = (y_[i] - f.row(i).tail(n - 1 - i).dot(y_.tail(n - 1 - i))) / f(i, i);
+  for (Eigen::Index j = 0; j + 1 < n; ++j) y_.tail(n - 1 - j) -= y_[j] * f.col(j).tail(n - 1 - j);  // L
+  for (Eigen::Index j = n; j-- > 0;) {                                                                  // U
+    y_[j] /= f(j, j);
+    y_.head(j) -= y_[j] * f.col(j).head(j);
+  }
 }
 
 void ConditionEstimator::solveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b) {
-  // Aᵀ = Uᵀ Lᵀ P: Uᵀ w = b forward, Lᵀ u = w backward, then z = Pᵀ u.
+  // Aᵀ = Uᵀ Lᵀ P: Uᵀ w = b forward, Lᵀ u = w backward (dot products down U's and L's columns), then
+  // z = Pᵀ u.
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
   w_ = b;

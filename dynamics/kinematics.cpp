@@ -68,17 +68,6 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
   return m;
 }
 
-/// One element of the velocity recursion (20)-(21) at joint rate u, from the axes stored in ws, into
-/// the frame rates (angular, linear).
-void propagateRate(const KinematicElement& element, std::size_t k, double u, const Workspace<double>& ws,
-                   std::vector<Eigen::Vector3d>& angular, std::vector<Eigen::Vector3d>& linear) {
-  const auto e = static_cast<std::size_t>(element.entry);
-  const auto s = static_cast<std::size_t>(element.exit);
-  const Eigen::Vector3d& we = angular[e];
-  angular[s] = we + ws.motion_angular[k] * u;
-  linear[s] = linear[e] + we.cross(ws.position[s] - ws.position[e]) + ws.motion_linear[k] * u;
-}
-
 template <class Scalar>
 void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
   const auto& elements = model.elements();
@@ -137,18 +126,25 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
 }
 
 
-void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std::vector<Eigen::Vector3d>& angular,
-                  std::vector<Eigen::Vector3d>& linear) {
-  // Every element lies after its entry frame, so the elements before the coordinate's own do not
-  // move: the recursion starts there, from frames at rest.
-  for (std::size_t f = 0; f < angular.size(); ++f) {
-    angular[f].setZero();
-    linear[f].setZero();
+void pathFromGround(const Model& model, FrameIndex frame, std::vector<char>& on_path) {
+  on_path.assign(model.elements().size(), 0);
+  for (int k = model.frames()[static_cast<std::size_t>(frame)].element; k >= 0;) {
+    on_path[static_cast<std::size_t>(k)] = 1;
+    k = model.frames()[static_cast<std::size_t>(model.elements()[static_cast<std::size_t>(k)].entry)].element;
   }
-  const auto& elements = model.elements();
-  for (auto k = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(coordinate)].element);
-       k < elements.size(); ++k)
-    propagateRate(elements[k], k, elements[k].coordinate == coordinate ? 1.0 : 0.0, ws, angular, linear);
+}
+
+void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, FrameIndex frame, bool moved) {
+  const auto f = static_cast<std::size_t>(frame);
+  if (!moved) {
+    ws.angular_velocity[f].setZero();
+    ws.velocity[f].setZero();
+    return;
+  }
+  const auto k = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(coordinate)].element);
+  const auto exit = static_cast<std::size_t>(model.elements()[k].exit);
+  ws.angular_velocity[f] = ws.motion_angular[k];                                                      // (21)
+  ws.velocity[f] = ws.motion_linear[k] + ws.motion_angular[k].cross(ws.position[f] - ws.position[exit]);  // (20)
 }
 
 template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,

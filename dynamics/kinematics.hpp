@@ -22,12 +22,15 @@ void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<
 template <class Scalar>
 void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
                 KinematicsLevel level);
-/// The velocity recursion for the unit rate e_coordinate alone, into the frame rates (angular, linear):
-/// into ws.angular_velocity/velocity it gives column `coordinate` of the velocity Jacobians. Skips
-/// the elements before the coordinate's own, which it cannot move. Needs the rotations, positions
-/// and joint axes in ws.
-void unitRatePass(const Model& model, Workspace<double>& ws, int coordinate, std::vector<Eigen::Vector3d>& angular,
-                  std::vector<Eigen::Vector3d>& linear);
+/// on_path[k] = 1 for the elements on the path from the ground to `frame` (the joints that move it),
+/// 0 for the others.
+void pathFromGround(const Model& model, FrameIndex frame, std::vector<char>& on_path);
+/// Column `coordinate` of the velocity Jacobian of `frame`, into ws.angular_velocity[frame] and
+/// ws.velocity[frame]: its rates when that coordinate alone moves, at unit rate. Every other element
+/// is then rigid, so a frame the joint moves (`moved`: the joint is on its path from the ground)
+/// moves with the joint's exit frame, transported rigidly, and any other frame rests. O(1); needs
+/// the rotations, positions and joint axes in ws.
+void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, FrameIndex frame, bool moved);
 
 extern template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, KinematicsLevel);

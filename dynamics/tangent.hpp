@@ -24,7 +24,9 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
                      const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, TangentMatrices& out);
 
 /// b(q) and B = ∂b/∂q over all coordinates. Exact: ḃ is linear in q̇ and b has no explicit time
-/// dependence besides the coordinates, so column j of B is ḃ(q, q̇ = e_j) (one velocity pass each).
+/// dependence besides the coordinates, so column j of B is ḃ(q, q̇ = e_j), from the unit-rate twists
+/// of the cut frames alone (O(cut frames) per column after one kinematics pass). Leaves in ws the
+/// geometry at q; its frame rates are not those of any state.
 void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, Eigen::VectorXd& b,
                         Eigen::MatrixXd& B);
 /// The same with only the columns of `columns`, in that order (the integrator's free coordinates).
