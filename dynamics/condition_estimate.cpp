@@ -12,24 +12,10 @@ double signOf(double v) { return v >= 0.0 ? 1.0 : -1.0; }
 
 }  // namespace
 
-// The solves by plain substitution on the packed factors (PA = LU, L unit lower), column by column
-// (contiguous in Eigen's column-major storage): on the small matrices of a step this beats the
-// dispatch of Eigen's triangular solvers several times over.
-
-void ConditionEstimator::solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b) {
-  const Eigen::MatrixXd& f = lu.matrixLU();
-  const Eigen::Index n = f.rows();
-  y_.noalias() = lu.permutationP() * b;
-  for (Eigen::Index j = 0; j + 1 < n; ++j) y_.tail(n - 1 - j) -= y_[j] * f.col(j).tail(n - 1 - j);  // L
-  for (Eigen::Index j = n; j-- > 0;) {                                                                  // U
-    y_[j] /= f(j, j);
-    y_.head(j) -= y_[j] * f.col(j).head(j);
-  }
-}
-
 void ConditionEstimator::solveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b) {
-  // Aᵀ = Uᵀ Lᵀ P: Uᵀ w = b forward, Lᵀ u = w backward (dot products down U's and L's columns), then
-  // z = Pᵀ u.
+  // Aᵀ = Uᵀ Lᵀ P: Uᵀ w = b forward, Lᵀ u = w backward (dot products down U's and L's columns, which
+  // are contiguous), then z = Pᵀ u into another buffer (Eigen's lu.transpose().solve() permutes in
+  // place, which allocates a mask).
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
   w_ = b;
@@ -50,7 +36,7 @@ double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
   double estimate = 0.0;
   Eigen::Index previous_vertex = -1;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    solve(lu, x_);
+    y_ = lu.solve(x_);  // into a buffer of its size: no allocation
     if (!y_.allFinite()) return 0.0;
     const double candidate = y_.lpNorm<1>();
     if (iteration > 0 && candidate <= estimate) break;  // no ascent: a local maximum
@@ -70,7 +56,7 @@ double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
   // alternating signs, scaled so that 2‖A⁻¹x‖₁/(3n) is a lower bound of ‖A⁻¹‖₁ too.
   for (Eigen::Index i = 0; i < n; ++i)
     x_[i] = (i % 2 == 0 ? 1.0 : -1.0) * (1.0 + (n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 0.0));
-  solve(lu, x_);
+  y_ = lu.solve(x_);
   if (!y_.allFinite()) return 0.0;
   estimate = std::max(estimate, 2.0 * y_.lpNorm<1>() / (3.0 * static_cast<double>(n)));
   return estimate > 0.0 ? 1.0 / (norm * estimate) : 0.0;

@@ -19,8 +19,6 @@ class ConditionEstimator {
   double reciprocalCondition(const Eigen::MatrixXd& a, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu);
 
  private:
-  /// y_ = A⁻¹ b.
-  void solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b);
   /// z_ = A⁻ᵀ b.
   void solveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b);
 
