@@ -17,6 +17,7 @@
 #include "dynamics/tangent.hpp"
 #include "dynamics/workspace.hpp"
 #include "dynamics/scene.hpp"
+#include "problems/chain_scenes.hpp"
 #include "problems/tramway.hpp"
 
 namespace mbsopt {
@@ -49,52 +50,11 @@ const SceneState& tramwayState() {
   return state;
 }
 
-/// Planar pendulum chain of `links` revolute joints about z, gravity −y, a spring-damper at each
-/// joint; starts bent at 0.3 rad per joint, at rest.
-Scene chainScene(int links) {
-  constexpr double kLength = 0.5, kMass = 2.0, kInertia = kMass * kLength * kLength / 12.0;
-  Scene scene;
-  Model& m = scene.model;
-  m.setGravity(Eigen::Vector3d(0.0, -9.81, 0.0));
-  FrameIndex tip = Model::ground;
-  for (int i = 0; i < links; ++i) {
-    const std::string joint = "joint" + std::to_string(i);
-    const FrameIndex link = m.addRevolute(joint, tip, Eigen::Vector3d::UnitZ());
-    m.addBody("link" + std::to_string(i), link, kMass, Eigen::Vector3d(0.5 * kLength, 0.0, 0.0),
-              kInertia * Eigen::Matrix3d::Identity());
-    m.addJointSpringDamper(joint + "_spring", joint, 50.0, 0.5);
-    tip = m.addOffset("tip" + std::to_string(i), link, Eigen::Vector3d(kLength, 0.0, 0.0));
-  }
-  scene.q0 = Eigen::VectorXd::Constant(m.coordinateCount(), 0.3);
-  scene.v0 = Eigen::VectorXd::Zero(m.coordinateCount());
-  scene.settings.step = 1e-3;
-  scene.settings.end_time = 1.0;
-  return scene;
-}
-
-/// The planar chain of `links` links bent by 2/links rad per joint (2 rad in all, whatever N), its
-/// tip pinned where it starts by a spherical cut to the ground: one loop, 3 closure equations of
-/// rank 2 (the z row is identically zero in the plane), N − 2 degrees of freedom.
-Scene closedChainScene(int links) {
-  Scene scene = chainScene(links);
-  Model& m = scene.model;
-  scene.q0.setConstant(2.0 / links);
-  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
-  double heading = 0.0;
-  for (int i = 0; i < links; ++i) {
-    heading += scene.q0[i];
-    tip += 0.5 * Eigen::Vector3d(std::cos(heading), std::sin(heading), 0.0);
-  }
-  const FrameIndex anchor = m.addOffset("anchor", Model::ground, tip);
-  m.addSphericalCut("pin", anchor, m.frame("tip" + std::to_string(links - 1)));
-  return scene;
-}
-
 /// Chain state after 0.2 s of free swinging, one per size (built on first use, kept alive).
 const SceneState& chainState(int links) {
   static std::map<int, SceneState> states;
   auto it = states.find(links);
-  if (it == states.end()) it = states.emplace(links, runFor(chainScene(links), 0.2)).first;
+  if (it == states.end()) it = states.emplace(links, runFor(planarChainScene(links), 0.2)).first;
   return it->second;
 }
 
@@ -206,7 +166,7 @@ BENCHMARK(BM_ChainTangentMatrices)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Complexity
 /// augmented system, B and its SVD, the projections.
 void BM_ClosedChainNewmarkStep(benchmark::State& bench) {
   const int links = static_cast<int>(bench.range(0));
-  timeNewmarkSteps(bench, closedChainScene(links));
+  timeNewmarkSteps(bench, closedPlanarChainScene(links));
   bench.SetComplexityN(links);
 }
 BENCHMARK(BM_ClosedChainNewmarkStep)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Complexity()->Unit(benchmark::kMicrosecond);

@@ -414,7 +414,7 @@ void NewmarkIntegrator::checkStep() {
   if (!q_.allFinite() || !v_.allFinite() || !a_.allFinite() || !lambda_.allFinite())
     fail("the state is not finite (NaN or infinity)", r_free_);
   if (model_.constraintCount() > 0)
-    if (const StepDefect defect = closureDefect(model_, ws_, closure_, closureTolerance(settings_));
+    if (const StepDefect defect = closure_check_.check(model_, ws_, closure_, closureTolerance(settings_));
         !defect.reason.empty())
       throw SimulationError(defect.reason, t_, step_count_, r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0,
                             defect.element);

@@ -172,6 +172,7 @@ class NewmarkIntegrator {
   SvdPartition partition_;
   NewtonRoundoff roundoff_;
   EnergyWatch energy_watch_;
+  ClosureCheck closure_check_;
   const Eigen::VectorXd no_rows_;  ///< an empty closure: only the dynamic rows are tested
   TangentMatrices tangents_;
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale

@@ -22,34 +22,33 @@ bool conservesEnergy(const Model& model) {
   return true;
 }
 
-StepDefect closureDefect(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& closure,
-                         double tolerance) {
-  std::vector<double> reach, depth;
-  frameReach(model, ws, reach, depth);
+StepDefect ClosureCheck::check(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& closure,
+                               double tolerance) {
+  frameReach(model, ws, reach_, depth_);
   double worst = 0.0, worst_value = 0.0;
-  std::string where;
+  const CutJoint* where = nullptr;
   Eigen::Index row = 0;
   for (const CutJoint& cut : model.cuts()) {
     const int rows = equationCount(cut.kind);
     for (int k = 0; k < rows; ++k) {
       // A coincidence row relative to the reach of its frames (at least 1 m: a loop near the origin is
       // not held to a tighter absolute tolerance than 1 µm); an orthogonality row absolutely.
-      const double scale = k < 3 ? std::max(1.0, closureRowScale(cut, k, reach, depth)) : 1.0;
+      const double scale = k < 3 ? std::max(1.0, closureRowScale(cut, k, reach_, depth_)) : 1.0;
       const double ratio = std::abs(closure[row + k]) / (tolerance * scale);
       if (!(ratio <= worst)) {  // NaN counts as the worst
         worst = ratio;
         worst_value = closure[row + k];
-        where = cut.name;
+        where = &cut;
       }
     }
     row += rows;
   }
   if (worst <= 1.0) return {};
   std::ostringstream text;
-  text << "the loops have come apart: closure error " << std::abs(worst_value) << " at cut '" << where
+  text << "the loops have come apart: closure error " << std::abs(worst_value) << " at cut '" << where->name
        << "', above the closure tolerance " << tolerance
        << " (the step is too large for this configuration, or Newton converged onto another branch)";
-  return {text.str(), where, std::abs(worst_value)};
+  return {text.str(), where->name, std::abs(worst_value)};
 }
 
 void EnergyWatch::start(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,

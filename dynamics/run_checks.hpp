@@ -31,10 +31,16 @@ struct StepDefect {
 /// track guidance and no spring whose rest value moves. Gravity and springs are conservative.
 bool conservesEnergy(const Model& model);
 
-/// The largest closure row relative to its tolerance; a defect when above 1. ws must hold the
-/// positions at q; `closure` the position-level closure rows.
-StepDefect closureDefect(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& closure,
-                         double tolerance);
+/// Checks the loop closure; keeps its scratch buffers, so a check allocates nothing unless it fails.
+class ClosureCheck {
+ public:
+  /// The largest closure row relative to its tolerance; a defect when above 1. ws must hold the
+  /// positions at q; `closure` the position-level closure rows.
+  StepDefect check(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& closure, double tolerance);
+
+ private:
+  std::vector<double> reach_, depth_;
+};
 
 /// Watches the mechanical energy of a conservative run.
 class EnergyWatch {

@@ -47,16 +47,23 @@ inline std::array<Eigen::Vector3d, 2> perpendicularPair(const Eigen::Vector3d& a
 
 /// Copies `values` into AD scalars for one forward-AD pass: input j (global index offset + j) gets
 /// the unit derivative direction j − first when it falls in [first, first + count), zero otherwise.
-/// Several vectors share one global numbering through their offsets.
-inline VectorX<AdScalar> seededVector(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first,
-                                      Eigen::Index count) {
-  VectorX<AdScalar> x(values.size());
+/// Several vectors share one global numbering through their offsets. Into `x`, reusing its storage.
+inline void seedVector(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first, Eigen::Index count,
+                       VectorX<AdScalar>& x) {
+  x.resize(values.size());
   for (Eigen::Index j = 0; j < values.size(); ++j) {
     x[j].value() = values[j];
     x[j].derivatives().setZero();
     const Eigen::Index global = offset + j;
     if (global >= first && global < first + count) x[j].derivatives()[global - first] = 1.0;
   }
+}
+
+/// The same as a new vector.
+inline VectorX<AdScalar> seededVector(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first,
+                                      Eigen::Index count) {
+  VectorX<AdScalar> x;
+  seedVector(values, offset, first, count, x);
   return x;
 }
 

@@ -16,14 +16,14 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
   out.stiffness.resize(n, n);
   out.residual.resize(n);
   // Inputs ordered (q̈, q̇, q); passes of at most kMaxAdDirections seeded directions each.
-  VectorX<AdScalar> f;
+  VectorX<AdScalar>& f = ws.seeded_f;
   for (Eigen::Index first = 0; first < 3 * n; first += kMaxAdDirections) {
     const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, 3 * n - first);
-    const VectorX<AdScalar> a_ad = seededVector(a, 0, first, count);
-    const VectorX<AdScalar> v_ad = seededVector(v, n, first, count);
-    const VectorX<AdScalar> q_ad = seededVector(q, 2 * n, first, count);
-    const VectorX<AdScalar> lambda_ad = seededVector(lambda, 3 * n, first, count);  // never seeded: constant
-    residual(model, ws, q_ad, v_ad, a_ad, lambda_ad, t, f);
+    seedVector(a, 0, first, count, ws.seeded_a);
+    seedVector(v, n, first, count, ws.seeded_v);
+    seedVector(q, 2 * n, first, count, ws.seeded_q);
+    seedVector(lambda, 3 * n, first, count, ws.seeded_lambda);  // never seeded: constant
+    residual(model, ws, ws.seeded_q, ws.seeded_v, ws.seeded_a, ws.seeded_lambda, t, f);
     for (Eigen::Index i = 0; i < n; ++i) {
       out.residual[i] = f[i].value();
       const AdDerivatives& d = f[i].derivatives();

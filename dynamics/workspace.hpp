@@ -36,6 +36,9 @@ struct Workspace {
   // not proportional to q̈, per q̇² (a curve slider's κ n and κ' z).
   std::vector<Vector3<Scalar>> motion_angular, motion_linear;
   std::vector<Vector3<Scalar>> bias_angular, bias_linear;
+  // Coordinates (q, q̇, q̈), multipliers λ and residual f of a pass whose inputs are seeded (AdScalar),
+  // kept between passes so that repeated passes allocate nothing.
+  VectorX<Scalar> seeded_q, seeded_v, seeded_a, seeded_lambda, seeded_f;
   /// Model parameters differentiated in this evaluation (AdScalar only): the address of the
   /// parameter's storage in the Model and the AD direction it is seeded in. Empty: none.
   std::vector<std::pair<const double*, int>> parameter_seeds;

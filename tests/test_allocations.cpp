@@ -1,0 +1,128 @@
+// The integrator allocates nothing once it runs: after the first steps have sized every buffer, a
+// Newmark step (Newton iterations, B and its partition, the mass matrix, the projections, a refresh
+// of the AD tangent matrices) takes no memory from the heap, on an open chain and on closed loops
+// small and large. Every allocation of the process is counted: malloc and its relatives are
+// interposed (or, under AddressSanitizer, which owns malloc, counted by its allocation hook), so
+// Eigen's dynamic matrices and operator new are seen alike.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstddef>
+#include <cstdlib>
+
+#include "dynamics/newmark.hpp"
+#include "problems/chain_scenes.hpp"
+#include "problems/tramway.hpp"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MBSOPT_ALLOCATOR_HOOK 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define MBSOPT_ALLOCATOR_HOOK 1
+#endif
+
+#ifdef MBSOPT_ALLOCATOR_HOOK
+#include <sanitizer/allocator_interface.h>
+namespace {
+void countAllocation(const volatile void*, std::size_t) { ++allocations; }
+void ignoreRelease(const volatile void*) {}
+[[maybe_unused]] const int hooks_installed = __sanitizer_install_malloc_and_free_hooks(countAllocation, ignoreRelease);
+}  // namespace
+#else
+// glibc's allocator under its internal names: every allocation of the process, operator new's
+// included, passes through these definitions, which count and forward.
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* pointer, std::size_t size);
+void* __libc_memalign(std::size_t alignment, std::size_t size);
+
+void* malloc(std::size_t size) noexcept {
+  ++allocations;
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) noexcept {
+  ++allocations;
+  return __libc_calloc(count, size);
+}
+void* realloc(void* pointer, std::size_t size) noexcept {
+  ++allocations;
+  return __libc_realloc(pointer, size);
+}
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  ++allocations;
+  return __libc_memalign(alignment, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  ++allocations;
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+  ++allocations;
+  *out = __libc_memalign(alignment, size);
+  return *out ? 0 : ENOMEM;
+}
+}
+#endif
+
+namespace mbsopt {
+namespace {
+
+/// What `steps` Newmark steps did after `warm_up` steps from the scene's start.
+struct CountedSteps {
+  long allocations = 0;
+  long tangent_refreshes = 0;  ///< AD evaluations of the tangent matrices among them
+  long mass_refreshes = 0;
+};
+
+CountedSteps countSteps(const Scene& scene, long warm_up, long steps) {
+  NewmarkIntegrator integrator(scene.model, scene.settings);
+  integrator.initialize(scene.q0, scene.v0);
+  for (long k = 0; k < warm_up; ++k) integrator.step();
+  const IntegratorStatistics before = integrator.statistics();
+  const long allocations_before = allocations.load();
+  for (long k = 0; k < steps; ++k) integrator.step();
+  const long counted = allocations.load() - allocations_before;
+  const IntegratorStatistics& after = integrator.statistics();
+  return {counted, after.jacobian_updates - before.jacobian_updates, after.mass_updates - before.mass_updates};
+}
+
+TEST(Allocations, TheCounterSeesEigenAndOperatorNew) {
+  // The counter itself must work, or every zero below would mean nothing.
+  const long before = allocations.load();
+  Eigen::VectorXd* vector = new Eigen::VectorXd(Eigen::VectorXd::Zero(100));
+  const long after = allocations.load();
+  delete vector;
+  EXPECT_GE(after - before, 2);  // the object and its coefficients
+}
+
+TEST(Allocations, TramwayStepsAllocateNothing) {
+  // 2 s in: bogie 1 is in the curve; the next second crosses the curvature jumps of bogie 2's entry.
+  const CountedSteps counted = countSteps(tramwayScene(), 2000, 1000);
+  EXPECT_EQ(counted.allocations, 0);
+  EXPECT_GT(counted.mass_refreshes, 0);  // the closed loop's projections ran
+}
+
+TEST(Allocations, OpenChainStepsAllocateNothingEvenWhenTheTangentsAreRefreshed) {
+  const CountedSteps counted = countSteps(planarChainScene(8), 10, 200);
+  EXPECT_EQ(counted.allocations, 0);
+  EXPECT_GT(counted.tangent_refreshes, 0);  // the AD passes were among the counted steps
+}
+
+TEST(Allocations, ClosedChainStepsAllocateNothing) {
+  // The tangents are not refreshed here (the open chain covers that path, the same code). 8 links: the explicit products of the partition; 24: its reflectors (beyond 16 coordinates).
+  for (const int links : {8, 24}) {
+    const CountedSteps counted = countSteps(closedPlanarChainScene(links), 10, 200);
+    EXPECT_EQ(counted.allocations, 0) << links << " links";
+    EXPECT_GT(counted.mass_refreshes, 0) << links << " links";  // B, M and the projections ran
+  }
+}
+
+}  // namespace
+}  // namespace mbsopt
