@@ -4,8 +4,15 @@
 
 namespace mbsopt {
 
-AugmentedSolver::AugmentedSolver(const Eigen::MatrixXd& B, double threshold)
-    : partition_(threshold), constraints_(B.rows()) {
+AugmentedSolver::AugmentedSolver(double threshold) : partition_(threshold) {}
+
+AugmentedSolver::AugmentedSolver(const Eigen::MatrixXd& B, double threshold) : partition_(threshold) {
+  setConstraintJacobian(B);
+}
+
+void AugmentedSolver::setConstraintJacobian(const Eigen::MatrixXd& B) {
+  factored_ = Factored::None;
+  constraints_ = B.rows();
   partition_.setConstraintJacobian(B);
 }
 
@@ -17,17 +24,19 @@ void AugmentedSolver::setMatrix(const Eigen::MatrixXd& J) {
 
 void AugmentedSolver::setTransposedMatrix(const Eigen::MatrixXd& J) {
   factored_ = Factored::None;
-  if (!partition_.setIterationMatrix(J.transpose())) throw std::runtime_error("exact gradients: singular step matrix");
+  transposed_ = J.transpose();
+  if (!partition_.setIterationMatrix(transposed_)) throw std::runtime_error("exact gradients: singular step matrix");
   factored_ = Factored::Transposed;
 }
 
 Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::MatrixXd& bottom) const {
   if (factored_ != Factored::Matrix) throw std::logic_error("AugmentedSolver::solve needs setMatrix");
   Eigen::MatrixXd X(top.rows(), top.cols());
-  Eigen::VectorXd dx, dmu;
   for (Eigen::Index c = 0; c < top.cols(); ++c) {
-    partition_.solve(-top.col(c), -bottom.col(c), dx, dmu);  // it solves for −[r; g]
-    X.col(c) = dx;
+    top_rhs_ = -top.col(c);
+    bottom_rhs_ = -bottom.col(c);
+    partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);  // it solves for −[r; g]
+    X.col(c) = dx_;
   }
   return X;
 }
@@ -41,12 +50,12 @@ void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::Matrix
   // Filled by columns of the transposes: a row of bbar without constraints (B.rows() = 0) would be
   // an offset from Eigen's null data pointer.
   Eigen::MatrixXd tbar_t(xbar.cols(), xbar.rows()), bbar_t(constraints_, xbar.rows());
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(constraints_);
-  Eigen::VectorXd dx, dmu;
+  bottom_rhs_.setZero(constraints_);
   for (Eigen::Index r = 0; r < xbar.rows(); ++r) {
-    partition_.solve(-xbar.row(r).transpose(), zero, dx, dmu);
-    tbar_t.col(r) = dx;
-    bbar_t.col(r) = dmu;
+    top_rhs_ = -xbar.row(r).transpose();
+    partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);
+    tbar_t.col(r) = dx_;
+    bbar_t.col(r) = dmu_;
   }
   tbar = tbar_t.transpose();
   bbar = bbar_t.transpose();

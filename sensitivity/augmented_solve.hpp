@@ -15,8 +15,13 @@ namespace mbsopt {
 /// M twice and with the iteration matrix once, all at the same B).
 class AugmentedSolver {
  public:
+  /// Without B yet: setConstraintJacobian before anything else. A solver kept from step to step
+  /// reuses its buffers (no allocation once their sizes are reached).
+  explicit AugmentedSolver(double threshold);
   /// B may have no rows.
   AugmentedSolver(const Eigen::MatrixXd& B, double threshold);
+  /// B's SVD, for the steps of another time point; forgets the factored matrix.
+  void setConstraintJacobian(const Eigen::MatrixXd& B);
 
   /// Factors J for solve(); throws std::runtime_error when it is singular on B's null space.
   void setMatrix(const Eigen::MatrixXd& J);
@@ -31,7 +36,9 @@ class AugmentedSolver {
  private:
   enum class Factored { None, Matrix, Transposed };
   SvdPartition partition_;
-  Eigen::Index constraints_;
+  Eigen::Index constraints_ = 0;
+  Eigen::MatrixXd transposed_;  ///< Jᵀ for setTransposedMatrix
+  mutable Eigen::VectorXd top_rhs_, bottom_rhs_, dx_, dmu_;  ///< one column's right-hand side and solution
   Factored factored_ = Factored::None;
 };
 

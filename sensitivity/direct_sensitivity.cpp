@@ -24,6 +24,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   Eigen::MatrixXd Sa = solveAugmented(s.mass, d.constraintJacobian(0), -s.parameters, Eigen::MatrixXd::Zero(m, p),
                                       settings.svd_threshold);
   accumulate(0, Sq, Sv, Sa);
+  AugmentedSolver solver(settings.svd_threshold);
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
     // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],
@@ -35,7 +36,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     ClosureDerivatives c;
     c.jacobian.resize(0, nf);
     if (m > 0) c = d.closure(k);
-    AugmentedSolver solver(c.jacobian, settings.svd_threshold);  // B's SVD once for the three solves
+    solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
     solver.setMatrix(iteration);
     const Eigen::MatrixXd Sa_newton =
         solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -c.jacobian * Sq_pred / (beta * h * h));

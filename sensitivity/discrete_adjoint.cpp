@@ -27,10 +27,12 @@ struct BackwardStep {
   Eigen::MatrixXd q_pred, v_pred, dpsi_db;
 };
 
-/// The transpose of directGradient's step k for the adjoint rows `bar` (the active constraints).
-BackwardStep backThroughStep(TrajectoryDerivatives& d, Eigen::Index k, const ResponseSeeds& bar) {
+/// The transpose of directGradient's step k for the adjoint rows `bar` (the active constraints);
+/// `solver` is kept from step to step for its buffers.
+BackwardStep backThroughStep(TrajectoryDerivatives& d, Eigen::Index k, const ResponseSeeds& bar,
+                             AugmentedSolver& solver) {
   const NewmarkSettings& settings = d.settings();
-  const double h = settings.step, beta = settings.beta, gamma = settings.gamma, threshold = settings.svd_threshold;
+  const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const StepDerivatives s = d.step(k);
   Eigen::MatrixXd q_total = bar.position, a_newton = bar.acceleration, v_newton = bar.velocity;
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(bar.position.rows(), d.variableCount());
@@ -40,7 +42,7 @@ BackwardStep backThroughStep(TrajectoryDerivatives& d, Eigen::Index k, const Res
     c = d.closure(k);
     jacobian = c.jacobian;
   }
-  AugmentedSolver solver(jacobian, threshold);  // B's SVD once for the three solves
+  solver.setConstraintJacobian(jacobian);  // B's SVD once for the three solves
   if (d.constraintCount() > 0) {
     // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
     // q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ).
@@ -80,13 +82,14 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   // Adjoints of q_k, q̇_k, q̈_k (one row per constraint): their direct seeds, plus what flows back
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
   ResponseSeeds bar = d.seeds(N);
+  AugmentedSolver solver(settings.svd_threshold);
   for (Eigen::Index k = N; k >= 1; --k) {
     const std::vector<Eigen::Index> rows = nonZeroRows(bar);
     if (rows.empty()) {  // nothing flows back yet: no derivative of this step is needed
       bar = d.seeds(k - 1);
       continue;
     }
-    const BackwardStep back = backThroughStep(d, k, rowsOf(bar, rows));
+    const BackwardStep back = backThroughStep(d, k, rowsOf(bar, rows), solver);
     dpsi_db(rows, Eigen::all) += back.dpsi_db;
     // Back through the predictor (32) to step k − 1, added to its own seeds.
     bar = d.seeds(k - 1);

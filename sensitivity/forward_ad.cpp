@@ -33,21 +33,23 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eige
   const auto total = static_cast<Eigen::Index>(inputs.size());
   for (Eigen::Index first = 0; first < total; first += kMaxAdDirections) {
     const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, total - first);
-    SeededState state{seededVector(q, 0, 0, 0), seededVector(v, 0, 0, 0), seededVector(a, 0, 0, 0)};
+    seedVector(q, 0, 0, 0, ws.seeded_q);
+    seedVector(v, 0, 0, 0, ws.seeded_v);
+    seedVector(a, 0, 0, 0, ws.seeded_a);
     ws.parameter_seeds.clear();
     for (Eigen::Index j = 0; j < count; ++j) {
       const AdInput& input = inputs[static_cast<std::size_t>(first + j)];
       const auto direction = static_cast<int>(j);
       switch (input.kind) {
-        case AdInput::Kind::Position: state.q[input.index].derivatives()[direction] = 1.0; break;
-        case AdInput::Kind::Velocity: state.v[input.index].derivatives()[direction] = 1.0; break;
-        case AdInput::Kind::Acceleration: state.a[input.index].derivatives()[direction] = 1.0; break;
+        case AdInput::Kind::Position: ws.seeded_q[input.index].derivatives()[direction] = 1.0; break;
+        case AdInput::Kind::Velocity: ws.seeded_v[input.index].derivatives()[direction] = 1.0; break;
+        case AdInput::Kind::Acceleration: ws.seeded_a[input.index].derivatives()[direction] = 1.0; break;
         case AdInput::Kind::Parameter:
           ws.parameter_seeds.emplace_back(parameters[static_cast<std::size_t>(input.index)], direction);
           break;
       }
     }
-    evaluate(state, first, count);
+    evaluate(SeededState{ws.seeded_q, ws.seeded_v, ws.seeded_a}, first, count);
   }
   ws.parameter_seeds.clear();
 }
@@ -57,7 +59,7 @@ Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, co
                            const std::vector<const double*>& parameters, Eigen::Index rows,
                            const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate) {
   Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(inputs.size()));
-  VectorX<AdScalar> g;
+  VectorX<AdScalar>& g = ws.seeded_f;
   forEachAdPass(ws, q, v, a, inputs, parameters, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
     evaluate(s, g);
     for (Eigen::Index i = 0; i < rows; ++i) out.row(i).segment(first, count) = g[i].derivatives().head(count);
@@ -69,7 +71,8 @@ Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, co
                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                  double t, const std::vector<AdInput>& inputs,
                                  const std::vector<const double*>& parameters) {
-  const VectorX<AdScalar> lambda_ad = seededVector(lambda, 0, 0, 0);  // constant
+  seedVector(lambda, 0, 0, 0, ws.seeded_lambda);  // constant
+  const VectorX<AdScalar>& lambda_ad = ws.seeded_lambda;
   return adJacobian(ws, q, v, a, inputs, parameters, model.coordinateCount(),
                     [&](const SeededState& s, VectorX<AdScalar>& f) { residual(model, ws, s.q, s.v, s.a, lambda_ad, t, f); });
 }

@@ -27,9 +27,12 @@ std::vector<AdInput> parameterInputs(std::size_t count);
 /// The concatenation of input lists, in order.
 std::vector<AdInput> adInputs(std::initializer_list<std::vector<AdInput>> parts);
 
-/// The state (q, q̇, q̈) of one forward-AD pass (its parameter seeds are in the workspace).
+/// The state (q, q̇, q̈) of one forward-AD pass (its parameter seeds are in the workspace, the
+/// vectors too: the workspace's seeded_q, seeded_v, seeded_a).
 struct SeededState {
-  VectorX<AdScalar> q, v, a;
+  const VectorX<AdScalar>& q;
+  const VectorX<AdScalar>& v;
+  const VectorX<AdScalar>& a;
 };
 
 /// Runs `evaluate` once per pass of at most kMaxAdDirections inputs: input first + j carries the

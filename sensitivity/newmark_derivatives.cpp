@@ -38,24 +38,28 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       plain_ws_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
   parameter_addresses_ = parameterAddresses(model_, parameters_);
+  const std::vector<int>& free = model_.freeCoordinates();
+  const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
+  const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
+  const std::vector<AdInput> design = parameterInputs(parameters_.size());
+  step_inputs_ = adInputs({free_v, free_q, design});
+  closure_rate_inputs_ = adInputs({free_q, free_v});
+  projection_inputs_ = adInputs({free_q, design});
 }
 
-namespace {
-
-/// The inputs of one kind on every free coordinate.
-std::vector<AdInput> freeInputs(const Model& model, AdInput::Kind kind) {
-  return adInputs(kind, model.freeCoordinates());
-}
-
-}  // namespace
-
-Eigen::MatrixXd TrajectoryDerivatives::freeMassMatrix(Eigen::Index k) {
-  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model_.coordinateCount());
-  forwardKinematics(model_, plain_ws_, Eigen::VectorXd(response_.trajectory.q.col(k)), rest, rest,
-                    KinematicsLevel::Velocity);  // rotations, positions and joint axes at q_k
-  Eigen::MatrixXd mass;
-  massMatrix(model_, plain_ws_, model_.freeCoordinates(), mass);
-  return mass;
+void TrajectoryDerivatives::geometryAt(Eigen::Index k) {
+  if (k == geometry_point_) return;
+  const Eigen::VectorXd q = response_.trajectory.q.col(k);
+  if (model_.constraintCount() > 0) {
+    Eigen::VectorXd closure;  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws_
+    mbsopt::constraintJacobian(model_, plain_ws_, q, model_.freeCoordinates(), closure, jacobian_at_point_);
+  } else {
+    const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model_.coordinateCount());
+    forwardKinematics(model_, plain_ws_, q, rest, rest, KinematicsLevel::Velocity);
+    jacobian_at_point_.resize(0, freeCount());
+  }
+  massMatrix(model_, plain_ws_, model_.freeCoordinates(), mass_at_point_);
+  geometry_point_ = k;
 }
 
 StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
@@ -64,14 +68,11 @@ StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen
   // q and the design parameters only.
   const Trajectory& tr = response_.trajectory;
   const Eigen::Index nf = freeCount();
-  const std::vector<AdInput> inputs = adInputs({freeInputs(model_, AdInput::Kind::Velocity),
-                                                freeInputs(model_, AdInput::Kind::Position),
-                                                parameterInputs(parameters_.size())});
   const Eigen::MatrixXd derivatives =
-      residualJacobian(model_, ws_, tr.q.col(k), v, a, lambda, tr.time[k], inputs,
+      residualJacobian(model_, ws_, tr.q.col(k), v, a, lambda, tr.time[k], step_inputs_,
                        parameter_addresses_)(model_.freeCoordinates(), Eigen::all);
-  return {freeMassMatrix(k), derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
-          derivatives.rightCols(variableCount())};
+  geometryAt(k);
+  return {mass_at_point_, derivatives.leftCols(nf), derivatives.middleCols(nf, nf), derivatives.rightCols(variableCount())};
 }
 
 StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
@@ -94,16 +95,14 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
 
 namespace {
 
-/// ∂ḃ/∂q, ∂b̈/∂q and ∂b̈/∂q̇ on `columns` at (q, q̇, q̈): the closure rates [ḃ; b̈] of one kinematics
-/// evaluation per AD pass, seeded in q and q̇ on those columns (ḃ does not depend on q̈).
+/// ∂ḃ/∂q, ∂b̈/∂q and ∂b̈/∂q̇ at (q, q̇, q̈): the closure rates [ḃ; b̈] of one kinematics evaluation
+/// per AD pass, `inputs` being q then q̇ on the same nc columns (ḃ does not depend on q̈).
 void closureRateJacobians(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
-                          const Eigen::VectorXd& v, const Eigen::VectorXd& a, const std::vector<int>& columns,
+                          const Eigen::VectorXd& v, const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
                           ClosureDerivatives& out) {
-  const auto nc = static_cast<Eigen::Index>(columns.size());
+  const auto nc = static_cast<Eigen::Index>(inputs.size() / 2);
   const Eigen::Index m = model.constraintCount();
-  const std::vector<AdInput> inputs =
-      adInputs({adInputs(AdInput::Kind::Position, columns), adInputs(AdInput::Kind::Velocity, columns)});
-  VectorX<AdScalar> velocity, acceleration;
+  thread_local VectorX<AdScalar> velocity, acceleration;
   const Eigen::MatrixXd rates = adJacobian(ws, q, v, a, inputs, {}, 2 * m, [&](const SeededState& s, VectorX<AdScalar>& g) {
     forwardKinematics(model, ws, s.q, s.v, s.a, KinematicsLevel::Acceleration);
     closureEquations(model, ws, Derivative::Velocity, velocity);
@@ -116,14 +115,13 @@ void closureRateJacobians(const Model& model, Workspace<AdScalar>& ws, const Eig
   out.acceleration_v = rates.bottomRightCorner(m, nc);
 }
 
-/// [G P] = ∂(M(q)Δ + B(q)ᵀμ)/∂(q, b) on the free q and the design parameters: one projection's
-/// dependence on q and b through M and B (Δ its correction, μ its multipliers), free rows.
+/// [G P] = ∂(M(q)Δ + B(q)ᵀμ)/∂(q, b) on `inputs` (the free q, then the design parameters): one
+/// projection's dependence on q and b through M and B (Δ its correction, μ its multipliers), free rows.
 Eigen::MatrixXd projectionJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& correction, const Eigen::VectorXd& mu,
-                                   const std::vector<const double*>& parameters) {
-  const std::vector<AdInput> inputs =
-      adInputs({freeInputs(model, AdInput::Kind::Position), parameterInputs(parameters.size())});
-  const VectorX<AdScalar> mu_ad = seededVector(mu, 0, 0, 0);  // constant
+                                   const std::vector<AdInput>& inputs, const std::vector<const double*>& parameters) {
+  seedVector(mu, 0, 0, 0, ws.seeded_lambda);  // constant
+  const VectorX<AdScalar>& mu_ad = ws.seeded_lambda;
   const Eigen::VectorXd unused_rates = Eigen::VectorXd::Zero(q.size());  // M Δ + Bᵀμ is taken at q̇ = 0
   const Eigen::MatrixXd out = adJacobian(ws, q, unused_rates, correction, inputs, parameters, model.coordinateCount(),
                                          [&](const SeededState& s, VectorX<AdScalar>& f) {
@@ -135,11 +133,8 @@ Eigen::MatrixXd projectionJacobian(const Model& model, Workspace<AdScalar>& ws, 
 }  // namespace
 
 Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
-  if (model_.constraintCount() == 0) return Eigen::MatrixXd(0, freeCount());
-  Eigen::VectorXd closure;
-  Eigen::MatrixXd B;
-  mbsopt::constraintJacobian(model_, plain_ws_, response_.trajectory.q.col(k), model_.freeCoordinates(), closure, B);
-  return B;
+  geometryAt(k);
+  return jacobian_at_point_;
 }
 
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
@@ -147,14 +142,15 @@ ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::VectorXd q = tr.q.col(k);
   ClosureDerivatives out;
-  out.jacobian = constraintJacobian(k);
-  closureRateJacobians(model_, ws_, q, tr.v.col(k), tr.a.col(k), free, out);
-  const Eigen::MatrixXd mass = freeMassMatrix(k);
+  geometryAt(k);
+  out.jacobian = jacobian_at_point_;
+  const Eigen::MatrixXd& mass = mass_at_point_;
+  closureRateJacobians(model_, ws_, q, tr.v.col(k), tr.a.col(k), closure_rate_inputs_, out);
   const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
   const auto linearize = [&](const Eigen::VectorXd& correction, Eigen::MatrixXd& G, Eigen::MatrixXd& P) {
     // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
     const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
-    const Eigen::MatrixXd derivatives = projectionJacobian(model_, ws_, q, correction, mu, parameter_addresses_);
+    const Eigen::MatrixXd derivatives = projectionJacobian(model_, ws_, q, correction, mu, projection_inputs_, parameter_addresses_);
     G = derivatives.leftCols(freeCount());
     P = derivatives.rightCols(variableCount());
   };

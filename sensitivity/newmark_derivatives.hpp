@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sensitivity/design_evaluation.hpp"
+#include "sensitivity/forward_ad.hpp"
 
 namespace mbsopt {
 
@@ -81,8 +82,14 @@ class TrajectoryDerivatives {
   Workspace<AdScalar> ws_;
   Workspace<double> plain_ws_;  ///< for what needs no AD: M (composite rigid bodies) and B (velocity passes)
 
-  /// M(q_k) on the free coordinates, by the composite-rigid-body algorithm.
-  Eigen::MatrixXd freeMassMatrix(Eigen::Index k);
+  /// M(q_k) and B(q_k) on the free coordinates (M by the composite-rigid-body algorithm) from one
+  /// kinematics pass, kept for the time point last asked: a step and its closure share them.
+  void geometryAt(Eigen::Index k);
+  Eigen::Index geometry_point_ = -1;
+  // The AD inputs of each kind of pass, listed once: the step's residual (free q̇, free q, design
+  // parameters), the closure rates (free q, free q̇), the projections (free q, design parameters).
+  std::vector<AdInput> step_inputs_, closure_rate_inputs_, projection_inputs_;
+  Eigen::MatrixXd mass_at_point_, jacobian_at_point_;
   /// The step derivatives at q_k with the given rates and multipliers.
   StepDerivatives derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                                 const Eigen::VectorXd& lambda);
