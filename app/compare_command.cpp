@@ -10,7 +10,7 @@
 #include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
-#include "app/parallel_runs.hpp"
+#include "sensitivity/parallel_runs.hpp"
 #include "app/scene_argument.hpp"
 
 namespace mbsopt {

@@ -9,6 +9,7 @@
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
+#include "sensitivity/parallel_runs.hpp"
 
 namespace mbsopt {
 
@@ -112,6 +113,13 @@ void registerOptimizeCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   addSettingOption(*command, options->choice.settings);
+  options->choice.fd_jobs = machineThreads();
+  command->add_option("--jobs", options->choice.fd_jobs,
+                      "Threads for the simulations of a finite-difference gradient (--gradient fd, fd_central, "
+                      "fd_forward; default: this machine's hardware threads); the exact methods run on one. The "
+                      "results do not depend on it; simulation_equivalents (wall time) do")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
                       "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "

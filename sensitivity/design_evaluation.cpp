@@ -1,9 +1,11 @@
 #include "sensitivity/design_evaluation.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "dynamics/sensors.hpp"
+#include "sensitivity/parallel_runs.hpp"
 
 namespace mbsopt {
 
@@ -45,28 +47,44 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
 
 DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
                                         const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
-                                        double relative_step, bool central, const DesignResponse* simulated) {
+                                        double relative_step, bool central, const DesignResponse* simulated, int jobs) {
   if (!(relative_step > 0.0)) throw std::invalid_argument("finite differences: the relative step must be positive");
   const Eigen::Index n = x.size(), m = static_cast<Eigen::Index>(functionals.size());
   DesignGradient out;
   out.cost = Eigen::VectorXd::Zero(n);
   out.cost[n - 1] = problem.design.artificial.scale;  // the cost is b_{k+1} = x_{k+1} · scale
   out.constraints.resize(m, n);
-  std::optional<DesignResponse> own;
-  if (!simulated) own = evaluateDesign(problem, functionals, x);
-  const DesignResponse& base = simulated ? *simulated : *own;
+  // The points to simulate: x itself unless known, then x + step eᵢ (and x − step eᵢ) per design variable.
+  std::vector<Eigen::VectorXd> points;
+  std::vector<double> steps;
+  if (!simulated) points.push_back(x);
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
-    const double step = relative_step * std::max(std::abs(x[i]), 1.0);
-    Eigen::VectorXd up = x;
-    up[i] += step;
-    const Eigen::VectorXd above = evaluateDesign(problem, functionals, up).constraints;
+    steps.push_back(relative_step * std::max(std::abs(x[i]), 1.0));
+    points.push_back(x);
+    points.back()[i] += steps.back();
     if (central) {
-      Eigen::VectorXd down = x;
-      down[i] -= step;
-      out.constraints.col(i) = (above - evaluateDesign(problem, functionals, down).constraints) / (2.0 * step);
-    } else {
-      out.constraints.col(i) = (above - base.constraints) / step;
+      points.push_back(x);
+      points.back()[i] -= steps.back();
     }
+  }
+  // Of the shifted points only the constraints are kept (a trajectory per point would not be small).
+  std::optional<DesignResponse> own;
+  std::vector<Eigen::VectorXd> values(points.size());
+  runInParallel(points.size(), jobs, [&](std::size_t k) {
+    if (k == 0 && !simulated) {
+      own = evaluateDesign(problem, functionals, points[k]);
+      values[k] = own->constraints;
+    } else {
+      values[k] = evaluateDesign(problem, functionals, points[k]).constraints;
+    }
+  });
+  const DesignResponse& base = simulated ? *simulated : *own;
+  std::size_t next = simulated ? 0 : 1;
+  for (Eigen::Index i = 0; i + 1 < n; ++i) {
+    const double step = steps[static_cast<std::size_t>(i)];
+    const Eigen::VectorXd& above = values[next++];
+    if (central) out.constraints.col(i) = (above - values[next++]) / (2.0 * step);
+    else out.constraints.col(i) = (above - base.constraints) / step;
   }
   out.constraints.col(n - 1) = artificialColumn(problem, functionals, base);
   return out;

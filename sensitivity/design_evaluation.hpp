@@ -48,9 +48,11 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
 
 /// Forward (one simulation per variable) or central (two) differences in the design variables with
 /// step relative_step · max(|x_i|, 1); the artificial column is exact. `simulated`: the simulation
-/// at x when the caller has it.
+/// at x when the caller has it. The simulations run on `jobs` threads (parallel_runs.hpp); the
+/// result does not depend on their number, to the bit.
 DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
                                         const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
-                                        double relative_step, bool central, const DesignResponse* simulated = nullptr);
+                                        double relative_step, bool central, const DesignResponse* simulated = nullptr,
+                                        int jobs = 1);
 
 }  // namespace mbsopt

@@ -1,4 +1,4 @@
-// Independent evaluations on several threads (app/parallel_runs.hpp, `mbsopt compare --jobs`):
+// Independent evaluations on several threads (sensitivity/parallel_runs.hpp: `mbsopt compare --jobs`, finite differences):
 // every item runs once, a failure surfaces as in a serial run, and design evaluations and
 // optimisations on separate problem copies give bit-identical results whatever runs beside them
 // (each has its own model and workspaces; Ipopt's solves are serialised inside the adapter).
@@ -8,10 +8,10 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "app/parallel_runs.hpp"
 #include "optimizers/optimizer.hpp"
 #include "problems/scene_file.hpp"
 #include "problems/design_nlp.hpp"
+#include "sensitivity/parallel_runs.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -69,6 +69,25 @@ TEST(ParallelRuns, ConcurrentDesignEvaluationsAreBitIdenticalToSerialOnes) {
     EXPECT_EQ(serial[i].cost_gradient, parallel[i].cost_gradient);
     EXPECT_EQ(serial[i].constraint_jacobian, parallel[i].constraint_jacobian);
   }
+}
+
+// Finite differences on several threads: every simulation the same as on one, so the same
+// gradient to the bit, central and forward, with and without the simulation at x given.
+TEST(ParallelRuns, FiniteDifferencesOnTwoThreadsEqualThoseOnOne) {
+  DesignProblem problem = fourBar();
+  problem.design.artificial.initial = 0.01;  // below max |joint_c_y|: the cost's constraints are active
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignResponse at_x = evaluateDesign(problem, functionals, x);
+  for (const bool central : {true, false})
+    for (const DesignResponse* simulated : {static_cast<const DesignResponse*>(nullptr), &at_x}) {
+      const DesignGradient one = finiteDifferenceGradient(problem, functionals, x, 1e-5, central, simulated, 1);
+      const DesignGradient two = finiteDifferenceGradient(problem, functionals, x, 1e-5, central, simulated, 2);
+      EXPECT_EQ(one.constraints, two.constraints) << (central ? "central" : "forward");
+      EXPECT_EQ(one.cost, two.cost);
+      // Not a comparison of zeros: some constraint moves with the design variables.
+      EXPECT_GT(one.constraints.leftCols(x.size() - 1).cwiseAbs().maxCoeff(), 0.0);
+    }
 }
 
 // Whole optimisations, two of them Ipopt's (one solve at a time inside the adapter), beside SDCC

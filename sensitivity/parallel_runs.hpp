@@ -1,5 +1,5 @@
-// Independent work items on a few threads of this machine (`--jobs N`): each item runs on one
-// thread with its own state, items are taken in order, and what an item throws is rethrown after
+// Independent work items on a few threads of this machine (`--jobs N`: the runs of `mbsopt
+// compare`, the simulations of finite differences): each item runs on one thread with its own state, items are taken in order, and what an item throws is rethrown after
 // all have finished (the one of the lowest index), so a parallel run fails as a serial one would.
 #pragma once
 
