@@ -91,7 +91,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
     problem.design.transcription.tolerance = choice.tolerance;
   }
   if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
-  DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.fd_jobs);
+  DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs);
   OptimizerOptions options;
   options.max_iterations = choice.max_iterations;
   options.on_iteration = on_iteration;

@@ -24,7 +24,7 @@ struct RunChoice {
   double tolerance = 0.0;  ///< ε of the transcription, with a formulation
   int max_iterations = 100;
   std::vector<std::string> settings;  ///< the optimizer's own settings, "NAME=VALUE" each
-  int fd_jobs = 1;  ///< threads for the simulations of finite-difference gradients (no effect on results)
+  int gradient_jobs = 1;  ///< threads for a gradient (designGradient's jobs; no effect on results)
 };
 
 /// Adds --setting (repeatable NAME=VALUE, the optimizer's own settings) to a command.

@@ -113,11 +113,12 @@ void registerOptimizeCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   addSettingOption(*command, options->choice.settings);
-  options->choice.fd_jobs = machineThreads();
-  command->add_option("--jobs", options->choice.fd_jobs,
-                      "Threads for the simulations of a finite-difference gradient (--gradient fd, fd_central, "
-                      "fd_forward; default: this machine's hardware threads); the exact methods run on one. The "
-                      "results do not depend on it; simulation_equivalents (wall time) do")
+  options->choice.gradient_jobs = machineThreads();
+  command->add_option("--jobs", options->choice.gradient_jobs,
+                      "Threads for each gradient (default: this machine's hardware threads): the simulations of "
+                      "finite differences, the step derivatives of adjoint and direct (their sweep itself is "
+                      "sequential; continuous-adjoint runs on one). The results do not depend on it; "
+                      "simulation_equivalents (wall time) do")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--json", options->json,

@@ -8,12 +8,12 @@
 
 namespace mbsopt {
 
-DesignNlp::DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step, int fd_jobs)
+DesignNlp::DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step, int gradient_jobs)
     : problem_(std::move(problem)),
       functionals_(transcribe(problem_)),
       gradient_method_(std::move(gradient_method)),
       fd_step_(fd_step),
-      fd_jobs_(fd_jobs) {
+      gradient_jobs_(gradient_jobs) {
   requireGradientMethod(gradient_method_);
 }
 
@@ -53,7 +53,7 @@ void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation
   const auto start_time = std::chrono::steady_clock::now();
   const DesignResponse& response = simulation(x);
   if (gradients) {  // on the simulation just run or kept: the values' simulation is not paid twice
-    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_, &response, fd_jobs_);
+    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_, &response, gradient_jobs_);
     out.cost_gradient = std::move(g.cost);
     out.constraint_jacobian = std::move(g.constraints);
   }

@@ -18,9 +18,9 @@ namespace mbsopt {
 
 class DesignNlp : public NlpProblem {
  public:
-  /// `gradient_method`: one of gradientMethodNames(); `fd_step` for the finite differences, whose
-  /// simulations run on `fd_jobs` threads (the values do not depend on it).
-  DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step = 1e-6, int fd_jobs = 1);
+  /// `gradient_method`: one of gradientMethodNames(); `fd_step` for the finite differences;
+  /// `gradient_jobs` threads for each gradient (designGradient; the values do not depend on it).
+  DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step = 1e-6, int gradient_jobs = 1);
 
   Eigen::Index variableCount() const override { return optimisationSize(problem_); }
   Eigen::Index inequalityCount() const override { return static_cast<Eigen::Index>(functionals_.size()); }
@@ -53,7 +53,7 @@ class DesignNlp : public NlpProblem {
   std::vector<ConstraintFunctional> functionals_;
   std::string gradient_method_;
   double fd_step_;
-  int fd_jobs_;
+  int gradient_jobs_;
   double evaluation_seconds_ = 0.0;
   double fastest_simulation_s_ = 0.0;
   /// Simulations by point: the first one evaluated, then the most recent, newest first. The

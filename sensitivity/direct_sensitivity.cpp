@@ -1,12 +1,15 @@
 #include "sensitivity/direct_sensitivity.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "sensitivity/augmented_solve.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                              const Eigen::VectorXd& x, const DesignResponse* simulated) {
+                              const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
   TrajectoryDerivatives d(problem, functionals, x, simulated);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
@@ -25,17 +28,25 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
                                       settings.svd_threshold);
   accumulate(0, Sq, Sv, Sa);
   AugmentedSolver solver(settings.svd_threshold);
+  // The step derivatives, which do not depend on the recursion, in blocks computed on `jobs` threads.
+  std::vector<TrajectoryDerivatives::PointDerivatives> block;
+  Eigen::Index block_first = 0;
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
+    if (block.empty() || k >= block_first + static_cast<Eigen::Index>(block.size())) {
+      block_first = k;
+      block = d.points(k, std::min(k + TrajectoryDerivatives::kPointsPerBlock, d.timePoints()) - 1, jobs);
+    }
+    const TrajectoryDerivatives::PointDerivatives& point = block[static_cast<std::size_t>(k - block_first)];
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
     // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],
     // A = M + γh C_T + βh² K_T.
     const Eigen::MatrixXd Sq_pred = Sq + h * Sv + (0.5 - beta) * h * h * Sa;
     const Eigen::MatrixXd Sv_pred = Sv + (1.0 - gamma) * h * Sa;
-    s = d.step(k);
+    s = point.step;
     const Eigen::MatrixXd iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
     ClosureDerivatives c;
     c.jacobian.resize(0, nf);
-    if (m > 0) c = d.closure(k);
+    if (m > 0) c = point.closure;
     solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
     solver.setMatrix(iteration);
     const Eigen::MatrixXd Sa_newton =

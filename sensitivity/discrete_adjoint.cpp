@@ -1,5 +1,6 @@
 #include "sensitivity/discrete_adjoint.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include "sensitivity/augmented_solve.hpp"
@@ -29,19 +30,16 @@ struct BackwardStep {
 
 /// The transpose of directGradient's step k for the adjoint rows `bar` (the active constraints);
 /// `solver` is kept from step to step for its buffers.
-BackwardStep backThroughStep(TrajectoryDerivatives& d, Eigen::Index k, const ResponseSeeds& bar,
-                             AugmentedSolver& solver) {
+BackwardStep backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::PointDerivatives& point,
+                             const ResponseSeeds& bar, AugmentedSolver& solver) {
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
-  const StepDerivatives s = d.step(k);
+  const StepDerivatives& s = point.step;
+  const ClosureDerivatives& c = point.closure;
   Eigen::MatrixXd q_total = bar.position, a_newton = bar.acceleration, v_newton = bar.velocity;
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(bar.position.rows(), d.variableCount());
   Eigen::MatrixXd jacobian(0, d.freeCount()), tbar, bbar;
-  ClosureDerivatives c;
-  if (d.constraintCount() > 0) {
-    c = d.closure(k);
-    jacobian = c.jacobian;
-  }
+  if (d.constraintCount() > 0) jacobian = c.jacobian;
   solver.setConstraintJacobian(jacobian);  // B's SVD once for the three solves
   if (d.constraintCount() > 0) {
     // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
@@ -73,7 +71,7 @@ ResponseSeeds rowsOf(const ResponseSeeds& bar, const std::vector<Eigen::Index>& 
 }  // namespace
 
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                               const Eigen::VectorXd& x, const DesignResponse* simulated) {
+                               const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
   TrajectoryDerivatives d(problem, functionals, x, simulated);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
@@ -83,13 +81,21 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
   ResponseSeeds bar = d.seeds(N);
   AugmentedSolver solver(settings.svd_threshold);
+  // The step derivatives, which do not depend on the sweep, in blocks of points computed on `jobs`
+  // threads, from the first step with a non-zero adjoint down.
+  std::vector<TrajectoryDerivatives::PointDerivatives> block;
+  Eigen::Index block_first = 0;
   for (Eigen::Index k = N; k >= 1; --k) {
     const std::vector<Eigen::Index> rows = nonZeroRows(bar);
     if (rows.empty()) {  // nothing flows back yet: no derivative of this step is needed
       bar = d.seeds(k - 1);
       continue;
     }
-    const BackwardStep back = backThroughStep(d, k, rowsOf(bar, rows), solver);
+    if (block.empty() || k < block_first) {
+      block_first = std::max<Eigen::Index>(1, k - TrajectoryDerivatives::kPointsPerBlock + 1);
+      block = d.points(block_first, k, jobs);
+    }
+    const BackwardStep back = backThroughStep(d, block[static_cast<std::size_t>(k - block_first)], rowsOf(bar, rows), solver);
     dpsi_db(rows, Eigen::all) += back.dpsi_db;
     // Back through the predictor (32) to step k − 1, added to its own seeds.
     bar = d.seeds(k - 1);

@@ -17,9 +17,9 @@ const std::vector<std::string>& gradientMethodNames() {
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
                               double fd_step, const DesignResponse* simulated, int jobs) {
-  if (method == "adjoint") return adjointGradient(problem, functionals, x, simulated);
+  if (method == "adjoint") return adjointGradient(problem, functionals, x, simulated, jobs);
   if (method == "continuous-adjoint") return continuousAdjointGradient(problem, functionals, x, simulated);
-  if (method == "direct") return directGradient(problem, functionals, x, simulated);
+  if (method == "direct") return directGradient(problem, functionals, x, simulated, jobs);
   if (method == "fd_forward") return finiteDifferenceGradient(problem, functionals, x, fd_step, false, simulated, jobs);
   requireGradientMethod(method);
   return finiteDifferenceGradient(problem, functionals, x, fd_step, true, simulated, jobs);  // fd_central

@@ -19,7 +19,8 @@ void requireGradientMethod(const std::string& method);
 /// `fd_step` is the finite differences' relative step. Throws std::invalid_argument for an unknown
 /// name (the message lists the known ones) and where a method does not apply. `simulated`: the
 /// simulation at x when the caller has it, so that no method simulates x again. `jobs`: threads
-/// for the finite differences' simulations (the exact methods run on one).
+/// for the finite differences' simulations and for the step derivatives of adjoint and direct
+/// (continuous-adjoint runs on one); the gradient does not depend on it.
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
                               double fd_step = 1e-6, const DesignResponse* simulated = nullptr, int jobs = 1);

@@ -1,6 +1,7 @@
 #include "sensitivity/newmark_derivatives.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <stdexcept>
 
 #include "dynamics/closure.hpp"
@@ -9,6 +10,7 @@
 #include "dynamics/residual.hpp"
 #include "dynamics/tangent.hpp"
 #include "sensitivity/forward_ad.hpp"
+#include "sensitivity/parallel_runs.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
 #include "sensitivity/response_jacobian.hpp"
 
@@ -34,8 +36,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       x_(x),
       model_(checkedModel(problem, x)),
       response_(simulated ? *simulated : evaluateDesign(problem, functionals, x)),
-      ws_(model_),
-      plain_ws_(model_) {
+      scratch_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
   parameter_addresses_ = parameterAddresses(model_, parameters_);
   const std::vector<int>& free = model_.freeCoordinates();
@@ -47,38 +48,40 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   projection_inputs_ = adInputs({free_q, design});
 }
 
-void TrajectoryDerivatives::geometryAt(Eigen::Index k) {
-  if (k == geometry_point_) return;
+void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
+  if (k == s.geometry_point) return;
   const Eigen::VectorXd q = response_.trajectory.q.col(k);
   if (model_.constraintCount() > 0) {
-    Eigen::VectorXd closure;  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws_
-    mbsopt::constraintJacobian(model_, plain_ws_, q, model_.freeCoordinates(), closure, jacobian_at_point_);
+    Eigen::VectorXd closure;  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
+    mbsopt::constraintJacobian(model_, s.plain_ws, q, model_.freeCoordinates(), closure, s.jacobian);
   } else {
     const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model_.coordinateCount());
-    forwardKinematics(model_, plain_ws_, q, rest, rest, KinematicsLevel::Velocity);
-    jacobian_at_point_.resize(0, freeCount());
+    forwardKinematics(model_, s.plain_ws, q, rest, rest, KinematicsLevel::Velocity);
+    s.jacobian.resize(0, freeCount());
   }
-  massMatrix(model_, plain_ws_, model_.freeCoordinates(), mass_at_point_);
-  geometry_point_ = k;
+  massMatrix(model_, s.plain_ws, model_.freeCoordinates(), s.mass);
+  s.geometry_point = k;
 }
 
 StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                                                     const Eigen::VectorXd& lambda) {
+                                                     const Eigen::VectorXd& lambda, Scratch& s) {
   // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes seeded in the free q̇, the free
   // q and the design parameters only.
   const Trajectory& tr = response_.trajectory;
   const Eigen::Index nf = freeCount();
   const Eigen::MatrixXd derivatives =
-      residualJacobian(model_, ws_, tr.q.col(k), v, a, lambda, tr.time[k], step_inputs_,
+      residualJacobian(model_, s.ws, tr.q.col(k), v, a, lambda, tr.time[k], step_inputs_,
                        parameter_addresses_)(model_.freeCoordinates(), Eigen::all);
-  geometryAt(k);
-  return {mass_at_point_, derivatives.leftCols(nf), derivatives.middleCols(nf, nf), derivatives.rightCols(variableCount())};
+  geometryAt(k, s);
+  return {s.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf), derivatives.rightCols(variableCount())};
 }
 
-StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
+StepDerivatives TrajectoryDerivatives::stepAt(Eigen::Index k, Scratch& s) {
   const Trajectory& tr = response_.trajectory;
-  return derivativesAt(k, tr.v_unprojected.col(k), tr.a_unprojected.col(k), tr.lambda.col(k));
+  return derivativesAt(k, tr.v_unprojected.col(k), tr.a_unprojected.col(k), tr.lambda.col(k), s);
 }
+
+StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) { return stepAt(k, scratch_); }
 
 StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
@@ -86,11 +89,11 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   if (model_.constraintCount() > 0) {  // Bᵀλ = −f(q, q̇, q̈, 0) on the free rows, least squares
     const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k);
     Eigen::VectorXd f;
-    residual(model_, plain_ws_, q, v, a, lambda, tr.time[k], f);
+    residual(model_, scratch_.plain_ws, q, v, a, lambda, tr.time[k], f);
     const Eigen::MatrixXd transposed = constraintJacobian(k).transpose();
     lambda = transposed.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(-f(model_.freeCoordinates()));
   }
-  return derivativesAt(k, tr.v.col(k), tr.a.col(k), lambda);
+  return derivativesAt(k, tr.v.col(k), tr.a.col(k), lambda, scratch_);
 }
 
 namespace {
@@ -133,29 +136,54 @@ Eigen::MatrixXd projectionJacobian(const Model& model, Workspace<AdScalar>& ws, 
 }  // namespace
 
 Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
-  geometryAt(k);
-  return jacobian_at_point_;
+  geometryAt(k, scratch_);
+  return scratch_.jacobian;
 }
 
-ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
+ClosureDerivatives TrajectoryDerivatives::closureAt(Eigen::Index k, Scratch& s) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::VectorXd q = tr.q.col(k);
   ClosureDerivatives out;
-  geometryAt(k);
-  out.jacobian = jacobian_at_point_;
-  const Eigen::MatrixXd& mass = mass_at_point_;
-  closureRateJacobians(model_, ws_, q, tr.v.col(k), tr.a.col(k), closure_rate_inputs_, out);
+  geometryAt(k, s);
+  out.jacobian = s.jacobian;
+  const Eigen::MatrixXd& mass = s.mass;
+  closureRateJacobians(model_, s.ws, q, tr.v.col(k), tr.a.col(k), closure_rate_inputs_, out);
   const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
   const auto linearize = [&](const Eigen::VectorXd& correction, Eigen::MatrixXd& G, Eigen::MatrixXd& P) {
     // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
     const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
-    const Eigen::MatrixXd derivatives = projectionJacobian(model_, ws_, q, correction, mu, projection_inputs_, parameter_addresses_);
+    const Eigen::MatrixXd derivatives =
+        projectionJacobian(model_, s.ws, q, correction, mu, projection_inputs_, parameter_addresses_);
     G = derivatives.leftCols(freeCount());
     P = derivatives.rightCols(variableCount());
   };
   linearize(tr.v.col(k) - tr.v_unprojected.col(k), out.velocity_projection, out.velocity_projection_parameters);
   linearize(tr.a.col(k) - tr.a_unprojected.col(k), out.acceleration_projection, out.acceleration_projection_parameters);
+  return out;
+}
+
+ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) { return closureAt(k, scratch_); }
+
+std::vector<TrajectoryDerivatives::PointDerivatives> TrajectoryDerivatives::points(Eigen::Index first,
+                                                                                   Eigen::Index last, int jobs) {
+  const auto count = static_cast<std::size_t>(std::max<Eigen::Index>(last - first + 1, 0));
+  std::vector<PointDerivatives> out(count);
+  const auto threads = static_cast<std::size_t>(std::clamp<Eigen::Index>(jobs, 1, std::max<Eigen::Index>(count, 1)));
+  const auto compute = [&](std::size_t i, Scratch& s) {
+    const Eigen::Index k = first + static_cast<Eigen::Index>(i);
+    out[i].step = stepAt(k, s);
+    if (model_.constraintCount() > 0) out[i].closure = closureAt(k, s);
+  };
+  if (threads == 1) {
+    for (std::size_t i = 0; i < count; ++i) compute(i, scratch_);
+    return out;
+  }
+  while (thread_scratch_.size() < threads) thread_scratch_.emplace_back(model_);
+  // Thread t takes the points t, t + threads, …: neighbours share no work, the load is even.
+  runInParallel(threads, static_cast<int>(threads), [&](std::size_t t) {
+    for (std::size_t i = t; i < count; i += threads) compute(i, thread_scratch_[t]);
+  });
   return out;
 }
 
@@ -178,7 +206,7 @@ ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
   }
   if (sensors.empty()) return out;
   const std::vector<ResponseJacobian> jacobians =
-      responseJacobians(model_, ws_, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates());
+      responseJacobians(model_, scratch_.ws, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates());
   for (Eigen::Index j = 0; j < m; ++j) {
     if (weight(j) == 0.0) continue;
     const ResponseJacobian& J =

@@ -66,6 +66,19 @@ class TrajectoryDerivatives {
   ClosureDerivatives closure(Eigen::Index k);
   ResponseSeeds seeds(Eigen::Index k);
 
+  /// What the sweeps of `direct` and `adjoint` need at time point k and that does not depend on
+  /// the sweep: step(k) and, with cut joints, closure(k).
+  struct PointDerivatives {
+    StepDerivatives step;
+    ClosureDerivatives closure;
+  };
+  /// Those of the time points first … last, in order, on `jobs` threads, each with workspaces of
+  /// its own: the same to the bit whatever the number of threads.
+  std::vector<PointDerivatives> points(Eigen::Index first, Eigen::Index last, int jobs);
+  /// How many points the sweeps ask of points() at once: enough work to share between threads,
+  /// little memory (a few kB a point).
+  static constexpr Eigen::Index kPointsPerBlock = 256;
+
   /// The gradients in the scaled variables from dΨ/db (functionals × design variables, SI): the
   /// variables' scales, the cost b_{k+1}, and the exact column of the artificial variable; with
   /// the values of the simulation they belong to.
@@ -79,20 +92,29 @@ class TrajectoryDerivatives {
   DesignResponse response_;
   std::vector<std::string> parameters_;
   std::vector<const double*> parameter_addresses_;  ///< their storage in model_, for seeding
-  Workspace<AdScalar> ws_;
-  Workspace<double> plain_ws_;  ///< for what needs no AD: M (composite rigid bodies) and B (velocity passes)
-
-  /// M(q_k) and B(q_k) on the free coordinates (M by the composite-rigid-body algorithm) from one
-  /// kinematics pass, kept for the time point last asked: a step and its closure share them.
-  void geometryAt(Eigen::Index k);
-  Eigen::Index geometry_point_ = -1;
   // The AD inputs of each kind of pass, listed once: the step's residual (free q̇, free q, design
   // parameters), the closure rates (free q, free q̇), the projections (free q, design parameters).
   std::vector<AdInput> step_inputs_, closure_rate_inputs_, projection_inputs_;
-  Eigen::MatrixXd mass_at_point_, jacobian_at_point_;
+
+  /// The mutable state of the evaluations at a time point: workspaces, and M(q_k), B(q_k) from one
+  /// kinematics pass, kept for the time point last asked (a step and its closure share them). One
+  /// per thread.
+  struct Scratch {
+    explicit Scratch(const Model& model) : ws(model), plain_ws(model) {}
+    Workspace<AdScalar> ws;
+    Workspace<double> plain_ws;  ///< for what needs no AD: M (composite rigid bodies) and B (velocity passes)
+    Eigen::Index geometry_point = -1;
+    Eigen::MatrixXd mass, jacobian;
+  };
+  Scratch scratch_;                     ///< of the calls on this object's thread
+  std::vector<Scratch> thread_scratch_;  ///< of the threads of points()
+
+  void geometryAt(Eigen::Index k, Scratch& s);
   /// The step derivatives at q_k with the given rates and multipliers.
   StepDerivatives derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                                const Eigen::VectorXd& lambda);
+                                const Eigen::VectorXd& lambda, Scratch& s);
+  StepDerivatives stepAt(Eigen::Index k, Scratch& s);
+  ClosureDerivatives closureAt(Eigen::Index k, Scratch& s);
 };
 
 }  // namespace mbsopt

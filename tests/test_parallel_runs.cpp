@@ -11,6 +11,8 @@
 #include "optimizers/optimizer.hpp"
 #include "problems/scene_file.hpp"
 #include "problems/design_nlp.hpp"
+#include "sensitivity/gradient_method.hpp"
+#include "sensitivity/newmark_derivatives.hpp"
 #include "sensitivity/parallel_runs.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
@@ -88,6 +90,25 @@ TEST(ParallelRuns, FiniteDifferencesOnTwoThreadsEqualThoseOnOne) {
       // Not a comparison of zeros: some constraint moves with the design variables.
       EXPECT_GT(one.constraints.leftCols(x.size() - 1).cwiseAbs().maxCoeff(), 0.0);
     }
+}
+
+// The step derivatives of adjoint and direct on two threads, over several blocks of points and a
+// closed loop: the same gradients to the bit as on one thread.
+TEST(ParallelRuns, ExactGradientsOnTwoThreadsEqualThoseOnOne) {
+  SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
+  source.text += test::kFourBarDesign;
+  DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.6}});
+  problem.design.artificial.initial = 0.01;  // below max |joint_c_y|: the cost's constraints are active
+  ASSERT_GT(problem.scene.settings.end_time / problem.scene.settings.step,
+            2.0 * static_cast<double>(TrajectoryDerivatives::kPointsPerBlock));  // three blocks or more
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  for (const std::string method : {"adjoint", "direct"}) {
+    const DesignGradient one = designGradient(method, problem, functionals, x, 1e-6, nullptr, 1);
+    const DesignGradient two = designGradient(method, problem, functionals, x, 1e-6, nullptr, 2);
+    EXPECT_EQ(one.constraints, two.constraints) << method;
+    EXPECT_GT(one.constraints.leftCols(x.size() - 1).cwiseAbs().maxCoeff(), 0.0) << method;  // not zeros
+  }
 }
 
 // Whole optimisations, two of them Ipopt's (one solve at a time inside the adapter), beside SDCC
