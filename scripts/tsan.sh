@@ -14,7 +14,7 @@ build=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     *) echo "tsan.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
   esac
 done
