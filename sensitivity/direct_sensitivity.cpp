@@ -15,9 +15,8 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), p);
-  const auto accumulate = [&](Eigen::Index k, const Eigen::MatrixXd& Sq, const Eigen::MatrixXd& Sv,
+  const auto accumulate = [&](const ResponseSeeds& s, const Eigen::MatrixXd& Sq, const Eigen::MatrixXd& Sv,
                               const Eigen::MatrixXd& Sa) {
-    const ResponseSeeds s = d.seeds(k);
     dpsi_db += s.position * Sq + s.velocity * Sv + s.acceleration * Sa;
   };
   // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀, λ₀; b) = 0 with b̈ = 0 gives
@@ -26,9 +25,10 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   StepDerivatives s = d.step(0);
   Eigen::MatrixXd Sa = solveAugmented(s.mass, d.constraintJacobian(0), -s.parameters, Eigen::MatrixXd::Zero(m, p),
                                       settings.svd_threshold);
-  accumulate(0, Sq, Sv, Sa);
+  accumulate(d.seeds(0), Sq, Sv, Sa);
   AugmentedSolver solver(settings.svd_threshold);
-  // The step derivatives, which do not depend on the recursion, in blocks computed on `jobs` threads.
+  // The step derivatives and seeds, which do not depend on the recursion, in blocks computed on
+  // `jobs` threads.
   std::vector<TrajectoryDerivatives::PointDerivatives> block;
   Eigen::Index block_first = 0;
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
@@ -63,7 +63,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
       Sa = solver.solve(s.mass * Sa_newton - c.acceleration_projection * Sq - c.acceleration_projection_parameters,
                         -(c.acceleration_q * Sq + c.acceleration_v * Sv));
     }
-    accumulate(k, Sq, Sv, Sa);
+    accumulate(point.seeds, Sq, Sv, Sa);
   }
   return d.gradient(dpsi_db);
 }

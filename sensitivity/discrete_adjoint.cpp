@@ -1,6 +1,7 @@
 #include "sensitivity/discrete_adjoint.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "sensitivity/augmented_solve.hpp"
@@ -81,8 +82,8 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
   ResponseSeeds bar = d.seeds(N);
   AugmentedSolver solver(settings.svd_threshold);
-  // The step derivatives, which do not depend on the sweep, in blocks of points computed on `jobs`
-  // threads, from the first step with a non-zero adjoint down.
+  // The step derivatives and seeds, which do not depend on the sweep, in blocks of points computed
+  // on `jobs` threads, from the first step with a non-zero adjoint down.
   std::vector<TrajectoryDerivatives::PointDerivatives> block;
   Eigen::Index block_first = 0;
   for (Eigen::Index k = N; k >= 1; --k) {
@@ -98,7 +99,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
     const BackwardStep back = backThroughStep(d, block[static_cast<std::size_t>(k - block_first)], rowsOf(bar, rows), solver);
     dpsi_db(rows, Eigen::all) += back.dpsi_db;
     // Back through the predictor (32) to step k − 1, added to its own seeds.
-    bar = d.seeds(k - 1);
+    bar = k - 1 >= block_first ? std::move(block[static_cast<std::size_t>(k - 1 - block_first)].seeds) : d.seeds(k - 1);
     bar.position(rows, Eigen::all) += back.q_pred;
     bar.velocity(rows, Eigen::all) += h * back.q_pred + back.v_pred;
     bar.acceleration(rows, Eigen::all) += (0.5 - beta) * h * h * back.q_pred + (1.0 - gamma) * h * back.v_pred;

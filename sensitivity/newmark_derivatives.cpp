@@ -174,6 +174,7 @@ std::vector<TrajectoryDerivatives::PointDerivatives> TrajectoryDerivatives::poin
     const Eigen::Index k = first + static_cast<Eigen::Index>(i);
     out[i].step = stepAt(k, s);
     if (model_.constraintCount() > 0) out[i].closure = closureAt(k, s);
+    out[i].seeds = seedsAt(k, s);
   };
   if (threads == 1) {
     for (std::size_t i = 0; i < count; ++i) compute(i, scratch_);
@@ -187,7 +188,9 @@ std::vector<TrajectoryDerivatives::PointDerivatives> TrajectoryDerivatives::poin
   return out;
 }
 
-ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
+ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) { return seedsAt(k, scratch_); }
+
+ResponseSeeds TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch) {
   const Trajectory& tr = response_.trajectory;
   const Eigen::Index m = functionalCount(), nf = freeCount();
   ResponseSeeds out{Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf)};
@@ -206,7 +209,7 @@ ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
   }
   if (sensors.empty()) return out;
   const std::vector<ResponseJacobian> jacobians =
-      responseJacobians(model_, scratch_.ws, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates());
+      responseJacobians(model_, scratch.ws, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates());
   for (Eigen::Index j = 0; j < m; ++j) {
     if (weight(j) == 0.0) continue;
     const ResponseJacobian& J =

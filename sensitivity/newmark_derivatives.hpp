@@ -67,10 +67,11 @@ class TrajectoryDerivatives {
   ResponseSeeds seeds(Eigen::Index k);
 
   /// What the sweeps of `direct` and `adjoint` need at time point k and that does not depend on
-  /// the sweep: step(k) and, with cut joints, closure(k).
+  /// the sweep: step(k), with cut joints closure(k), and seeds(k).
   struct PointDerivatives {
     StepDerivatives step;
     ClosureDerivatives closure;
+    ResponseSeeds seeds;
   };
   /// Those of the time points first … last, in order, on `jobs` threads, each with workspaces of
   /// its own: the same to the bit whatever the number of threads.
@@ -115,6 +116,7 @@ class TrajectoryDerivatives {
                                 const Eigen::VectorXd& lambda, Scratch& s);
   StepDerivatives stepAt(Eigen::Index k, Scratch& s);
   ClosureDerivatives closureAt(Eigen::Index k, Scratch& s);
+  ResponseSeeds seedsAt(Eigen::Index k, Scratch& s);
 };
 
 }  // namespace mbsopt
