@@ -149,6 +149,8 @@ void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, Fr
 
 template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,
                                  KinematicsLevel);
+template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                  const VectorX<AdScalar>&, KinematicsLevel);
 template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -34,6 +34,8 @@ void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, Fr
 
 extern template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, KinematicsLevel);
+extern template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                          const VectorX<AdScalar>&, KinematicsLevel);
 extern template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                                const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 extern template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -92,11 +92,9 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
-/// The kinematics at (q, q̇, q̈) and the body wrenches with gravity g, every other wrench cleared.
+/// The body wrenches with gravity g at the kinematics in ws, every other wrench cleared.
 template <class Scalar>
-void startWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, const VectorX<Scalar>& v,
-                   const VectorX<Scalar>& a, const Vector3<Scalar>& g) {
-  forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
+void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g) {
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
     ws.force[k].setZero();
     ws.moment[k].setZero();
@@ -128,9 +126,15 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
   if (q.size() != n || v.size() != n || a.size() != n || (lambda.size() != 0 && lambda.size() != model.constraintCount()))
     throw std::invalid_argument("residual: q, q̇, q̈ need " + std::to_string(n) + " entries and λ 0 or " +
                                 std::to_string(model.constraintCount()));
+  forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
+  residualFromKinematics(model, ws, q, v, lambda, t, f);
+}
+
+template <class Scalar>
+void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                            const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
   const Eigen::Vector3d& gravity = model.gravity();
-  startWrenches(model, ws, q, v, a,
-                Vector3<Scalar>(parameter(ws, gravity.x()), parameter(ws, gravity.y()), parameter(ws, gravity.z())));
+  startWrenches(model, ws, Vector3<Scalar>(parameter(ws, gravity.x()), parameter(ws, gravity.y()), parameter(ws, gravity.z())));
   f.setZero(model.coordinateCount());
   for (const ForceElement& element : model.forces()) {
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
@@ -150,14 +154,12 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
 }
 
 template <class Scalar>
-void inertialAndLoopForces(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                           const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, VectorX<Scalar>& f) {
-  const Eigen::Index n = model.coordinateCount();
-  if (q.size() != n || a.size() != n || lambda.size() != model.constraintCount())
-    throw std::invalid_argument("inertialAndLoopForces: q, q̈ need " + std::to_string(n) + " entries and λ " +
-                                std::to_string(model.constraintCount()));
-  startWrenches(model, ws, q, VectorX<Scalar>(VectorX<Scalar>::Zero(n)), a, Vector3<Scalar>(Vector3<Scalar>::Zero()));
-  f.setZero(n);
+void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda,
+                                         VectorX<Scalar>& f) {
+  if (lambda.size() != model.constraintCount())
+    throw std::invalid_argument("inertialAndLoopForces: λ needs " + std::to_string(model.constraintCount()) + " entries");
+  startWrenches(model, ws, Vector3<Scalar>(Vector3<Scalar>::Zero()));
+  f.setZero(model.coordinateCount());
   if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);
 }
@@ -167,8 +169,10 @@ template void residual<double>(const Model&, Workspace<double>&, const VectorX<d
 template void residual<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                  const VectorX<AdScalar>&, const VectorX<AdScalar>&, const VectorX<AdScalar>&,
                                  double, VectorX<AdScalar>&);
-template void inertialAndLoopForces<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
-                                              const VectorX<AdScalar>&, const VectorX<AdScalar>&,
-                                              VectorX<AdScalar>&);
+template void residualFromKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                               const VectorX<AdScalar>&, const VectorX<AdScalar>&, double,
+                                               VectorX<AdScalar>&);
+template void inertialAndLoopForcesFromKinematics<AdScalar>(const Model&, Workspace<AdScalar>&,
+                                                            const VectorX<AdScalar>&, VectorX<AdScalar>&);
 
 }  // namespace mbsopt

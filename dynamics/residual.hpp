@@ -26,13 +26,18 @@ template <class Scalar>
 void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, const VectorX<Scalar>& v,
               const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f);
 
-/// M(q) q̈ + B(q)ᵀλ alone: the residual at q̇ = 0 without gravity and force elements, i.e.
-/// f(q, 0, q̈, λ) − f(q, 0, 0, 0) (what a projection's correction q̈ = Δ with multipliers λ = μ adds
-/// to f). lambda: constraintCount() multipliers.
+/// What residual() does after its forward pass: the same residual with the kinematics of (q, q̇, q̈)
+/// already in ws (forwardKinematics at Acceleration level, or frameRates on its geometry); q and q̇
+/// are those of that state, for the force elements.
 template <class Scalar>
-void inertialAndLoopForces(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                           const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, VectorX<Scalar>& f);
-
+void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                            const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f);
+/// M(q) q̈ + B(q)ᵀλ alone, with the kinematics of (q, 0, q̈) already in ws: the residual at q̇ = 0
+/// without gravity and force elements, i.e. f(q, 0, q̈, λ) − f(q, 0, 0, 0) (what a projection's
+/// correction q̈ = Δ with multipliers λ = μ adds to f). lambda: constraintCount() multipliers.
+template <class Scalar>
+void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda,
+                                         VectorX<Scalar>& f);
 extern template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                       const VectorX<double>&, const VectorX<double>&, const VectorX<double>&,
                                       double, VectorX<double>&);

@@ -42,10 +42,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   const std::vector<int>& free = model_.freeCoordinates();
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
-  const std::vector<AdInput> design = parameterInputs(parameters_.size());
-  step_inputs_ = adInputs({free_v, free_q, design});
-  closure_rate_inputs_ = adInputs({free_q, free_v});
-  projection_inputs_ = adInputs({free_q, design});
+  step_inputs_ = adInputs({free_v, free_q, parameterInputs(parameters_.size())});
 }
 
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
@@ -96,86 +93,88 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   return derivativesAt(k, tr.v.col(k), tr.a.col(k), lambda, scratch_);
 }
 
-namespace {
-
-/// ∂ḃ/∂q, ∂b̈/∂q and ∂b̈/∂q̇ at (q, q̇, q̈): the closure rates [ḃ; b̈] of one kinematics evaluation
-/// per AD pass, `inputs` being q then q̇ on the same nc columns (ḃ does not depend on q̈).
-void closureRateJacobians(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
-                          const Eigen::VectorXd& v, const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                          ClosureDerivatives& out) {
-  const auto nc = static_cast<Eigen::Index>(inputs.size() / 2);
-  const Eigen::Index m = model.constraintCount();
-  thread_local VectorX<AdScalar> velocity, acceleration;
-  const Eigen::MatrixXd rates = adJacobian(ws, q, v, a, inputs, {}, 2 * m, [&](const SeededState& s, VectorX<AdScalar>& g) {
-    forwardKinematics(model, ws, s.q, s.v, s.a, KinematicsLevel::Acceleration);
-    closureEquations(model, ws, Derivative::Velocity, velocity);
-    closureEquations(model, ws, Derivative::Acceleration, acceleration);
-    g.resize(2 * m);
-    g << velocity, acceleration;
-  });
-  out.velocity_q = rates.topLeftCorner(m, nc);
-  out.acceleration_q = rates.bottomLeftCorner(m, nc);
-  out.acceleration_v = rates.bottomRightCorner(m, nc);
-}
-
-/// [G P] = ∂(M(q)Δ + B(q)ᵀμ)/∂(q, b) on `inputs` (the free q, then the design parameters): one
-/// projection's dependence on q and b through M and B (Δ its correction, μ its multipliers), free rows.
-Eigen::MatrixXd projectionJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
-                                   const Eigen::VectorXd& correction, const Eigen::VectorXd& mu,
-                                   const std::vector<AdInput>& inputs, const std::vector<const double*>& parameters) {
-  seedVector(mu, 0, 0, 0, ws.seeded_lambda);  // constant
-  const VectorX<AdScalar>& mu_ad = ws.seeded_lambda;
-  const Eigen::VectorXd unused_rates = Eigen::VectorXd::Zero(q.size());  // M Δ + Bᵀμ is taken at q̇ = 0
-  const Eigen::MatrixXd out = adJacobian(ws, q, unused_rates, correction, inputs, parameters, model.coordinateCount(),
-                                         [&](const SeededState& s, VectorX<AdScalar>& f) {
-                                           inertialAndLoopForces(model, ws, s.q, s.a, mu_ad, f);
-                                         });
-  return out(model.freeCoordinates(), Eigen::all);
-}
-
-}  // namespace
-
 Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
   geometryAt(k, scratch_);
   return scratch_.jacobian;
 }
 
-ClosureDerivatives TrajectoryDerivatives::closureAt(Eigen::Index k, Scratch& s) {
+TrajectoryDerivatives::PointDerivatives TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
-  const Eigen::VectorXd q = tr.q.col(k);
-  ClosureDerivatives out;
+  const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount(), p = variableCount();
   geometryAt(k, s);
-  out.jacobian = s.jacobian;
-  const Eigen::MatrixXd& mass = s.mass;
-  closureRateJacobians(model_, s.ws, q, tr.v.col(k), tr.a.col(k), closure_rate_inputs_, out);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(out.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const auto linearize = [&](const Eigen::VectorXd& correction, Eigen::MatrixXd& G, Eigen::MatrixXd& P) {
-    // The projection's multipliers: the minimum-norm μ with Bᵀμ = −M Δ (free rows).
-    const Eigen::VectorXd mu = transposed.solve(-mass * correction(free));
-    const Eigen::MatrixXd derivatives =
-        projectionJacobian(model_, s.ws, q, correction, mu, projection_inputs_, parameter_addresses_);
-    G = derivatives.leftCols(freeCount());
-    P = derivatives.rightCols(variableCount());
-  };
-  linearize(tr.v.col(k) - tr.v_unprojected.col(k), out.velocity_projection, out.velocity_projection_parameters);
-  linearize(tr.a.col(k) - tr.a_unprojected.col(k), out.acceleration_projection, out.acceleration_projection_parameters);
+  PointDerivatives out;
+  out.seeds = seedsAt(k, s);
+  // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows).
+  const Eigen::VectorXd correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
+  const Eigen::VectorXd correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
+  Eigen::VectorXd mu_v(m), mu_a(m);
+  if (m > 0) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(s.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
+    mu_v = transposed.solve(-s.mass * correction_v(free));
+    mu_a = transposed.solve(-s.mass * correction_a(free));
+  }
+  // The constants of the passes.
+  seedVector(tr.lambda.col(k), 0, 0, 0, s.lambda);
+  seedVector(mu_v, 0, 0, 0, s.mu_v);
+  seedVector(mu_a, 0, 0, 0, s.mu_a);
+  seedVector(tr.a.col(k), 0, 0, 0, s.projected_a);
+  seedVector(Eigen::VectorXd::Zero(n), 0, 0, 0, s.zero_rates);
+  seedVector(correction_v, 0, 0, 0, s.correction_v);
+  seedVector(correction_a, 0, 0, 0, s.correction_a);
+  // One evaluation per pass over the step's inputs (free q̇, free q, design parameters) shares the
+  // geometry at q_k between four functions of it, in rows [f; ḃ; b̈; f_v; f_a]: f at the state Newton
+  // converged to (C_T, K_T, ∂f/∂b); the closure rates at the projected state, q̇ seeded the same way
+  // (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P).
+  const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
+  const Eigen::MatrixXd d = adJacobian(
+      s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, parameter_addresses_, rows,
+      [&](const SeededState& state, VectorX<AdScalar>& g) {
+        g.resize(rows);
+        forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
+        residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);
+        g.head(n) = s.f;
+        if (m == 0) return;
+        s.projected_v = state.v;
+        for (Eigen::Index i = 0; i < n; ++i) s.projected_v[i].value() = tr.v(i, k);
+        frameRates(model_, s.ws, s.projected_v, s.projected_a, KinematicsLevel::Acceleration);
+        closureEquations(model_, s.ws, Derivative::Velocity, s.closure_rates);
+        g.segment(n, m) = s.closure_rates;
+        closureEquations(model_, s.ws, Derivative::Acceleration, s.closure_rates);
+        g.segment(n + m, m) = s.closure_rates;
+        frameRates(model_, s.ws, s.zero_rates, s.correction_v, KinematicsLevel::Acceleration);
+        inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_v, s.f);
+        g.segment(n + 2 * m, n) = s.f;
+        frameRates(model_, s.ws, s.zero_rates, s.correction_a, KinematicsLevel::Acceleration);
+        inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
+        g.tail(n) = s.f;
+      });
+  // Columns: free q̇ [0, nf), free q [nf, 2nf), design parameters [2nf, 2nf + p).
+  const Eigen::MatrixXd step_rows = d.topRows(n)(free, Eigen::all);
+  out.step = {s.mass, step_rows.leftCols(nf), step_rows.middleCols(nf, nf), step_rows.rightCols(p)};
+  if (m == 0) return out;
+  ClosureDerivatives& c = out.closure;
+  c.jacobian = s.jacobian;
+  c.velocity_q = d.block(n, nf, m, nf);
+  c.acceleration_q = d.block(n + m, nf, m, nf);
+  c.acceleration_v = d.block(n + m, 0, m, nf);
+  const Eigen::MatrixXd projection_v = d.middleRows(n + 2 * m, n)(free, Eigen::all);
+  const Eigen::MatrixXd projection_a = d.bottomRows(n)(free, Eigen::all);
+  c.velocity_projection = projection_v.middleCols(nf, nf);
+  c.velocity_projection_parameters = projection_v.rightCols(p);
+  c.acceleration_projection = projection_a.middleCols(nf, nf);
+  c.acceleration_projection_parameters = projection_a.rightCols(p);
   return out;
 }
 
-ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) { return closureAt(k, scratch_); }
+ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) { return pointAt(k, scratch_).closure; }
 
 std::vector<TrajectoryDerivatives::PointDerivatives> TrajectoryDerivatives::points(Eigen::Index first,
                                                                                    Eigen::Index last, int jobs) {
   const auto count = static_cast<std::size_t>(std::max<Eigen::Index>(last - first + 1, 0));
   std::vector<PointDerivatives> out(count);
   const auto threads = static_cast<std::size_t>(std::clamp<Eigen::Index>(jobs, 1, std::max<Eigen::Index>(count, 1)));
-  const auto compute = [&](std::size_t i, Scratch& s) {
-    const Eigen::Index k = first + static_cast<Eigen::Index>(i);
-    out[i].step = stepAt(k, s);
-    if (model_.constraintCount() > 0) out[i].closure = closureAt(k, s);
-    out[i].seeds = seedsAt(k, s);
-  };
+  const auto compute = [&](std::size_t i, Scratch& s) { out[i] = pointAt(first + static_cast<Eigen::Index>(i), s); };
   if (threads == 1) {
     for (std::size_t i = 0; i < count; ++i) compute(i, scratch_);
     return out;

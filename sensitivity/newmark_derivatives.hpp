@@ -93,9 +93,8 @@ class TrajectoryDerivatives {
   DesignResponse response_;
   std::vector<std::string> parameters_;
   std::vector<const double*> parameter_addresses_;  ///< their storage in model_, for seeding
-  // The AD inputs of each kind of pass, listed once: the step's residual (free q̇, free q, design
-  // parameters), the closure rates (free q, free q̇), the projections (free q, design parameters).
-  std::vector<AdInput> step_inputs_, closure_rate_inputs_, projection_inputs_;
+  /// The inputs of the AD passes, listed once: free q̇, free q, design parameters.
+  std::vector<AdInput> step_inputs_;
 
   /// The mutable state of the evaluations at a time point: workspaces, and M(q_k), B(q_k) from one
   /// kinematics pass, kept for the time point last asked (a step and its closure share them). One
@@ -106,6 +105,9 @@ class TrajectoryDerivatives {
     Workspace<double> plain_ws;  ///< for what needs no AD: M (composite rigid bodies) and B (velocity passes)
     Eigen::Index geometry_point = -1;
     Eigen::MatrixXd mass, jacobian;
+    // The constants and intermediate results of pointAt's AD passes.
+    VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, zero_rates, correction_v, correction_a;
+    VectorX<AdScalar> f, closure_rates;
   };
   Scratch scratch_;                     ///< of the calls on this object's thread
   std::vector<Scratch> thread_scratch_;  ///< of the threads of points()
@@ -115,7 +117,8 @@ class TrajectoryDerivatives {
   StepDerivatives derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                                 const Eigen::VectorXd& lambda, Scratch& s);
   StepDerivatives stepAt(Eigen::Index k, Scratch& s);
-  ClosureDerivatives closureAt(Eigen::Index k, Scratch& s);
+  /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two shared.
+  PointDerivatives pointAt(Eigen::Index k, Scratch& s);
   ResponseSeeds seedsAt(Eigen::Index k, Scratch& s);
 };
 
