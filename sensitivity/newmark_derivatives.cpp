@@ -73,12 +73,7 @@ StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen
   return {s.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf), derivatives.rightCols(variableCount())};
 }
 
-StepDerivatives TrajectoryDerivatives::stepAt(Eigen::Index k, Scratch& s) {
-  const Trajectory& tr = response_.trajectory;
-  return derivativesAt(k, tr.v_unprojected.col(k), tr.a_unprojected.col(k), tr.lambda.col(k), s);
-}
-
-StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) { return stepAt(k, scratch_); }
+StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) { return pointAt(k, scratch_).step; }
 
 StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
