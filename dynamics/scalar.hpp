@@ -59,12 +59,4 @@ inline void seedVector(const Eigen::VectorXd& values, Eigen::Index offset, Eigen
   }
 }
 
-/// The same as a new vector.
-inline VectorX<AdScalar> seededVector(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first,
-                                      Eigen::Index count) {
-  VectorX<AdScalar> x;
-  seedVector(values, offset, first, count, x);
-  return x;
-}
-
 }  // namespace mbsopt

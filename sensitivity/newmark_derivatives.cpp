@@ -60,19 +60,6 @@ void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   s.geometry_point = k;
 }
 
-StepDerivatives TrajectoryDerivatives::derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                                                     const Eigen::VectorXd& lambda, Scratch& s) {
-  // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes seeded in the free q̇, the free
-  // q and the design parameters only.
-  const Trajectory& tr = response_.trajectory;
-  const Eigen::Index nf = freeCount();
-  const Eigen::MatrixXd derivatives =
-      residualJacobian(model_, s.ws, tr.q.col(k), v, a, lambda, tr.time[k], step_inputs_,
-                       parameter_addresses_)(model_.freeCoordinates(), Eigen::all);
-  geometryAt(k, s);
-  return {s.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf), derivatives.rightCols(variableCount())};
-}
-
 StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) { return pointAt(k, scratch_).step; }
 
 StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
@@ -85,7 +72,14 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
     const Eigen::MatrixXd transposed = constraintJacobian(k).transpose();
     lambda = transposed.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(-f(model_.freeCoordinates()));
   }
-  return derivativesAt(k, tr.v.col(k), tr.a.col(k), lambda, scratch_);
+  // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes over the step's inputs.
+  const Eigen::Index nf = freeCount();
+  const Eigen::MatrixXd derivatives =
+      residualJacobian(model_, scratch_.ws, tr.q.col(k), tr.v.col(k), tr.a.col(k), lambda, tr.time[k], step_inputs_,
+                       parameter_addresses_)(model_.freeCoordinates(), Eigen::all);
+  geometryAt(k, scratch_);
+  return {scratch_.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
+          derivatives.rightCols(variableCount())};
 }
 
 Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {

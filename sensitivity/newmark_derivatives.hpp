@@ -113,10 +113,6 @@ class TrajectoryDerivatives {
   std::vector<Scratch> thread_scratch_;  ///< of the threads of points()
 
   void geometryAt(Eigen::Index k, Scratch& s);
-  /// The step derivatives at q_k with the given rates and multipliers (projectedStep's; step(k)'s
-  /// come from pointAt, in the same passes as the closure's).
-  StepDerivatives derivativesAt(Eigen::Index k, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                                const Eigen::VectorXd& lambda, Scratch& s);
   /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two shared.
   PointDerivatives pointAt(Eigen::Index k, Scratch& s);
   ResponseSeeds seedsAt(Eigen::Index k, Scratch& s);
