@@ -37,25 +37,27 @@ MechanicalEnergy mechanicalEnergyOfFrames(const Model& model, const Workspace<do
     const auto k = static_cast<std::size_t>(body.frame);
     const Eigen::Matrix3d& R = ws.rotation[k];
     const Eigen::Vector3d& w = ws.angular_velocity[k];
-    const Eigen::Vector3d c = R * body.centre_of_mass;
+    const Eigen::Vector3d c = R * model.centreOfMass(body);
     const Eigen::Vector3d w_body = R.transpose() * w;  // ωᵀ(R I Rᵀ)ω in body axes
-    energy.kinetic += 0.5 * body.mass * (ws.velocity[k] + w.cross(c)).squaredNorm() + 0.5 * w_body.dot(body.inertia * w_body);
-    energy.gravity -= body.mass * model.gravity().dot(ws.position[k] + c);
+    const double mass = model.value(body.mass);
+    energy.kinetic += 0.5 * mass * (ws.velocity[k] + w.cross(c)).squaredNorm() +
+                      0.5 * w_body.dot(model.inertia(body) * w_body);
+    energy.gravity -= mass * model.gravity().dot(ws.position[k] + c);
   }
   for (const ForceElement& force : model.forces()) {
     energy.springs += std::visit(
         Overloaded{[&](const JointSpringDamper& s) {
-                     const double stretch = q[s.coordinate] - s.rest.value(t);
-                     return 0.5 * s.stiffness * stretch * stretch;
+                     const double stretch = q[s.coordinate] - model.value(s.rest, t);
+                     return 0.5 * model.value(s.stiffness) * stretch * stretch;
                    },
                    [&](const PointSpringDamper& s) {
-                     const double stretch = springLength(s, ws) - s.rest_length;
-                     return 0.5 * s.stiffness * stretch * stretch;
+                     const double stretch = springLength(s, ws) - model.value(s.rest_length);
+                     return 0.5 * model.value(s.stiffness) * stretch * stretch;
                    },
                    [&](const JointActuation&) { return 0.0; },  // work of an external force, no potential
                    [&](const TrackGuidance& g) {
                      const double deviation = guidanceDeviation(model, g, ws, q);
-                     return 0.5 * g.stiffness * deviation * deviation;
+                     return 0.5 * model.value(g.stiffness) * deviation * deviation;
                    }},
         force);
   }

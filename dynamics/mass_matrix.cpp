@@ -36,9 +36,10 @@ void addShifted(const CompositeInertia& beyond, const Eigen::Vector3d& d, Compos
 
 /// Adds a body to the composite inertia of its frame (rotation R): its own inertia, in ground axes
 /// about its centre of mass, shifted to the frame's origin.
-void addBody(const Body& body, const Eigen::Matrix3d& R, CompositeInertia& composite) {
-  const CompositeInertia about_centre{body.mass, Eigen::Vector3d::Zero(), R * body.inertia * R.transpose()};
-  addShifted(about_centre, R * body.centre_of_mass, composite);
+void addBody(const Model& model, const Body& body, const Eigen::Matrix3d& R, CompositeInertia& composite) {
+  const CompositeInertia about_centre{model.value(body.mass), Eigen::Vector3d::Zero(),
+                                     R * model.inertia(body) * R.transpose()};
+  addShifted(about_centre, R * model.centreOfMass(body), composite);
 }
 
 /// The composite inertia of every frame: the bodies on it and on every frame beyond it, about its
@@ -48,7 +49,7 @@ void compositeInertias(const Model& model, const Workspace<double>& ws, std::vec
   composites.assign(static_cast<std::size_t>(model.frameCount()), CompositeInertia{});
   for (const Body& body : model.bodies()) {
     const auto f = static_cast<std::size_t>(body.frame);
-    addBody(body, ws.rotation[f], composites[f]);
+    addBody(model, body, ws.rotation[f], composites[f]);
   }
   const auto& elements = model.elements();
   for (std::size_t k = elements.size(); k-- > 0;) {

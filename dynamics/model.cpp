@@ -60,7 +60,54 @@ std::vector<int> allCoordinates(const Model& model) {
   return all;
 }
 
-Model::Model() { frames_.push_back({"ground", -1}); }
+Model::Model() {
+  frames_.push_back({"ground", -1});
+  gravity_ = addParameters("gravity.", {"x", "y", "z"}, Eigen::Vector3d::Zero());
+}
+
+ParameterIndex Model::addParameter(std::string name, double value) {
+  parameter_names_.push_back(std::move(name));
+  parameter_values_.push_back(value);
+  return static_cast<ParameterIndex>(parameter_values_.size() - 1);
+}
+
+ParameterVector3 Model::addParameters(const std::string& prefix, const char* const (&suffixes)[3],
+                                      const Eigen::Vector3d& values) {
+  ParameterVector3 out;
+  for (int i = 0; i < 3; ++i) out[static_cast<std::size_t>(i)] = addParameter(prefix + suffixes[i], values[i]);
+  return out;
+}
+
+TimeInput Model::timeInput(const std::string& name, TimeFunction function) {
+  TimeInput input{std::move(function), std::nullopt};
+  if (input.function.isConstant()) input.parameter = addParameter(name, input.function.value(0.0));
+  return input;
+}
+
+ParameterIndex Model::parameterIndex(std::string_view dotted_name) const {
+  const auto found = std::find(parameter_names_.begin(), parameter_names_.end(), dotted_name);
+  if (found == parameter_names_.end())
+    throw std::invalid_argument("no parameter named '" + std::string(dotted_name) + "'");
+  return static_cast<ParameterIndex>(found - parameter_names_.begin());
+}
+
+Eigen::Vector3d Model::vector(const ParameterVector3& parameters) const {
+  return {value(parameters[0]), value(parameters[1]), value(parameters[2])};
+}
+
+double Model::value(const TimeInput& input, double t) const {
+  return input.parameter ? value(*input.parameter) : input.function.value(t);
+}
+
+Eigen::Matrix3d Model::inertia(const Body& body) const {
+  const Eigen::Vector3d moments = vector(body.moments_of_inertia);
+  const Eigen::Vector3d& products = body.products_of_inertia;
+  Eigen::Matrix3d out;
+  out << moments[0], products[0], products[1],  //
+      products[0], moments[1], products[2],     //
+      products[1], products[2], moments[2];
+  return out;
+}
 
 void Model::checkFrame(FrameIndex frame, const std::string& who) const {
   if (frame < 0 || frame >= frameCount())
@@ -121,7 +168,11 @@ void Model::addBody(const std::string& name, FrameIndex frame, double mass, cons
   if (const std::string defect = rigidBodyDefect(mass, centre_of_mass, inertia); !defect.empty())
     throw std::invalid_argument(name + ": " + defect);
   names_.push_back(name);
-  bodies_.push_back({name, frame, mass, centre_of_mass, inertia});
+  const ParameterIndex mass_parameter = addParameter(name + ".mass", mass);
+  const ParameterVector3 com = addParameters(name + ".com.", {"x", "y", "z"}, centre_of_mass);
+  const ParameterVector3 moments = addParameters(name + ".", {"Ixx", "Iyy", "Izz"}, inertia.diagonal());
+  // rigidBodyDefect accepted the tensor as symmetric: its upper triangle holds the products.
+  bodies_.push_back({name, frame, mass_parameter, com, moments, {inertia(0, 1), inertia(0, 2), inertia(1, 2)}});
 }
 
 void Model::addJointSpringDamper(const std::string& name, const std::string& joint, double stiffness,
@@ -136,7 +187,8 @@ void Model::addGuidanceSpring(const std::string& name, const std::string& joint,
   checkFinite(damping, name + ": damping");
   const int i = coordinate(joint);
   names_.push_back(name);
-  forces_.push_back(JointSpringDamper{name, i, stiffness, damping, std::move(target)});
+  forces_.push_back(JointSpringDamper{name, i, addParameter(name + ".k", stiffness),
+                                      addParameter(name + ".c", damping), timeInput(name + ".rest", std::move(target))});
 }
 
 void Model::addPointSpringDamper(const std::string& name, FrameIndex frame_a, const Eigen::Vector3d& point_a,
@@ -150,14 +202,16 @@ void Model::addPointSpringDamper(const std::string& name, FrameIndex frame_a, co
   checkFinite(rest_length, name + ": rest length");
   if (!point_a.allFinite() || !point_b.allFinite()) throw std::invalid_argument(name + ": points must be finite");
   names_.push_back(name);
-  forces_.push_back(PointSpringDamper{name, frame_a, point_a, frame_b, point_b, stiffness, damping, rest_length});
+  forces_.push_back(PointSpringDamper{name, frame_a, point_a, frame_b, point_b, addParameter(name + ".k", stiffness),
+                                      addParameter(name + ".c", damping),
+                                      addParameter(name + ".rest_length", rest_length)});
 }
 
 void Model::addJointActuation(const std::string& name, const std::string& joint, TimeFunction force) {
   checkNewName(name);
   const int i = coordinate(joint);
   names_.push_back(name);
-  forces_.push_back(JointActuation{name, i, std::move(force)});
+  forces_.push_back(JointActuation{name, i, timeInput(name + ".value", std::move(force))});
 }
 
 void Model::addTrackGuidance(const std::string& name, FrameIndex frame, const std::string& slider_joint,
@@ -171,12 +225,12 @@ void Model::addTrackGuidance(const std::string& name, FrameIndex frame, const st
   if (!std::holds_alternative<CurveSliderJoint>(slider.kind))
     throw std::invalid_argument(name + ": '" + slider_joint + "' is not a curve slider");
   names_.push_back(name);
-  forces_.push_back(TrackGuidance{name, frame, s, stiffness, damping});
+  forces_.push_back(TrackGuidance{name, frame, s, addParameter(name + ".k", stiffness), addParameter(name + ".c", damping)});
 }
 
 void Model::setGravity(const Eigen::Vector3d& gravity) {
   if (!gravity.allFinite()) throw std::invalid_argument("gravity must be finite");
-  gravity_ = gravity;
+  for (int i = 0; i < 3; ++i) parameter_values_[static_cast<std::size_t>(gravity_[static_cast<std::size_t>(i)])] = gravity[i];
 }
 
 void Model::drive(const std::string& joint, TimeFunction motion) {
@@ -280,73 +334,21 @@ const std::string& Model::coordinateOwner(int i) const {
   return elements_[static_cast<std::size_t>(coordinates_[static_cast<std::size_t>(i)].element)].name;
 }
 
-void Model::forEachParameter(const std::function<void(const std::string&, double&)>& visit) {
-  visit("gravity.x", gravity_.x());
-  visit("gravity.y", gravity_.y());
-  visit("gravity.z", gravity_.z());
-  for (Body& body : bodies_) {
-    visit(body.name + ".mass", body.mass);
-    const char* axes = "xyz";
-    for (int i = 0; i < 3; ++i) visit(body.name + ".com." + axes[i], body.centre_of_mass[i]);
-    for (int i = 0; i < 3; ++i) visit(body.name + ".I" + axes[i] + axes[i], body.inertia(i, i));
-  }
-  for (ForceElement& force : forces_) {
-    std::visit(Overloaded{[&](JointSpringDamper& f) {
-                            visit(f.name + ".k", f.stiffness);
-                            visit(f.name + ".c", f.damping);
-                            if (f.rest.isConstant()) visit(f.name + ".rest", f.rest.constantTerm());
-                          },
-                          [&](PointSpringDamper& f) {
-                            visit(f.name + ".k", f.stiffness);
-                            visit(f.name + ".c", f.damping);
-                            visit(f.name + ".rest_length", f.rest_length);
-                          },
-                          [&](JointActuation& f) {
-                            if (f.force.isConstant()) visit(f.name + ".value", f.force.constantTerm());
-                          },
-                          [&](TrackGuidance& f) {
-                            visit(f.name + ".k", f.stiffness);
-                            visit(f.name + ".c", f.damping);
-                          }},
-               force);
-  }
-}
-
-double* Model::parameterSlot(std::string_view dotted_name) {
-  double* found = nullptr;
-  forEachParameter([&](const std::string& name, double& value) {
-    if (name == dotted_name) found = &value;
-  });
-  if (!found) throw std::invalid_argument("no parameter named '" + std::string(dotted_name) + "'");
-  return found;
-}
-
-const double& Model::parameterReference(std::string_view dotted_name) const {
-  return *const_cast<Model*>(this)->parameterSlot(dotted_name);
-}
-
-double Model::parameter(std::string_view dotted_name) const {
-  return *const_cast<Model*>(this)->parameterSlot(dotted_name);
-}
-
-void Model::setParameter(std::string_view dotted_name, double value) {
-  double* slot = parameterSlot(dotted_name);
-  if (!std::isfinite(value)) throw std::invalid_argument(std::string(dotted_name) + " must be finite");
-  const double previous = *slot;
-  *slot = value;
+void Model::setParameter(ParameterIndex parameter, double value) {
+  const auto i = static_cast<std::size_t>(parameter);
+  if (i >= parameter_values_.size()) throw std::invalid_argument("no parameter with index " + std::to_string(i));
+  const std::string& name = parameter_names_[i];
+  if (!std::isfinite(value)) throw std::invalid_argument(name + " must be finite");
+  const double previous = parameter_values_[i];
+  parameter_values_[i] = value;
   for (const Body& body : bodies_) {  // the same checks as addBody
-    if (const std::string defect = rigidBodyDefect(body.mass, body.centre_of_mass, body.inertia); !defect.empty()) {
-      *slot = previous;
-      throw std::invalid_argument(std::string(dotted_name) + " = " + std::to_string(value) + " leaves body '" +
-                                  body.name + "' invalid: " + defect);
+    if (const std::string defect = rigidBodyDefect(this->value(body.mass), centreOfMass(body), inertia(body));
+        !defect.empty()) {
+      parameter_values_[i] = previous;
+      throw std::invalid_argument(name + " = " + std::to_string(value) + " leaves body '" + body.name +
+                                  "' invalid: " + defect);
     }
   }
-}
-
-std::vector<std::string> Model::parameterNames() const {
-  std::vector<std::string> names;
-  const_cast<Model*>(this)->forEachParameter([&](const std::string& name, double&) { names.push_back(name); });
-  return names;
 }
 
 }  // namespace mbsopt

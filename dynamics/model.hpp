@@ -4,8 +4,9 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <functional>
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -17,6 +18,11 @@
 namespace mbsopt {
 
 using FrameIndex = int;
+/// A model parameter: its position in the model's parameter vector (Model::parameterNames() names
+/// them in the same order). Elements hold these indices, never the values, so a value is read
+/// through the model (Model::value) or, in code templated on the scalar, through parameter(model,
+/// ws, index) (workspace.hpp), which seeds it when a derivative with respect to it is asked for.
+enum class ParameterIndex : int {};
 
 // ---- kinetostatic elements: each maps an entry frame to an exit frame (20)-(23) ----
 struct Offset {  ///< passive: constant rotation and translation, both in the entry frame
@@ -48,12 +54,25 @@ struct KinematicElement {
   ElementKind kind;
 };
 
+/// Three parameters that form a vector (a centre of mass, the moments of an inertia tensor).
+using ParameterVector3 = std::array<ParameterIndex, 3>;
+
+/// Model::centreOfMass and Model::inertia assemble the vector and the tensor.
 struct Body {
   std::string name;
   FrameIndex frame;
-  double mass;
-  Eigen::Vector3d centre_of_mass;  ///< in the frame's axes, from its origin
-  Eigen::Matrix3d inertia;         ///< about the centre of mass, in the frame's axes
+  ParameterIndex mass;
+  ParameterVector3 centre_of_mass;    ///< in the frame's axes, from its origin
+  ParameterVector3 moments_of_inertia;  ///< I_xx, I_yy, I_zz about the centre of mass, in the frame's axes
+  Eigen::Vector3d products_of_inertia;  ///< I_xy, I_xz, I_yz (constants, not parameters)
+};
+
+/// A function of time that is a model parameter when it is constant (a spring's rest value, a
+/// constant actuation): `parameter` then indexes its value, and `function` is only read for its
+/// rates (zero). Model::value(input, t) evaluates it.
+struct TimeInput {
+  TimeFunction function;
+  std::optional<ParameterIndex> parameter;
 };
 
 // ---- force elements ----
@@ -62,9 +81,9 @@ struct Body {
 struct JointSpringDamper {
   std::string name;
   int coordinate;
-  double stiffness;
-  double damping;
-  TimeFunction rest;
+  ParameterIndex stiffness;
+  ParameterIndex damping;
+  TimeInput rest;
 };
 /// Spring-damper along the line between a point of frame a and a point of frame b.
 struct PointSpringDamper {
@@ -73,15 +92,15 @@ struct PointSpringDamper {
   Eigen::Vector3d point_a;
   FrameIndex frame_b;
   Eigen::Vector3d point_b;
-  double stiffness;
-  double damping;
-  double rest_length;
+  ParameterIndex stiffness;
+  ParameterIndex damping;
+  ParameterIndex rest_length;
 };
 /// Generalised force (torque or force) on a joint coordinate, given as a function of time.
 struct JointActuation {
   std::string name;
   int coordinate;
-  TimeFunction force;
+  TimeInput force;
 };
 /// Guidance of a frame by a track: a torsional spring-damper about the track's binormal between the
 /// frame's heading and the track heading ψ(s) at a curve slider's arc length s (a bogie held by its
@@ -92,8 +111,8 @@ struct TrackGuidance {
   std::string name;
   FrameIndex frame;
   int slider_coordinate;  ///< coordinate of a CurveSliderJoint; its entry frame carries the track
-  double stiffness;
-  double damping;
+  ParameterIndex stiffness;
+  ParameterIndex damping;
 };
 using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation, TrackGuidance>;
 
@@ -227,7 +246,9 @@ class Model {
   const std::vector<Coordinate>& coordinates() const { return coordinates_; }
   const std::vector<int>& freeCoordinates() const { return free_; }
   const std::vector<int>& drivenCoordinates() const { return driven_; }
-  const Eigen::Vector3d& gravity() const { return gravity_; }
+  /// The gravity vector (parameters "gravity.x", "gravity.y", "gravity.z").
+  Eigen::Vector3d gravity() const { return vector(gravity_); }
+  const ParameterVector3& gravityParameters() const { return gravity_; }
 
   FrameIndex frame(std::string_view name) const;
   int coordinate(std::string_view name) const;
@@ -235,22 +256,32 @@ class Model {
   /// The element that owns coordinate i, for error messages.
   const std::string& coordinateOwner(int i) const;
 
-  /// Named numeric parameters ("front_secondary.k", "carbody1.mass", "gravity.z", ...).
-  double parameter(std::string_view dotted_name) const;
-  /// The storage of a named parameter, which the residual reads: what Workspace::parameter_seeds
-  /// points at to differentiate with respect to it. Valid while the model lives.
-  const double& parameterReference(std::string_view dotted_name) const;
-  /// Sets a named parameter with the checks of the builder (finite; bodies keep a positive mass and a
+  // ---- parameters: named numbers ("front_secondary.k", "carbody1.mass", "gravity.z", ...) ----
+  int parameterCount() const { return static_cast<int>(parameter_values_.size()); }
+  /// The names of the parameters, in the order of their indices.
+  const std::vector<std::string>& parameterNames() const { return parameter_names_; }
+  /// The index of a named parameter; std::invalid_argument when there is none.
+  ParameterIndex parameterIndex(std::string_view dotted_name) const;
+  double value(ParameterIndex parameter) const { return parameter_values_[static_cast<std::size_t>(parameter)]; }
+  Eigen::Vector3d vector(const ParameterVector3& parameters) const;
+  /// r(t) of a time input: its parameter when it is constant, its function otherwise.
+  double value(const TimeInput& input, double t) const;
+  Eigen::Vector3d centreOfMass(const Body& body) const { return vector(body.centre_of_mass); }
+  /// The inertia tensor about the centre of mass, in the body frame's axes.
+  Eigen::Matrix3d inertia(const Body& body) const;
+  double parameter(std::string_view dotted_name) const { return value(parameterIndex(dotted_name)); }
+  /// Sets a parameter with the checks of the builder (finite; bodies keep a positive mass and a
   /// positive semi-definite inertia); throws std::invalid_argument and leaves the model unchanged otherwise.
-  void setParameter(std::string_view dotted_name, double value);
-  std::vector<std::string> parameterNames() const;
+  void setParameter(ParameterIndex parameter, double value);
+  void setParameter(std::string_view dotted_name, double value) { setParameter(parameterIndex(dotted_name), value); }
 
  private:
   FrameIndex addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active);
   void checkFrame(FrameIndex frame, const std::string& who) const;
   void checkNewName(const std::string& name) const;
-  void forEachParameter(const std::function<void(const std::string&, double&)>& visit);
-  double* parameterSlot(std::string_view dotted_name);
+  ParameterIndex addParameter(std::string name, double value);
+  ParameterVector3 addParameters(const std::string& prefix, const char* const (&suffixes)[3], const Eigen::Vector3d& values);
+  TimeInput timeInput(const std::string& name, TimeFunction function);
 
   std::vector<Frame> frames_;
   std::vector<KinematicElement> elements_;
@@ -261,7 +292,9 @@ class Model {
   std::vector<Coordinate> coordinates_;
   std::vector<int> free_, driven_;
   std::vector<std::string> names_;
-  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  std::vector<double> parameter_values_;
+  std::vector<std::string> parameter_names_;
+  ParameterVector3 gravity_;
   int constraint_count_ = 0;
 };
 

@@ -51,9 +51,9 @@ void NewtonRoundoff::setWrenchMagnitudes(const Model& model, const Workspace<dou
   const double g = model.gravity().norm();
   for (const Body& body : model.bodies()) {  // as addBodyWrenches, on magnitudes
     const auto k = static_cast<std::size_t>(body.frame);
-    const double c = body.centre_of_mass.norm(), w = ws.angular_velocity[k].norm();
-    const double alpha = ws.angular_acceleration[k].norm(), inertia = body.inertia.cwiseAbs().sum();
-    const double force = body.mass * (ws.acceleration[k].norm() + alpha * c + w * w * c + g);
+    const double c = model.centreOfMass(body).norm(), w = ws.angular_velocity[k].norm();
+    const double alpha = ws.angular_acceleration[k].norm(), inertia = model.inertia(body).cwiseAbs().sum();
+    const double force = model.value(body.mass) * (ws.acceleration[k].norm() + alpha * c + w * w * c + g);
     force_[k] += force;
     moment_[k] += inertia * (alpha + w * w) + (c + reach_[k]) * force;
   }

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
@@ -12,15 +11,10 @@ namespace mbsopt {
 
 namespace {
 
-/// f(t), its constant term a parameter (a spring's rest value, a constant actuation).
+/// r(t) of a time input, a parameter when it is constant (a spring's rest value, a constant actuation).
 template <class Scalar>
-Scalar timeValue(const Workspace<Scalar>& ws, const TimeFunction& f, double t) {
-  if constexpr (std::is_same_v<Scalar, double>) {
-    return f.value(t);
-  } else {
-    const double& c0 = f.constantTerm();
-    return Scalar(f.value(t) - c0) + parameter(ws, c0);
-  }
+Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInput& input, double t) {
+  return input.parameter ? parameter(model, ws, *input.parameter) : Scalar(input.function.value(t));
 }
 
 /// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
@@ -31,13 +25,12 @@ void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Sc
     const Matrix3<Scalar>& R = ws.rotation[k];
     const Vector3<Scalar>& w = ws.angular_velocity[k];
     const Vector3<Scalar>& alpha = ws.angular_acceleration[k];
-    const Eigen::Vector3d& com = body.centre_of_mass;
-    const Vector3<Scalar> c = R * Vector3<Scalar>(parameter(ws, com.x()), parameter(ws, com.y()), parameter(ws, com.z()));
-    Matrix3<Scalar> body_inertia = body.inertia.template cast<Scalar>();
-    for (int i = 0; i < 3; ++i) body_inertia(i, i) = parameter(ws, body.inertia(i, i));
+    const Vector3<Scalar> c = R * parameter(model, ws, body.centre_of_mass);
+    Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
+    body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
     const Matrix3<Scalar> inertia = R * body_inertia * R.transpose();
     const Vector3<Scalar> a_c = ws.acceleration[k] + alpha.cross(c) + w.cross(w.cross(c));
-    const Vector3<Scalar> force = parameter(ws, body.mass) * (a_c - g);
+    const Vector3<Scalar> force = parameter(model, ws, body.mass) * (a_c - g);
     ws.force[k] += force;
     ws.moment[k] += inertia * alpha + w.cross(inertia * w) + c.cross(force);
   }
@@ -45,7 +38,7 @@ void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Sc
 
 /// Point-to-point spring-dampers act as applied (so subtracted) forces on their two frames.
 template <class Scalar>
-void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
+void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Workspace<Scalar>& ws) {
   using std::sqrt;
   const auto a = static_cast<std::size_t>(s.frame_a), b = static_cast<std::size_t>(s.frame_b);
   const Vector3<Scalar> ra = ws.rotation[a] * s.point_a.template cast<Scalar>();
@@ -54,11 +47,11 @@ void addPointSpringWrenches(const PointSpringDamper& s, Workspace<Scalar>& ws) {
   const Vector3<Scalar> d_rate =
       (ws.velocity[b] + ws.angular_velocity[b].cross(rb)) - (ws.velocity[a] + ws.angular_velocity[a].cross(ra));
   const Scalar length = sqrt(d.squaredNorm());
-  if (!(valueOf(length) > 1e-12 * (1.0 + std::abs(s.rest_length))))
+  if (!(valueOf(length) > 1e-12 * (1.0 + std::abs(model.value(s.rest_length)))))
     throw DegenerateElementError(s.name, "point spring-damper '" + s.name + "': its two points coincide, so its direction is undefined");
   const Vector3<Scalar> u = d / length;
-  const Scalar tension = parameter(ws, s.stiffness) * (length - parameter(ws, s.rest_length)) +
-                         parameter(ws, s.damping) * u.dot(d_rate);
+  const Scalar tension = parameter(model, ws, s.stiffness) * (length - parameter(model, ws, s.rest_length)) +
+                         parameter(model, ws, s.damping) * u.dot(d_rate);
   const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched
   ws.force[a] -= on_a;
   ws.moment[a] -= ra.cross(on_a);
@@ -86,7 +79,8 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
   const Vector3<Scalar> binormal = ws.rotation[base].col(2);
   const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
-  const Scalar torque = -parameter(ws, g.stiffness) * deviation - parameter(ws, g.damping) * deviation_rate;
+  const Scalar torque =
+      -parameter(model, ws, g.stiffness) * deviation - parameter(model, ws, g.damping) * deviation_rate;
   ws.moment[frame] -= torque * binormal;  // applied on the frame
   ws.moment[base] += torque * binormal;   // reaction on the track
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
@@ -133,18 +127,17 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
 template <class Scalar>
 void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                             const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
-  const Eigen::Vector3d& gravity = model.gravity();
-  startWrenches(model, ws, Vector3<Scalar>(parameter(ws, gravity.x()), parameter(ws, gravity.y()), parameter(ws, gravity.z())));
+  startWrenches(model, ws, parameter(model, ws, model.gravityParameters()));
   f.setZero(model.coordinateCount());
   for (const ForceElement& element : model.forces()) {
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
                             const auto i = static_cast<Eigen::Index>(s.coordinate);
-                            f[i] += parameter(ws, s.stiffness) * (q[i] - timeValue(ws, s.rest, t)) +
-                                    parameter(ws, s.damping) * (v[i] - Scalar(s.rest.rate(t)));
+                            f[i] += parameter(model, ws, s.stiffness) * (q[i] - timeValue(model, ws, s.rest, t)) +
+                                    parameter(model, ws, s.damping) * (v[i] - Scalar(s.rest.function.rate(t)));
                           },
-                          [&](const PointSpringDamper& s) { addPointSpringWrenches(s, ws); },
+                          [&](const PointSpringDamper& s) { addPointSpringWrenches(model, s, ws); },
                           [&](const JointActuation& s) {
-                            f[static_cast<Eigen::Index>(s.coordinate)] -= timeValue(ws, s.force, t);
+                            f[static_cast<Eigen::Index>(s.coordinate)] -= timeValue(model, ws, s.force, t);
                           },
                           [&](const TrackGuidance& g) { addTrackGuidance(model, g, ws, q, v, f); }},
                element);

@@ -13,8 +13,8 @@ bool conservesEnergy(const Model& model) {
   if (!model.drivenCoordinates().empty()) return false;
   for (const ForceElement& force : model.forces()) {
     const bool conservative = std::visit(
-        Overloaded{[](const JointSpringDamper& s) { return s.damping == 0.0 && s.rest.isConstant(); },
-                   [](const PointSpringDamper& s) { return s.damping == 0.0; },
+        Overloaded{[&](const JointSpringDamper& s) { return model.value(s.damping) == 0.0 && s.rest.parameter; },
+                   [&](const PointSpringDamper& s) { return model.value(s.damping) == 0.0; },
                    [](const JointActuation&) { return false; }, [](const TrackGuidance&) { return false; }},
         force);
     if (!conservative) return false;
@@ -59,8 +59,8 @@ void EnergyWatch::start(const Model& model, Workspace<double>& ws, const Eigen::
   double reach = 0.0, mass = 0.0;
   for (const Body& body : model.bodies()) {
     const auto k = static_cast<std::size_t>(body.frame);
-    reach = std::max(reach, ws.position[k].norm() + body.centre_of_mass.norm());
-    mass += body.mass;
+    reach = std::max(reach, ws.position[k].norm() + model.centreOfMass(body).norm());
+    mass += model.value(body.mass);
   }
   initial_ = energy.total();
   scale_ = energy.kinetic + std::abs(energy.springs) + 2.0 * mass * model.gravity().norm() * reach;

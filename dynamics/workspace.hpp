@@ -39,21 +39,26 @@ struct Workspace {
   // Coordinates (q, q̇, q̈), multipliers λ and residual f of a pass whose inputs are seeded (AdScalar),
   // kept between passes so that repeated passes allocate nothing.
   VectorX<Scalar> seeded_q, seeded_v, seeded_a, seeded_lambda, seeded_f;
-  /// Model parameters differentiated in this evaluation (AdScalar only): the address of the
-  /// parameter's storage in the Model and the AD direction it is seeded in. Empty: none.
-  std::vector<std::pair<const double*, int>> parameter_seeds;
+  /// Model parameters differentiated in this evaluation (AdScalar only): the parameter and the AD
+  /// direction it is seeded in. Empty: none.
+  std::vector<std::pair<ParameterIndex, int>> parameter_seeds;
 };
 
 /// A model parameter read into the evaluation's scalar: with a unit derivative in its direction
 /// when ws.parameter_seeds names it (∂/∂b by forward AD of the same code), a constant otherwise.
 template <class Scalar>
-Scalar parameter(const Workspace<Scalar>& ws, const double& value) {
-  Scalar out(value);
+Scalar parameter(const Model& model, const Workspace<Scalar>& ws, ParameterIndex index) {
+  Scalar out(model.value(index));
   if constexpr (!std::is_same_v<Scalar, double>) {
-    for (const auto& [address, direction] : ws.parameter_seeds)
-      if (address == &value) out.derivatives()[direction] = 1.0;
+    for (const auto& [seeded, direction] : ws.parameter_seeds)
+      if (seeded == index) out.derivatives()[direction] = 1.0;
   }
   return out;
+}
+
+template <class Scalar>
+Vector3<Scalar> parameter(const Model& model, const Workspace<Scalar>& ws, const ParameterVector3& indices) {
+  return {parameter(model, ws, indices[0]), parameter(model, ws, indices[1]), parameter(model, ws, indices[2])};
 }
 
 }  // namespace mbsopt

@@ -28,7 +28,7 @@ std::vector<AdInput> adInputs(std::initializer_list<std::vector<AdInput>> parts)
 
 void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                    const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                   const std::vector<const double*>& parameters,
+                   const std::vector<ParameterIndex>& parameters,
                    const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate) {
   const auto total = static_cast<Eigen::Index>(inputs.size());
   for (Eigen::Index first = 0; first < total; first += kMaxAdDirections) {
@@ -56,7 +56,7 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eige
 
 Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                            const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                           const std::vector<const double*>& parameters, Eigen::Index rows,
+                           const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
                            const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate) {
   Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(inputs.size()));
   VectorX<AdScalar>& g = ws.seeded_f;
@@ -70,7 +70,7 @@ Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, co
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                  double t, const std::vector<AdInput>& inputs,
-                                 const std::vector<const double*>& parameters) {
+                                 const std::vector<ParameterIndex>& parameters) {
   seedVector(lambda, 0, 0, 0, ws.seeded_lambda);  // constant
   const VectorX<AdScalar>& lambda_ad = ws.seeded_lambda;
   return adJacobian(ws, q, v, a, inputs, parameters, model.coordinateCount(),

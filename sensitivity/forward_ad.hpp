@@ -17,7 +17,7 @@ namespace mbsopt {
 /// One seeded input: a coordinate of q, q̇ or q̈, or a model parameter.
 struct AdInput {
   enum class Kind { Position, Velocity, Acceleration, Parameter } kind;
-  int index;  ///< the coordinate, or the position in the caller's list of parameter addresses
+  int index;  ///< the coordinate, or the position in the caller's list of parameters
 };
 
 /// One input of `kind` per entry of `indices`, in that order.
@@ -37,24 +37,24 @@ struct SeededState {
 
 /// Runs `evaluate` once per pass of at most kMaxAdDirections inputs: input first + j carries the
 /// unit derivative direction j in the state handed to it (parameters through ws.parameter_seeds,
-/// `parameters` being their storage in the model); evaluate(state, first, count) reads the
+/// `parameters` being their indices in the model); evaluate(state, first, count) reads the
 /// derivatives it needs. Leaves no parameter seeded.
 void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                    const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                   const std::vector<const double*>& parameters,
+                   const std::vector<ParameterIndex>& parameters,
                    const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate);
 
 /// ∂g/∂(inputs) of g = evaluate(state) (`rows` entries, evaluate writing them into its second
 /// argument) at (q, q̇, q̈): one column per input.
 Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                            const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                           const std::vector<const double*>& parameters, Eigen::Index rows,
+                           const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
                            const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate);
 
 /// ∂f/∂(inputs) at (q, q̇, q̈, λ, t): coordinateCount() rows, one column per input.
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                  double t, const std::vector<AdInput>& inputs,
-                                 const std::vector<const double*>& parameters);
+                                 const std::vector<ParameterIndex>& parameters);
 
 }  // namespace mbsopt

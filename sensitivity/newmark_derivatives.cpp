@@ -38,7 +38,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       response_(simulated ? *simulated : evaluateDesign(problem, functionals, x)),
       scratch_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
-  parameter_addresses_ = parameterAddresses(model_, parameters_);
+  parameter_indices_ = parameterIndices(model_, parameters_);
   const std::vector<int>& free = model_.freeCoordinates();
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
@@ -76,7 +76,7 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   const Eigen::Index nf = freeCount();
   const Eigen::MatrixXd derivatives =
       residualJacobian(model_, scratch_.ws, tr.q.col(k), tr.v.col(k), tr.a.col(k), lambda, tr.time[k], step_inputs_,
-                       parameter_addresses_)(model_.freeCoordinates(), Eigen::all);
+                       parameter_indices_)(model_.freeCoordinates(), Eigen::all);
   geometryAt(k, scratch_);
   return {scratch_.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
           derivatives.rightCols(variableCount())};
@@ -117,7 +117,7 @@ TrajectoryDerivatives::PointDerivatives TrajectoryDerivatives::pointAt(Eigen::In
   // (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P).
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
   const Eigen::MatrixXd d = adJacobian(
-      s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, parameter_addresses_, rows,
+      s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, parameter_indices_, rows,
       [&](const SeededState& state, VectorX<AdScalar>& g) {
         g.resize(rows);
         forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);

@@ -92,7 +92,7 @@ class TrajectoryDerivatives {
   Model model_;
   DesignResponse response_;
   std::vector<std::string> parameters_;
-  std::vector<const double*> parameter_addresses_;  ///< their storage in model_, for seeding
+  std::vector<ParameterIndex> parameter_indices_;  ///< their indices in model_, for seeding
   /// The inputs of the AD passes, listed once: free q̇, free q, design parameters.
   std::vector<AdInput> step_inputs_;
 

@@ -4,10 +4,10 @@
 
 namespace mbsopt {
 
-std::vector<const double*> parameterAddresses(const Model& model, const std::vector<std::string>& parameters) {
-  std::vector<const double*> out;
+std::vector<ParameterIndex> parameterIndices(const Model& model, const std::vector<std::string>& parameters) {
+  std::vector<ParameterIndex> out;
   out.reserve(parameters.size());
-  for (const std::string& name : parameters) out.push_back(&model.parameterReference(name));
+  for (const std::string& name : parameters) out.push_back(model.parameterIndex(name));
   return out;
 }
 
@@ -16,7 +16,7 @@ Eigen::MatrixXd parameterJacobian(const Model& model, Workspace<AdScalar>& ws, c
                                   double t, const std::vector<std::string>& parameters) {
   // The state is constant in these passes; only the parameters carry derivatives.
   return residualJacobian(model, ws, q, v, a, lambda, t, parameterInputs(parameters.size()),
-                          parameterAddresses(model, parameters));
+                          parameterIndices(model, parameters));
 }
 
 }  // namespace mbsopt

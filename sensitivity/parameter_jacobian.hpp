@@ -13,8 +13,8 @@
 
 namespace mbsopt {
 
-/// The storage in `model` of each named parameter, for seeding it (Workspace::parameter_seeds).
-std::vector<const double*> parameterAddresses(const Model& model, const std::vector<std::string>& parameters);
+/// The index in `model` of each named parameter, for seeding it (Workspace::parameter_seeds).
+std::vector<ParameterIndex> parameterIndices(const Model& model, const std::vector<std::string>& parameters);
 
 /// n × p, one column per parameter (every coordinate's row, driven ones included).
 Eigen::MatrixXd parameterJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,

@@ -23,10 +23,11 @@ inline Energy mechanicalEnergy(const Model& model, Workspace<double>& ws, const 
     const auto k = static_cast<std::size_t>(body.frame);
     const Eigen::Matrix3d& R = ws.rotation[k];
     const Eigen::Vector3d& w = ws.angular_velocity[k];
-    const Eigen::Vector3d c = R * body.centre_of_mass;
+    const Eigen::Vector3d c = R * model.centreOfMass(body);
     const Eigen::Vector3d v_c = ws.velocity[k] + w.cross(c);
-    energy.kinetic += 0.5 * body.mass * v_c.squaredNorm() + 0.5 * w.dot(R * body.inertia * R.transpose() * w);
-    energy.potential -= body.mass * model.gravity().dot(ws.position[k] + c);
+    const double mass = model.value(body.mass);
+    energy.kinetic += 0.5 * mass * v_c.squaredNorm() + 0.5 * w.dot(R * model.inertia(body) * R.transpose() * w);
+    energy.potential -= mass * model.gravity().dot(ws.position[k] + c);
   }
   return energy;
 }

@@ -165,7 +165,7 @@ TEST(IntegratorErrors, ModelBuilderRejectsBadInput) {
   EXPECT_THROW(model.parameter("no_such.parameter"), std::invalid_argument);
   model.addJointSpringDamper("spring", "hinge", 5.0, 1.0);
   model.setParameter("spring.k", 7.0);
-  EXPECT_EQ(std::get<JointSpringDamper>(model.forces()[0]).stiffness, 7.0);
+  EXPECT_EQ(model.value(std::get<JointSpringDamper>(model.forces()[0]).stiffness), 7.0);
 }
 
 // Every numeric parameter has a stable dotted name that reads and writes the model.
@@ -182,11 +182,42 @@ TEST(ModelParameters, DottedNamesAddressEveryForceAndBodyParameter) {
   EXPECT_EQ(model.parameter("spring.rest"), 0.25);
   EXPECT_EQ(model.parameter("strut.rest_length"), 1.5);
   model.setParameter("bob.mass", 3.0);
-  EXPECT_EQ(model.bodies()[0].mass, 3.0);
+  EXPECT_EQ(model.value(model.bodies()[0].mass), 3.0);
   // The builder's checks still hold, and a refused value leaves the model unchanged.
   EXPECT_THROW(model.setParameter("bob.mass", -1.0), std::invalid_argument);
   EXPECT_THROW(model.setParameter("bob.Izz", -5.0), std::invalid_argument);
   EXPECT_THROW(model.setParameter("spring.k", std::numeric_limits<double>::infinity()), std::invalid_argument);
-  EXPECT_EQ(model.bodies()[0].mass, 3.0);
+  EXPECT_EQ(model.value(model.bodies()[0].mass), 3.0);
   EXPECT_EQ(model.parameter("spring.k"), 5.0);
+}
+
+// Elements hold indices into the model's parameter vector: the names list them in index order,
+// a copy of the model reads its own values through the same indices, and a time input is a
+// parameter only while it is constant.
+TEST(ModelParameters, IndicesFollowTheNamesAndSurviveACopy) {
+  Model model;
+  const FrameIndex hinge = model.addRevolute("hinge", Model::ground, kZ);
+  model.addBody("bob", hinge, 2.0, kX, kInertia);
+  model.addJointSpringDamper("spring", "hinge", 5.0, 1.0, 0.25);
+  model.addGuidanceSpring("guide", "hinge", 1.0, 0.0, TimeFunction::harmonic(0.1, 2.0));
+  model.addJointActuation("push", "hinge", TimeFunction::constant(4.0));
+  const std::vector<std::string>& names = model.parameterNames();
+  ASSERT_EQ(static_cast<int>(names.size()), model.parameterCount());
+  for (int i = 0; i < model.parameterCount(); ++i)
+    EXPECT_EQ(model.parameterIndex(names[static_cast<std::size_t>(i)]), static_cast<ParameterIndex>(i));
+  const auto& guide = std::get<JointSpringDamper>(model.forces()[1]);
+  EXPECT_FALSE(guide.rest.parameter.has_value());  // a moving target is no parameter
+  EXPECT_EQ(std::find(names.begin(), names.end(), "guide.rest"), names.end());
+  EXPECT_DOUBLE_EQ(model.value(guide.rest, 0.5), 0.1 * std::sin(1.0));
+  const auto& push = std::get<JointActuation>(model.forces()[2]);
+  ASSERT_TRUE(push.force.parameter.has_value());
+  EXPECT_EQ(model.value(push.force, 0.5), 4.0);
+  Model copy = model;
+  copy.setParameter("push.value", 6.0);
+  copy.setParameter("bob.com.x", 0.5);
+  EXPECT_EQ(copy.value(push.force, 0.5), 6.0);  // the original's element, the copy's vector
+  EXPECT_EQ(model.value(push.force, 0.5), 4.0);
+  EXPECT_EQ(copy.centreOfMass(copy.bodies()[0]), Eigen::Vector3d(0.5, 0.0, 0.0));
+  EXPECT_EQ(model.centreOfMass(model.bodies()[0]), kX);
+  EXPECT_EQ(copy.inertia(copy.bodies()[0]), kInertia);
 }

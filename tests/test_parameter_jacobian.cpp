@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include "dynamics/residual.hpp"
+#include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
+#include "sensitivity/newmark_derivatives.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
+#include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
 namespace {
@@ -64,6 +67,22 @@ TEST(ParameterJacobian, ForceElementsAndGravityMatchCentralDifferences) {
   model.addJointActuation("motor", "shoulder", TimeFunction::constant(1.5));
   const Eigen::VectorXd q = Eigen::Vector2d(0.4, -0.7), v = Eigen::Vector2d(1.1, -0.6), a = Eigen::Vector2d(-2.0, 3.0);
   expectCentralDifferences(model, q, v, a, Eigen::VectorXd(), 0.3);
+}
+
+// Parameters are seeded by their index in the model, not by the address of their storage: a copy
+// of the step derivatives, which holds a model of its own, gives the original's ∂f/∂b (seeded by
+// address, the copy seeded the original's storage and read zero derivatives).
+TEST(ParameterJacobian, ACopyOfTheStepDerivativesSeedsItsOwnModel) {
+  SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
+  source.text += test::kFourBarDesign;
+  const DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.05}});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  TrajectoryDerivatives original(problem, functionals, initialPoint(problem));
+  TrajectoryDerivatives copy(original);
+  const Eigen::Index k = original.timePoints() - 1;
+  const Eigen::MatrixXd expected = original.step(k).parameters;
+  ASSERT_GT(expected.cwiseAbs().maxCoeff(), 0.0);  // the masses and the centre of mass act on the motion
+  EXPECT_EQ(copy.step(k).parameters, expected);
 }
 
 }  // namespace

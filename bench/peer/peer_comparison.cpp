@@ -76,12 +76,10 @@ struct Mechanism {
 peer::Bar barOf(const mbsopt::Model& model, const std::string& name) {
   for (const mbsopt::Body& body : model.bodies()) {
     if (body.name != name) continue;
-    const Eigen::Matrix3d& i = body.inertia;
-    if (i(0, 1) != 0.0 || i(0, 2) != 0.0 || i(1, 2) != 0.0)
+    if (!body.products_of_inertia.isZero(0.0))
       throw std::runtime_error("body '" + name + "': products of inertia are not supported here");
-    return peer::Bar{body.mass,
-                     {body.centre_of_mass.x(), body.centre_of_mass.y(), body.centre_of_mass.z()},
-                     {i(0, 0), i(1, 1), i(2, 2)}};
+    const Eigen::Vector3d com = model.centreOfMass(body), moments = model.vector(body.moments_of_inertia);
+    return peer::Bar{model.value(body.mass), {com.x(), com.y(), com.z()}, {moments.x(), moments.y(), moments.z()}};
   }
   throw std::runtime_error("no body '" + name + "' in the four-bar scene");
 }
