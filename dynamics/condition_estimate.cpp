@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "dynamics/lu_solve.hpp"
+
 namespace mbsopt {
 
 namespace {
@@ -11,18 +13,6 @@ constexpr int kMaxIterations = 5;  // LAPACK's ITMAX
 double signOf(double v) { return v >= 0.0 ? 1.0 : -1.0; }
 
 }  // namespace
-
-void ConditionEstimator::solveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b) {
-  // Aᵀ = Uᵀ Lᵀ P: Uᵀ w = b forward, Lᵀ u = w backward (dot products down U's and L's columns, which
-  // are contiguous), then z = Pᵀ u into another buffer (Eigen's lu.transpose().solve() permutes in
-  // place, which allocates a mask).
-  const Eigen::MatrixXd& f = lu.matrixLU();
-  const Eigen::Index n = f.rows();
-  w_ = b;
-  for (Eigen::Index i = 0; i < n; ++i) w_[i] = (w_[i] - f.col(i).head(i).dot(w_.head(i))) / f(i, i);
-  for (Eigen::Index i = n - 1; i-- > 0;) w_[i] -= f.col(i).tail(n - 1 - i).dot(w_.tail(n - 1 - i));
-  z_.noalias() = lu.permutationP().transpose() * w_;
-}
 
 double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
                                                const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
@@ -36,7 +26,7 @@ double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
   double estimate = 0.0;
   Eigen::Index previous_vertex = -1;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    y_ = lu.solve(x_);  // into a buffer of its size: no allocation
+    luSolve(lu, x_, y_);
     if (!y_.allFinite()) return 0.0;
     const double candidate = y_.lpNorm<1>();
     if (iteration > 0 && candidate <= estimate) break;  // no ascent: a local maximum
@@ -44,7 +34,7 @@ double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
     // The same signs as at the last vertex: the gradient, and so the next vertex, would repeat.
     if (iteration > 0 && (y_.array() >= 0.0).cwiseEqual(sign_.array() >= 0.0).all()) break;
     sign_ = y_.unaryExpr(&signOf);
-    solveTransposed(lu, sign_);  // z = A⁻ᵀ sign(y), the gradient of ‖A⁻¹x‖₁ at x
+    luSolveTransposed(lu, sign_, w_, z_);  // z = A⁻ᵀ sign(y), the gradient of ‖A⁻¹x‖₁ at x
     if (!z_.allFinite()) return 0.0;
     Eigen::Index vertex = 0;
     z_.cwiseAbs().maxCoeff(&vertex);
@@ -56,7 +46,7 @@ double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
   // alternating signs, scaled so that 2‖A⁻¹x‖₁/(3n) is a lower bound of ‖A⁻¹‖₁ too.
   for (Eigen::Index i = 0; i < n; ++i)
     x_[i] = (i % 2 == 0 ? 1.0 : -1.0) * (1.0 + (n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 0.0));
-  y_ = lu.solve(x_);
+  luSolve(lu, x_, y_);
   if (!y_.allFinite()) return 0.0;
   estimate = std::max(estimate, 2.0 * y_.lpNorm<1>() / (3.0 * static_cast<double>(n)));
   return estimate > 0.0 ? 1.0 / (norm * estimate) : 0.0;

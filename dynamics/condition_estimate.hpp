@@ -19,9 +19,6 @@ class ConditionEstimator {
   double reciprocalCondition(const Eigen::MatrixXd& a, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu);
 
  private:
-  /// z_ = A⁻ᵀ b.
-  void solveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b);
-
   Eigen::VectorXd x_, y_, z_, w_, sign_;
 };
 

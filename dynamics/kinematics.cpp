@@ -69,7 +69,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
 }
 
 template <class Scalar>
-void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
+void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
@@ -121,10 +121,14 @@ template <class Scalar>
 void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                        const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level) {
   const bool rates = level != KinematicsLevel::Position;
-  frameGeometry(model, ws, q, rates);
+  geometry(model, ws, q, rates);
   if (rates) frameRates(model, ws, v, a, level);
 }
 
+template <class Scalar>
+void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q) {
+  geometry(model, ws, q, true);
+}
 
 void pathFromGround(const Model& model, FrameIndex frame, std::vector<char>& on_path) {
   on_path.assign(model.elements().size(), 0);
@@ -151,6 +155,7 @@ template void frameRates<double>(const Model&, Workspace<double>&, const VectorX
                                  KinematicsLevel);
 template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                   const VectorX<AdScalar>&, KinematicsLevel);
+template void frameGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -16,6 +16,11 @@ template <class Scalar>
 void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                        const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level);
 
+/// The geometric stage of forwardKinematics alone: rotations and positions of every frame, and the
+/// joint axes and biases the rate stage (frameRates) and the Jacobians read; no frame rates.
+template <class Scalar>
+void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q);
+
 /// The rate stage of forwardKinematics alone: frame velocities (20)-(21) and, at Acceleration level,
 /// accelerations for joint rates v and accelerations a, reusing the rotations, positions, joint
 /// axes and biases already in ws (forwardKinematics at Velocity level or above, at the same q).
@@ -36,6 +41,7 @@ extern template void frameRates<double>(const Model&, Workspace<double>&, const 
                                         const VectorX<double>&, KinematicsLevel);
 extern template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                           const VectorX<AdScalar>&, KinematicsLevel);
+extern template void frameGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 extern template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                                const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
 extern template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -135,7 +135,7 @@ void NewmarkIntegrator::setDriven(double t) {
 
 void NewmarkIntegrator::updateConstraintPartition() {
   if (model_.constraintCount() == 0) B_free_.resize(0, static_cast<Eigen::Index>(free_.size()));
-  else constraintJacobian(model_, ws_, q_, free_, b_at_jacobian_, B_free_);
+  else constraintJacobian(model_, ws_, q_, free_, position_closure_, B_free_);
   partition_.setConstraintJacobian(B_free_);
   reduced_dirty_ = true;
 }
@@ -168,7 +168,7 @@ void NewmarkIntegrator::updateMassMatrix() {
 void NewmarkIntegrator::checkInitialClosure() const {
   // Needs updateConstraintPartition at q0 (b and the geometry in ws_).
   if (model_.constraintCount() == 0) return;
-  const double error = b_at_jacobian_.cwiseAbs().maxCoeff();
+  const double error = position_closure_.cwiseAbs().maxCoeff();
   if (!(error <= 1e-9 * (1.0 + q_.cwiseAbs().maxCoeff())))
     throw std::invalid_argument("Newmark: the initial coordinates do not close the loops (closure error " +
                                 std::to_string(error) + "); assemble() them first");
@@ -337,11 +337,10 @@ void NewmarkIntegrator::projectOntoConstraints() {
 }
 
 void NewmarkIntegrator::measureClosure() {
-  // Needs ws_ to hold the positions at q.
+  // Needs position_closure_ to hold b(q) (updateConstraintPartition computes it).
   closure_error_ = 0.0;
   if (model_.constraintCount() == 0) return;
-  closureEquations(model_, ws_, Derivative::Position, closure_);
-  closure_error_ = closure_.cwiseAbs().maxCoeff();
+  closure_error_ = position_closure_.cwiseAbs().maxCoeff();
   stats_.max_closure_error = std::max(stats_.max_closure_error, closure_error_);
 }
 
@@ -401,6 +400,7 @@ void NewmarkIntegrator::step() {
     if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);
   } else {
     forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
+    if (model_.constraintCount() > 0) closureEquations(model_, ws_, Derivative::Position, position_closure_);
   }
   measureClosure();
   checkStep();
@@ -408,13 +408,13 @@ void NewmarkIntegrator::step() {
 }
 
 void NewmarkIntegrator::checkStep() {
-  // Needs ws_ to hold the positions at q and closure_ the position-level closure rows (measureClosure).
+  // Needs ws_ to hold the positions at q and position_closure_ the closure rows b(q).
   stats_.max_relative_residual =
       std::max(stats_.max_relative_residual, last_relative_residual_ * std::numeric_limits<double>::epsilon());
   if (!q_.allFinite() || !v_.allFinite() || !a_.allFinite() || !lambda_.allFinite())
     fail("the state is not finite (NaN or infinity)", r_free_);
   if (model_.constraintCount() > 0)
-    if (const StepDefect defect = closure_check_.check(model_, ws_, closure_, closureTolerance(settings_));
+    if (const StepDefect defect = closure_check_.check(model_, ws_, position_closure_, closureTolerance(settings_));
         !defect.reason.empty())
       throw SimulationError(defect.reason, t_, step_count_, r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0,
                             defect.element);

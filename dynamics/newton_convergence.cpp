@@ -42,20 +42,24 @@ NewtonRoundoff::NewtonRoundoff(const Model& model)
     : reach_(static_cast<std::size_t>(model.frameCount()), 0.0),
       depth_(reach_.size(), 0.0),
       force_(reach_.size(), 0.0),
-      moment_(reach_.size(), 0.0) {}
+      moment_(reach_.size(), 0.0) {
+  for (const Body& body : model.bodies())
+    bodies_.push_back({model.value(body.mass), model.centreOfMass(body).norm(), model.inertia(body).cwiseAbs().sum()});
+}
 
 void NewtonRoundoff::setWrenchMagnitudes(const Model& model, const Workspace<double>& ws,
                                          const Eigen::VectorXd& lambda) {
   std::fill(force_.begin(), force_.end(), 0.0);
   std::fill(moment_.begin(), moment_.end(), 0.0);
   const double g = model.gravity().norm();
-  for (const Body& body : model.bodies()) {  // as addBodyWrenches, on magnitudes
-    const auto k = static_cast<std::size_t>(body.frame);
-    const double c = model.centreOfMass(body).norm(), w = ws.angular_velocity[k].norm();
-    const double alpha = ws.angular_acceleration[k].norm(), inertia = model.inertia(body).cwiseAbs().sum();
-    const double force = model.value(body.mass) * (ws.acceleration[k].norm() + alpha * c + w * w * c + g);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {  // as addBodyWrenches, on magnitudes
+    const auto k = static_cast<std::size_t>(model.bodies()[i].frame);
+    const BodyMagnitudes& body = bodies_[i];
+    const double c = body.centre_of_mass, w = ws.angular_velocity[k].norm();
+    const double alpha = ws.angular_acceleration[k].norm();
+    const double force = body.mass * (ws.acceleration[k].norm() + alpha * c + w * w * c + g);
     force_[k] += force;
-    moment_[k] += inertia * (alpha + w * w) + (c + reach_[k]) * force;
+    moment_[k] += body.inertia * (alpha + w * w) + (c + reach_[k]) * force;
   }
   Eigen::Index row = 0;
   for (const CutJoint& cut : model.cuts()) {  // as addConstraintWrenches: λ on both frames

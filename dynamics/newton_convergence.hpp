@@ -41,6 +41,7 @@ class NewtonRoundoff {
   /// Safety factor c on ε·scale: each row is a sum of a few dozen rounded terms.
   static constexpr double kFactor = 64.0;
 
+  /// Reads the bodies' parameters once: `model` must stay unchanged while this is used with it.
   explicit NewtonRoundoff(const Model& model);
 
   /// The largest ratio |row| / (ε · its scale) over the free rows r of the residual and the closure
@@ -56,6 +57,11 @@ class NewtonRoundoff {
 
   std::vector<double> reach_, depth_;         ///< per frame
   std::vector<double> force_, moment_;        ///< per frame: magnitudes of the terms of its wrench
+  /// Per body: its mass, |c| (centre of mass from the frame origin) and Σ|I_ij|.
+  struct BodyMagnitudes {
+    double mass, centre_of_mass, inertia;
+  };
+  std::vector<BodyMagnitudes> bodies_;
 };
 
 }  // namespace mbsopt

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/lu_solve.hpp"
+
 namespace mbsopt {
 
 void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
@@ -87,7 +89,7 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
   if (v2_.cols() > 0) {
     work_.noalias() = r + J_.lazyProduct(dx);
     reduced_rhs_.noalias() = -v2_.transpose().lazyProduct(work_);
-    x_n_ = reduced_.solve(reduced_rhs_);  // not in place: that would allocate a permutation mask
+    luSolve(reduced_, reduced_rhs_, x_n_);
     dx.noalias() += v2_.lazyProduct(x_n_);
   }
   work_.noalias() = r + J_.lazyProduct(dx);

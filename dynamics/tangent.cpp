@@ -41,11 +41,10 @@ void tangentMatrices(const Model& model, Workspace<AdScalar>& ws, const Eigen::V
 void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
                         const std::vector<int>& columns, Eigen::VectorXd& b, Eigen::MatrixXd& B) {
   B.resize(model.constraintCount(), static_cast<Eigen::Index>(columns.size()));
-  thread_local Eigen::VectorXd rest, column;
+  thread_local Eigen::VectorXd column;
   thread_local std::vector<FrameIndex> cut_frames;
   thread_local std::vector<std::vector<char>> paths;  // of each cut frame, the elements that move it
-  rest.setZero(model.coordinateCount());
-  forwardKinematics(model, ws, q, rest, rest, KinematicsLevel::Velocity);  // rotations, positions, joint axes
+  frameGeometry(model, ws, q);  // rotations, positions, joint axes
   closureEquations(model, ws, Derivative::Position, b);
   // ḃ reads the rates of the frames the cuts join, and no other: per column, their unit-rate twists.
   cut_frames.clear();

@@ -9,11 +9,12 @@ namespace mbsopt {
 
 namespace {
 
-// 12-point Gauss-Legendre rule on [-1, 1] (nodes and weights, positive half).
-constexpr std::array<double, 6> kGaussNodes = {0.1252334085114689, 0.3678314989981802, 0.5873179542866175,
-                                               0.7699026741943047, 0.9041172563704749, 0.9815606342467192};
-constexpr std::array<double, 6> kGaussWeights = {0.2491470458134028, 0.2334925365383548, 0.2031674267230659,
-                                                 0.1600783285433462, 0.1069393259953184, 0.0471753363865118};
+// 6-point Gauss-Legendre rule on [-1, 1] (nodes and weights, positive half). On a panel of width w
+// whose tangent turns by θ ≤ 0.25 rad, the n-point rule integrates (cos ψ, sin ψ) with a relative
+// error of about θ^{2n} (n!)⁴ / ((2n + 1) ((2n)!)³) (the Gauss remainder with |d^{2n}/dx^{2n}| ≈
+// (θ/w)^{2n}): 1e-23 for n = 6, far below round-off; n = 4 would leave 1e-14.
+constexpr std::array<double, 3> kGaussNodes = {0.2386191860831969, 0.6612093864662645, 0.9324695142031521};
+constexpr std::array<double, 3> kGaussWeights = {0.4679139345726910, 0.3607615730481386, 0.1713244923791704};
 
 // sin(x)/x, accurate near 0.
 double sinc(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }

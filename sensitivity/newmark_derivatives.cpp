@@ -52,8 +52,7 @@ void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
     Eigen::VectorXd closure;  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
     mbsopt::constraintJacobian(model_, s.plain_ws, q, model_.freeCoordinates(), closure, s.jacobian);
   } else {
-    const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model_.coordinateCount());
-    forwardKinematics(model_, s.plain_ws, q, rest, rest, KinematicsLevel::Velocity);
+    frameGeometry(model_, s.plain_ws, q);
     s.jacobian.resize(0, freeCount());
   }
   massMatrix(model_, s.plain_ws, model_.freeCoordinates(), s.mass);
