@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Counts the instructions of one tramway simulation (12 s at h = 1 ms, default settings) under
+# valgrind's callgrind: a figure that does not move with the load of a shared machine, for comparing
+# two versions of the integrator where timings spread by ±30 %. Valgrind cannot run the default
+# -march=native build (AVX-512), so this configures a portable one in build/portable
+# (-DMBSOPT_NATIVE=OFF, Release, no tests) and builds bench_dynamics there. Only
+# NewmarkIntegrator::simulate and what it calls are counted (the scene's set-up is not).
+#
+#   scripts/count_instructions.sh              # configure, build (-j2), count
+#   scripts/count_instructions.sh --no-build   # count with the binary already built
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=1
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --no-build) build=0; shift ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
+    *) echo "count_instructions.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
+  esac
+done
+command -v valgrind > /dev/null || { echo "count_instructions.sh: valgrind is not installed (apt-get install valgrind)" >&2; exit 1; }
+if [ "$build" -eq 1 ]; then
+  cmake -S . -B build/portable -DCMAKE_BUILD_TYPE=Release -DMBSOPT_NATIVE=OFF -DMBSOPT_BUILD_TESTS=OFF > /dev/null
+  cmake --build build/portable --target bench_dynamics -j2
+fi
+out=build/portable/callgrind.tramway.out
+valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::NewmarkIntegrator::simulate*' \
+  build/portable/bench/bench_dynamics --benchmark_filter='TramwaySimulation/accept_by_rate:0' \
+  --benchmark_min_time=0.01 2> build/portable/callgrind.log > build/portable/callgrind.bench.txt
+# Under valgrind one simulation takes seconds, far above the minimum time: one iteration is run.
+iterations=$(awk '/^BM_TramwaySimulation/ {print $6}' build/portable/callgrind.bench.txt)
+[ "$iterations" = "1" ] || { echo "count_instructions.sh: expected one benchmark iteration, got '$iterations'" >&2; exit 1; }
+count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' build/portable/callgrind.log)
+[ -n "$count" ] || { echo "count_instructions.sh: callgrind reported no count (build/portable/callgrind.log)" >&2; exit 1; }
+echo "instructions in one tramway simulation (12000 steps): $count ($((count / 12000)) per step)"
+echo "per function: callgrind_annotate --inclusive=yes $out"
