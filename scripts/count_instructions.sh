@@ -10,14 +10,7 @@
 #   scripts/count_instructions.sh --no-build   # count with the binary already built
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=1
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
-    *) echo "count_instructions.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
-  esac
-done
+. scripts/lib/build_option.sh "$@"
 command -v valgrind > /dev/null || { echo "count_instructions.sh: valgrind is not installed (apt-get install valgrind)" >&2; exit 1; }
 if [ "$build" -eq 1 ]; then
   cmake -S . -B build/portable -DCMAKE_BUILD_TYPE=Release -DMBSOPT_NATIVE=OFF -DMBSOPT_BUILD_TESTS=OFF > /dev/null

@@ -10,14 +10,7 @@
 #   scripts/tsan.sh --no-build      # run the binary already built
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=1
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
-    *) echo "tsan.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
-  esac
-done
+. scripts/lib/build_option.sh "$@"
 if [ "$build" -eq 1 ]; then
   cmake --preset tsan > /dev/null
   cmake --build --preset tsan --target test_parallel_runs -j2
