@@ -32,9 +32,6 @@ class TimeFunction {
   double derivative(double t, int order) const;
 
   bool isConstant() const;
-  /// The constant term c_0 (a spring's rest value, a driver's initial offset), always stored.
-  double& constantTerm() { return coefficients_.front(); }
-  const double& constantTerm() const { return coefficients_.front(); }
 
  private:
   std::vector<double> coefficients_{0.0};
