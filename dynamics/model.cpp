@@ -79,9 +79,9 @@ ParameterVector3 Model::addParameters(const std::string& prefix, const char* con
 }
 
 TimeInput Model::timeInput(const std::string& name, TimeFunction function) {
-  TimeInput input{std::move(function), std::nullopt};
-  if (input.function.isConstant()) input.parameter = addParameter(name, input.function.value(0.0));
-  return input;
+  if (!function.isConstant()) return {std::move(function), std::nullopt};
+  // The value lives in the parameter vector alone; the function keeps only the (zero) rates.
+  return {TimeFunction(), addParameter(name, function.value(0.0))};
 }
 
 ParameterIndex Model::parameterIndex(std::string_view dotted_name) const {

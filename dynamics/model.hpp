@@ -68,8 +68,8 @@ struct Body {
 };
 
 /// A function of time that is a model parameter when it is constant (a spring's rest value, a
-/// constant actuation): `parameter` then indexes its value, and `function` is only read for its
-/// rates (zero). Model::value(input, t) evaluates it.
+/// constant actuation): `parameter` then indexes its value, and `function` is zero (it gives the
+/// rates, zero too). Model::value(input, t) evaluates it.
 struct TimeInput {
   TimeFunction function;
   std::optional<ParameterIndex> parameter;
