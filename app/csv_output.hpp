@@ -8,8 +8,8 @@
 
 namespace mbsopt {
 
-/// `sensors`: sensorHistory(model, trajectory). `every` ≥ 1: writes time points 0, every, 2·every, …
-/// and always the last one.
+/// `sensors`: rows = time points, columns = model sensors (Trajectory::sensors). `every` ≥ 1: writes
+/// time points 0, every, 2·every, … and always the last one.
 void writeTrajectoryCsv(const std::string& path, const Model& model, const Trajectory& trajectory,
                         const Eigen::MatrixXd& sensors, long every = 1);
 

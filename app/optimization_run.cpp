@@ -41,7 +41,7 @@ nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
   nlohmann::json out = nlohmann::json::object();
   for (const ConstraintFunctional& f : nlp.functionals()) {
     const Sensor& sensor = sensors[static_cast<std::size_t>(f.sensor)];
-    const double largest = response.sensors.col(f.sensor).cwiseAbs().maxCoeff();
+    const double largest = response.trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff();
     out[responseKey(sensor)] = isAngle(sensor) ? largest * 180.0 / std::numbers::pi : largest;
   }
   return out;
@@ -53,7 +53,7 @@ double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
   double excess = -std::numeric_limits<double>::infinity();
   for (const ResponseConstraint& c : problem.design.constraints) {
     const int index = sensorIndex(problem.scene.model, c.sensor);
-    const Eigen::VectorXd y = response.sensors.col(index);
+    const Eigen::VectorXd y = response.trajectory.sensors.col(index);
     double extreme = 0.0;
     if (c.of == ResponseMeasure::MaxAbs) extreme = y.cwiseAbs().maxCoeff();
     else if (c.of == ResponseMeasure::Max) extreme = y.maxCoeff();
@@ -127,8 +127,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.cost_response = responseKey(nlp.problem().scene.model.sensors()[static_cast<std::size_t>(cost_sensor)]);
   run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
   run.time = final.trajectory.time;
-  run.initial_history = initial.sensors.col(cost_sensor);
-  run.final_history = final.sensors.col(cost_sensor);
+  run.initial_history = initial.trajectory.sensors.col(cost_sensor);
+  run.final_history = final.trajectory.sensors.col(cost_sensor);
   return run;
 }
 

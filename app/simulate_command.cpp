@@ -9,7 +9,6 @@
 
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
-#include "dynamics/sensors.hpp"
 #include "problems/scene_text.hpp"
 
 namespace mbsopt {
@@ -76,7 +75,7 @@ void run(const SimulateOptions& options) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const Eigen::MatrixXd sensors = sensorHistory(scene.model, trajectory);
+  const Eigen::MatrixXd& sensors = trajectory.sensors;
   for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
     const Eigen::Index column = static_cast<Eigen::Index>(s);
     const std::string& name = scene.model.sensors()[s].name;

@@ -9,6 +9,7 @@
 #include "dynamics/closure.hpp"
 #include "dynamics/mass_matrix.hpp"
 #include "dynamics/residual.hpp"
+#include "dynamics/sensors.hpp"
 
 namespace mbsopt {
 
@@ -72,7 +73,8 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
 double trajectoryBytes(const Model& model, const NewmarkSettings& settings) {
   const double points = std::ceil(settings.end_time / settings.step) + 1.0;
   const double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
-                           static_cast<double>(model.constraintCount()) + 2.0 + 0.5;  // the count is an int
+                           static_cast<double>(model.constraintCount()) + static_cast<double>(model.sensors().size()) +
+                           2.0 + 0.5;  // the count is an int
   return points * per_point * sizeof(double);
 }
 
@@ -399,12 +401,19 @@ void NewmarkIntegrator::step() {
     projectOntoConstraints();
     if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);
   } else {
-    forwardKinematics(model_, ws_, q_, v_, a_, KinematicsLevel::Position);
+    frameGeometry(model_, ws_, q_);
     if (model_.constraintCount() > 0) closureEquations(model_, ws_, Derivative::Position, position_closure_);
   }
   measureClosure();
   checkStep();
   ++stats_.steps;
+}
+
+void NewmarkIntegrator::evaluateSensors(SensorRow values) {
+  // The geometry at q is in place (updateConstraintPartition or frameGeometry in step(), Newton's last
+  // residual in initialize()); the rates are those of the state after the projections.
+  frameRates(model_, ws_, v_, a_, KinematicsLevel::Acceleration);
+  sensorValues(model_, ws_, q_, v_, a_, lambda_, t_, values);
 }
 
 void NewmarkIntegrator::checkStep() {
@@ -440,6 +449,7 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
   out.lambda.resize(model_.constraintCount(), steps + 1);
   out.v_unprojected.resize(n, steps + 1);
   out.a_unprojected.resize(n, steps + 1);
+  out.sensors.resize(steps + 1, static_cast<Eigen::Index>(model_.sensors().size()));
   out.closure_error.resize(steps + 1);
   out.newton_iterations.resize(steps + 1);
   auto store = [&](long k, int iterations) {
@@ -452,6 +462,7 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
     out.a_unprojected.col(k) = a_unprojected_;
     out.closure_error[k] = closure_error_;
     out.newton_iterations[k] = iterations;
+    if (out.sensors.cols() > 0) evaluateSensors(out.sensors.row(k));
   };
   store(0, 0);
   for (long k = 1; k <= steps; ++k) {

@@ -107,12 +107,18 @@ struct IntegratorStatistics {
   double max_relative_residual = 0.0;
 };
 
+/// One time point's row of a sensor matrix (rows = time points, columns = sensors).
+using SensorRow = Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
+
 struct Trajectory {
   Eigen::VectorXd time;                   ///< one entry per stored point (t₀ and every step)
   Eigen::MatrixXd q, v, a, lambda;        ///< one column per time point
   /// q̇ and q̈ as Newton left them, before the projections onto the velocity and acceleration
   /// constraints (equal to v, a without cut joints): the state the exact gradients linearise about.
   Eigen::MatrixXd v_unprojected, a_unprojected;
+  /// Every model sensor at every time point, evaluated in the step on its kinematics: rows = time
+  /// points, columns = model sensors, the values sensorHistory(model, trajectory) computes again.
+  Eigen::MatrixXd sensors;
   Eigen::VectorXd closure_error;          ///< ‖b(q)‖∞ per time point
   Eigen::VectorXi newton_iterations;      ///< per time point (0 at t₀)
   IntegratorStatistics statistics;
@@ -159,6 +165,9 @@ class NewmarkIntegrator {
   void evaluateResidual();    ///< f_ and its free rows r_free_ at the current state
   void applyNewmarkUpdate();  ///< q, q̇ of the free coordinates from q̈ and the predictors (32)
   void measureClosure();
+  /// Every sensor at the current state, into `values`. Needs ws_ to hold the geometry with the joint
+  /// axes at q_, as initialize() and step() leave it.
+  void evaluateSensors(SensorRow values);
   /// The checks of run_checks.hpp after a step; throws SimulationError when one fails.
   void checkStep();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;

@@ -75,6 +75,15 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
       sensor.kind);
 }
 
+void sensorValues(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                  const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, SensorRow values) {
+  for (std::size_t s = 0; s < model.sensors().size(); ++s) {
+    const Sensor& sensor = model.sensors()[s];
+    values[static_cast<Eigen::Index>(s)] =
+        isStateSensor(sensor) ? sensorValue(sensor, ws, q, v, a) : systemSensorValue(model, sensor, ws, q, lambda, t);
+  }
+}
+
 Eigen::MatrixXd sensorHistory(const Model& model, const Trajectory& trajectory) {
   Workspace<double> ws(model);
   const Eigen::Index points = trajectory.time.size();
@@ -86,12 +95,7 @@ Eigen::MatrixXd sensorHistory(const Model& model, const Trajectory& trajectory) 
     a = trajectory.a.col(k);
     if (trajectory.lambda.rows() > 0) lambda = trajectory.lambda.col(k);
     forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
-    for (std::size_t s = 0; s < model.sensors().size(); ++s) {
-      const Sensor& sensor = model.sensors()[s];
-      out(k, static_cast<Eigen::Index>(s)) = isStateSensor(sensor)
-                                                  ? sensorValue(sensor, ws, q, v, a)
-                                                  : systemSensorValue(model, sensor, ws, q, lambda, trajectory.time[k]);
-    }
+    sensorValues(model, ws, q, v, a, lambda, trajectory.time[k], out.row(k));
   }
   return out;
 }

@@ -19,8 +19,15 @@ template <class Scalar>
 Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                    const VectorX<Scalar>& v, const VectorX<Scalar>& a);
 
+/// Every sensor of the model at one state, one entry per sensor into `values`: ws must hold
+/// forwardKinematics at Acceleration level for (q, v, a); λ and t serve the energy and cut-reaction
+/// sensors.
+void sensorValues(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                  const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, SensorRow values);
+
 /// Every sensor at every time point of a trajectory (its q, q̇, q̈, λ and t): rows = time points,
-/// columns = model sensors.
+/// columns = model sensors. NewmarkIntegrator::simulate records the same values in the step
+/// (Trajectory::sensors); this recomputes the kinematics of each stored state.
 Eigen::MatrixXd sensorHistory(const Model& model, const Trajectory& trajectory);
 
 extern template double sensorValue<double>(const Sensor&, const Workspace<double>&, const VectorX<double>&,

@@ -4,7 +4,6 @@
 #include <optional>
 #include <stdexcept>
 
-#include "dynamics/sensors.hpp"
 #include "sensitivity/parallel_runs.hpp"
 
 namespace mbsopt {
@@ -25,11 +24,10 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
   DesignResponse out;
   out.cost = applyDesign(problem, x, model);
   out.trajectory = NewmarkIntegrator(model, scene.settings).simulate(scene.q0, scene.v0);
-  out.sensors = sensorHistory(model, out.trajectory);
   out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
   for (std::size_t j = 0; j < functionals.size(); ++j) {
     const ConstraintFunctional& f = functionals[j];
-    out.functionals.push_back(evaluateTimeFunctional(f.measure, out.trajectory.time, violation(f, out.sensors, out.cost),
+    out.functionals.push_back(evaluateTimeFunctional(f.measure, out.trajectory.time, violation(f, out.trajectory.sensors, out.cost),
                                                      problem.design.transcription.rho));
     out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - f.tolerance;
   }

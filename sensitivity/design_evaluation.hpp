@@ -15,8 +15,7 @@ namespace mbsopt {
 struct DesignResponse {
   double cost = 0.0;            ///< b_{k+1} [units of the cost sensor]
   Eigen::VectorXd constraints;  ///< measure(φ_j) − tolerance, each ≤ 0 when feasible
-  Trajectory trajectory;
-  Eigen::MatrixXd sensors;  ///< sensorHistory of the trajectory
+  Trajectory trajectory;        ///< with its sensors (Trajectory::sensors)
   /// Per constraint: its value and ∂measure/∂φ_k at every time point (what the gradient methods
   /// chain with ∂φ/∂(q, q̇, q̈)).
   std::vector<TimeFunctionalValue> functionals;

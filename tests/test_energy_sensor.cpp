@@ -7,6 +7,8 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <string>
+#include <utility>
 
 #include "dynamics/energy.hpp"
 #include "dynamics/sensors.hpp"
@@ -152,6 +154,24 @@ TEST(EnergySensor, DesignProblemRefusesItAsCost) {
     EXPECT_EQ(e.line(), 11) << e.what();
     EXPECT_NE(e.reason().find("sensor 'E' is an energy sensor"), std::string::npos) << e.what();
     EXPECT_NE(e.reason().find("cannot be a cost or a constraint"), std::string::npos) << e.what();
+  }
+}
+
+// The energy and cut-reaction sensors read the model's parameters and λ besides the kinematics; the
+// step records them on the kinematics it already has, sensorHistory computes every stored state's
+// kinematics again. Same arithmetic on the same state: equal to the last bit, on a closed loop (the
+// four-bar, whose step projects its rates) as on an open chain (the pendulum).
+TEST(EnergySensor, RecordedInTheStepAsSensorHistoryComputesThem) {
+  const std::string extra =
+      "  - {name: E, type: energy}\n  - {name: T, type: energy, part: kinetic}\n";
+  for (const auto& [name, more] : {std::pair<const char*, std::string>{"pendulum", ""},
+                                   {"four_bar", "  - {name: F, type: cut_force, cut: loop, component: y}\n"}}) {
+    const Scene scene = withSensors(name, extra + more).scene;
+    const Trajectory trajectory = NewmarkIntegrator(scene.model, scene.settings).simulate(scene.q0, scene.v0);
+    const Eigen::MatrixXd recomputed = sensorHistory(scene.model, trajectory);
+    ASSERT_EQ(trajectory.sensors.rows(), recomputed.rows()) << name;
+    ASSERT_EQ(trajectory.sensors.cols(), recomputed.cols()) << name;
+    EXPECT_EQ((trajectory.sensors - recomputed).cwiseAbs().maxCoeff(), 0.0) << name;
   }
 }
 

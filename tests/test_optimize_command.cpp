@@ -71,7 +71,7 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   for (std::size_t i = 0; i < design.size(); ++i) x[static_cast<Eigen::Index>(i)] = design[i] / problem.design.variables[i].scale;
   const DesignResponse check = evaluateDesign(problem, transcribe(problem), x);
   const int sensor = 0;  // tip_acceleration, the cost's sensor
-  const double expected = check.sensors.col(sensor).cwiseAbs().maxCoeff();
+  const double expected = check.trajectory.sensors.col(sensor).cwiseAbs().maxCoeff();
   EXPECT_NEAR(r["responses"]["max_abs_tip_acceleration"].get<double>(), expected, 1e-9 * expected);
   std::filesystem::remove_all(directory);
 }

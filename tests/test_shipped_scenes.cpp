@@ -181,6 +181,17 @@ TEST_P(EveryShippedScene, OnlyTheSliderCrankStartsOffItsLoop) {
   }
 }
 
+TEST_P(EveryShippedScene, SensorsRecordedInTheStepAreThoseOfTheStoredStates) {
+  // sensorHistory computes the kinematics of every stored (q, q̇, q̈) again from scratch; the step
+  // evaluates the sensors on the geometry it already has. Same arithmetic on the same state: the
+  // values must agree to the last bit.
+  const ShippedRun& run = shipped(GetParam());
+  ASSERT_GT(run.sensors.cols(), 0);
+  ASSERT_EQ(run.trajectory.sensors.rows(), run.sensors.rows());
+  ASSERT_EQ(run.trajectory.sensors.cols(), run.sensors.cols());
+  EXPECT_EQ((run.trajectory.sensors - run.sensors).cwiseAbs().maxCoeff(), 0.0);
+}
+
 // ============================== pendulum ==============================
 // pendulum.yaml: m = 1 kg at L = 1 m, I_c = 0.001 kg m², released from rest at φ₀ = 90°.
 
