@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Counts the instructions of one tramway simulation (12 s at h = 1 ms, default settings) under
-# valgrind's callgrind: a figure that does not move with the load of a shared machine, for comparing
-# two versions of the integrator where timings spread by ±30 %. Valgrind cannot run the default
+# Counts the instructions of one tramway simulation (12 s at h = 1 ms, default settings) and of one
+# design evaluation of the tramway problem (the simulation with its sensors, then the functionals)
+# under valgrind's callgrind: figures that do not move with the load of a shared machine, for
+# comparing two versions where timings spread by ±30 %. Valgrind cannot run the default
 # -march=native build (AVX-512), so this configures a portable one in build/portable
-# (-DMBSOPT_NATIVE=OFF, Release, no tests) and builds bench_dynamics there. Only
-# NewmarkIntegrator::simulate and what it calls are counted (the scene's set-up is not).
+# (-DMBSOPT_NATIVE=OFF, Release, no tests) and builds bench_dynamics and bench_gradients there. Only
+# NewmarkIntegrator::simulate, or evaluateDesign, and what they call are counted.
 #
 #   scripts/count_instructions.sh              # configure, build (-j2), count
 #   scripts/count_instructions.sh --no-build   # count with the binary already built
@@ -14,7 +15,7 @@ cd "$(dirname "$0")/.."
 command -v valgrind > /dev/null || { echo "count_instructions.sh: valgrind is not installed (apt-get install valgrind)" >&2; exit 1; }
 if [ "$build" -eq 1 ]; then
   cmake -S . -B build/portable -DCMAKE_BUILD_TYPE=Release -DMBSOPT_NATIVE=OFF -DMBSOPT_BUILD_TESTS=OFF > /dev/null
-  cmake --build build/portable --target bench_dynamics -j2
+  cmake --build build/portable --target bench_dynamics bench_gradients -j2
 fi
 out=build/portable/callgrind.tramway.out
 valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::NewmarkIntegrator::simulate*' \
@@ -26,4 +27,20 @@ iterations=$(awk '/^BM_TramwaySimulation/ {print $6}' build/portable/callgrind.b
 count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' build/portable/callgrind.log)
 [ -n "$count" ] || { echo "count_instructions.sh: callgrind reported no count (build/portable/callgrind.log)" >&2; exit 1; }
 echo "instructions in one tramway simulation (12000 steps): $count ($((count / 12000)) per step)"
+echo "per function: callgrind_annotate --inclusive=yes $out"
+
+# The design evaluations: bench_gradients' TramwaySimulation times evaluateDesign, and its set-up
+# evaluates the point a few times more; the total is divided by the calls of simulate() that
+# callgrind recorded (one per evaluation).
+out=build/portable/callgrind.evaluation.out
+valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::evaluateDesign*' \
+  build/portable/bench/bench_gradients --benchmark_filter='TramwaySimulation' \
+  --benchmark_min_time=0.01 2> build/portable/callgrind.evaluation.log > /dev/null
+count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' build/portable/callgrind.evaluation.log)
+calls=$(awk '/^c?fn=\([0-9]+\) mbsopt::NewmarkIntegrator::simulate\([^{]*\)$/ { split($1, p, /[()]/); id = p[2] }
+             /^cfn=/ { cur = $1; sub(/^cfn=\(/, "", cur); sub(/\).*/, "", cur); want = (id != "" && cur == id); next }
+             /^calls=/ { if (want) { split($1, c, "="); n += c[2] }; want = 0 }
+             END { print n + 0 }' "$out")
+[ -n "$count" ] && [ "$calls" -gt 0 ] || { echo "count_instructions.sh: no design evaluation counted (build/portable/callgrind.evaluation.log)" >&2; exit 1; }
+echo "instructions in one tramway design evaluation: $((count / calls)) (over $calls evaluations)"
 echo "per function: callgrind_annotate --inclusive=yes $out"
