@@ -61,8 +61,8 @@ void closureEquations(const Model& model, const Workspace<Scalar>& ws, Derivativ
         },
         [&](const Orthogonality& o) {
           const auto ia = static_cast<std::size_t>(o.frame_a), ib = static_cast<std::size_t>(o.frame_b);
-          const Vector3<Scalar> u = ws.rotation[ia] * o.u_local.template cast<Scalar>();
-          const Vector3<Scalar> w = ws.rotation[ib] * o.w_local.template cast<Scalar>();
+          const Vector3<Scalar> u = ws.rotation[ia] * o.u_local;
+          const Vector3<Scalar> w = ws.rotation[ib] * o.w_local;
           if (level == Derivative::Position) {
             out[row++] = u.dot(w);
             return;
@@ -95,8 +95,8 @@ void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const Vect
         },
         [&](const Orthogonality& o) {
           const auto ia = static_cast<std::size_t>(o.frame_a), ib = static_cast<std::size_t>(o.frame_b);
-          const Vector3<Scalar> u = ws.rotation[ia] * o.u_local.template cast<Scalar>();
-          const Vector3<Scalar> w = ws.rotation[ib] * o.w_local.template cast<Scalar>();
+          const Vector3<Scalar> u = ws.rotation[ia] * o.u_local;
+          const Vector3<Scalar> w = ws.rotation[ib] * o.w_local;
           const Vector3<Scalar> torque = lambda[row++] * u.cross(w);  // δ(u·w) = δθ_a·(u×w) − δθ_b·(u×w)
           ws.moment[ia] += torque;
           ws.moment[ib] -= torque;

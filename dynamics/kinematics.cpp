@@ -25,17 +25,17 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
   RelativeMotion<Scalar> m;
   std::visit(Overloaded{
                  [&](const Offset& e) {
-                   m.rotation = Re * e.rotation.template cast<Scalar>();
-                   m.translation = Re * e.translation.template cast<Scalar>();
+                   m.rotation = Re * e.rotation;
+                   m.translation = Re * e.translation;
                  },
                  [&](const RevoluteJoint& e) {
                    m.rotation = Re * axisRotation(e.axis, q);
-                   m.angular_axis = Re * e.axis.template cast<Scalar>();
+                   m.angular_axis = Re * e.axis;
                  },
                  [&](const PrismaticJoint& e) {
                    m.rotation = Re;
-                   m.translation = Re * (e.axis.template cast<Scalar>() * q);
-                   m.linear_axis = Re * e.axis.template cast<Scalar>();
+                   m.translation = Re * (e.axis * q);
+                   m.linear_axis = Re * e.axis;
                  },
                  [&](const CurveSliderJoint& e) {
                    // dr/ds = t to first order, as the heading and curvature (trackStateAt).
@@ -49,7 +49,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                    const Scalar cos_heading = cos(heading), sin_heading = sin(heading);
                    const Vector3<Scalar> tangent(cos_heading, sin_heading, Scalar(0));
                    const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
-                   m.translation = Re * (point.position.template cast<Scalar>() + tangent_at_s.template cast<Scalar>() * ds);
+                   m.translation = Re * (point.position + tangent_at_s * ds);
                    m.linear_axis = Re * tangent;
                    if (rates) {  // a = t s̈ + κ ṡ² n
                      const Vector3<Scalar> normal(-sin_heading, cos_heading, Scalar(0));
@@ -70,6 +70,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
 
 template <class Scalar>
 void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
+  ws.body_axes_current = false;
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
@@ -118,6 +119,28 @@ void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>
 }
 
 template <class Scalar>
+void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a) {
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    ws.angular_velocity[s].setZero();
+    ws.velocity[s].setZero();
+    const Vector3<Scalar>& alpha_e = ws.angular_acceleration[e];
+    const Vector3<Scalar> r = ws.position[s] - ws.position[e];
+    if (element.coordinate < 0) {  // (20)-(21) with q̇ = 0 and no joint rate
+      ws.angular_acceleration[s] = alpha_e;
+      ws.acceleration[s] = ws.acceleration[e] + alpha_e.cross(r);
+      continue;
+    }
+    const Scalar& ai = a[element.coordinate];
+    ws.angular_acceleration[s] = alpha_e + ws.motion_angular[k] * ai;
+    ws.acceleration[s] = ws.acceleration[e] + alpha_e.cross(r) + ws.motion_linear[k] * ai;
+  }
+}
+
+template <class Scalar>
 void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                        const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level) {
   const bool rates = level != KinematicsLevel::Position;
@@ -155,6 +178,8 @@ template void frameRates<double>(const Model&, Workspace<double>&, const VectorX
                                  KinematicsLevel);
 template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                   const VectorX<AdScalar>&, KinematicsLevel);
+template void frameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+template void frameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
 template void frameGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, const VectorX<double>&, KinematicsLevel);

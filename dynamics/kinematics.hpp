@@ -27,6 +27,11 @@ void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scal
 template <class Scalar>
 void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
                 KinematicsLevel level);
+/// frameRates at rest, q̇ = 0: every frame velocity zero, and the accelerations (20)-(21) of the joint
+/// accelerations a alone, without the terms in q̇ (those of M(q) a). The same values as
+/// frameRates(model, ws, 0, a, Acceleration), to the bit, at about a third of its products.
+template <class Scalar>
+void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a);
 /// on_path[k] = 1 for the elements on the path from the ground to `frame` (the joints that move it),
 /// 0 for the others.
 void pathFromGround(const Model& model, FrameIndex frame, std::vector<char>& on_path);
@@ -41,6 +46,9 @@ extern template void frameRates<double>(const Model&, Workspace<double>&, const 
                                         const VectorX<double>&, KinematicsLevel);
 extern template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                           const VectorX<AdScalar>&, KinematicsLevel);
+extern template void frameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&,
+                                                        const VectorX<AdScalar>&);
+extern template void frameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 extern template void frameGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 extern template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                                const VectorX<double>&, const VectorX<double>&, KinematicsLevel);

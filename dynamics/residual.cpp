@@ -18,19 +18,38 @@ Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInpu
 }
 
 /// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
+/// At rest (every frame velocity zero) the velocity terms, zero there, are skipped. Each body's
+/// centre of mass and inertia tensor in ground axes are computed once per geometry (see Workspace).
 template <class Scalar>
-void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g) {
-  for (const Body& body : model.bodies()) {
+void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, bool at_rest) {
+  const auto& bodies = model.bodies();
+  if (!ws.body_axes_current) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Body& body = bodies[i];
+      const Matrix3<Scalar>& R = ws.rotation[static_cast<std::size_t>(body.frame)];
+      ws.body_centre[i] = R * parameter(model, ws, body.centre_of_mass);
+      Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
+      body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
+      ws.body_inertia[i] = R * body_inertia * R.transpose();
+    }
+    ws.body_axes_current = true;
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
     const auto k = static_cast<std::size_t>(body.frame);
-    const Matrix3<Scalar>& R = ws.rotation[k];
-    const Vector3<Scalar>& w = ws.angular_velocity[k];
     const Vector3<Scalar>& alpha = ws.angular_acceleration[k];
-    const Vector3<Scalar> c = R * parameter(model, ws, body.centre_of_mass);
-    Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
-    body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
-    const Matrix3<Scalar> inertia = R * body_inertia * R.transpose();
+    const Vector3<Scalar>& c = ws.body_centre[i];
+    const Matrix3<Scalar>& inertia = ws.body_inertia[i];
+    const Scalar mass = parameter(model, ws, body.mass);
+    if (at_rest) {
+      const Vector3<Scalar> force = mass * ((ws.acceleration[k] + alpha.cross(c)) - g);
+      ws.force[k] += force;
+      ws.moment[k] += inertia * alpha + c.cross(force);
+      continue;
+    }
+    const Vector3<Scalar>& w = ws.angular_velocity[k];
     const Vector3<Scalar> a_c = ws.acceleration[k] + alpha.cross(c) + w.cross(w.cross(c));
-    const Vector3<Scalar> force = parameter(model, ws, body.mass) * (a_c - g);
+    const Vector3<Scalar> force = mass * (a_c - g);
     ws.force[k] += force;
     ws.moment[k] += inertia * alpha + w.cross(inertia * w) + c.cross(force);
   }
@@ -41,8 +60,8 @@ template <class Scalar>
 void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Workspace<Scalar>& ws) {
   using std::sqrt;
   const auto a = static_cast<std::size_t>(s.frame_a), b = static_cast<std::size_t>(s.frame_b);
-  const Vector3<Scalar> ra = ws.rotation[a] * s.point_a.template cast<Scalar>();
-  const Vector3<Scalar> rb = ws.rotation[b] * s.point_b.template cast<Scalar>();
+  const Vector3<Scalar> ra = ws.rotation[a] * s.point_a;
+  const Vector3<Scalar> rb = ws.rotation[b] * s.point_b;
   const Vector3<Scalar> d = (ws.position[b] + rb) - (ws.position[a] + ra);
   const Vector3<Scalar> d_rate =
       (ws.velocity[b] + ws.angular_velocity[b].cross(rb)) - (ws.velocity[a] + ws.angular_velocity[a].cross(ra));
@@ -86,14 +105,15 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
-/// The body wrenches with gravity g at the kinematics in ws, every other wrench cleared.
+/// The body wrenches with gravity g at the kinematics in ws (at rest: with every frame velocity
+/// zero), every other wrench cleared.
 template <class Scalar>
-void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g) {
+void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, bool at_rest) {
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
     ws.force[k].setZero();
     ws.moment[k].setZero();
   }
-  addBodyWrenches(model, ws, g);
+  addBodyWrenches(model, ws, g, at_rest);
 }
 
 /// Backward recursion (22)-(23) and the residual of each active element (24), added to f.
@@ -127,7 +147,7 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
 template <class Scalar>
 void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                             const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
-  startWrenches(model, ws, parameter(model, ws, model.gravityParameters()));
+  startWrenches(model, ws, parameter(model, ws, model.gravityParameters()), false);
   f.setZero(model.coordinateCount());
   for (const ForceElement& element : model.forces()) {
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
@@ -151,7 +171,7 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
                                          VectorX<Scalar>& f) {
   if (lambda.size() != model.constraintCount())
     throw std::invalid_argument("inertialAndLoopForces: λ needs " + std::to_string(model.constraintCount()) + " entries");
-  startWrenches(model, ws, Vector3<Scalar>(Vector3<Scalar>::Zero()));
+  startWrenches(model, ws, Vector3<Scalar>(Vector3<Scalar>::Zero()), true);
   f.setZero(model.coordinateCount());
   if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);

@@ -23,18 +23,19 @@ using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;
 inline double valueOf(double x) { return x; }
 inline double valueOf(const AdScalar& x) { return x.value(); }
 
-/// Rotation by `angle` about the unit vector `axis` (Rodrigues).
+/// Rotation by `angle` about the unit vector `axis` (Rodrigues). The constant matrices stay in double:
+/// with AD scalars each product then costs a scaling of the derivatives, not a product rule.
 template <class Scalar>
 Matrix3<Scalar> axisRotation(const Eigen::Vector3d& axis, const Scalar& angle) {
   using std::cos;
   using std::sin;
   const Scalar c = cos(angle);
   const Scalar s = sin(angle);
-  Matrix3<Scalar> skew;
-  skew << Scalar(0), Scalar(-axis.z()), Scalar(axis.y()), Scalar(axis.z()), Scalar(0), Scalar(-axis.x()),
-      Scalar(-axis.y()), Scalar(axis.x()), Scalar(0);
-  const Matrix3<Scalar> outer = (axis * axis.transpose()).template cast<Scalar>();
-  return c * Matrix3<Scalar>::Identity() + (Scalar(1) - c) * outer + s * skew;
+  const Scalar one_minus_c = Scalar(1) - c;
+  Eigen::Matrix3d skew;
+  skew << 0.0, -axis.z(), axis.y(), axis.z(), 0.0, -axis.x(), -axis.y(), axis.x(), 0.0;
+  const Eigen::Matrix3d outer = axis * axis.transpose();
+  return c * Eigen::Matrix3d::Identity() + one_minus_c * outer + s * skew;
 }
 
 /// Two unit vectors e, f that complete the unit vector `axis` to a right-handed orthonormal basis
@@ -48,7 +49,7 @@ inline std::array<Eigen::Vector3d, 2> perpendicularPair(const Eigen::Vector3d& a
 /// Copies `values` into AD scalars for one forward-AD pass: input j (global index offset + j) gets
 /// the unit derivative direction j − first when it falls in [first, first + count), zero otherwise.
 /// Several vectors share one global numbering through their offsets. Into `x`, reusing its storage.
-inline void seedVector(const Eigen::VectorXd& values, Eigen::Index offset, Eigen::Index first, Eigen::Index count,
+inline void seedVector(const Eigen::Ref<const Eigen::VectorXd>& values, Eigen::Index offset, Eigen::Index first, Eigen::Index count,
                        VectorX<AdScalar>& x) {
   x.resize(values.size());
   for (Eigen::Index j = 0; j < values.size(); ++j) {

@@ -45,7 +45,7 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
           [&](const PointSensor& s) -> Scalar {
             const auto k = static_cast<std::size_t>(s.frame);
             const auto axes = static_cast<std::size_t>(s.axes);
-            const Vector3<Scalar> d = ws.rotation[k] * s.point.template cast<Scalar>();
+            const Vector3<Scalar> d = ws.rotation[k] * s.point;
             const Vector3<Scalar>& w = ws.angular_velocity[k];
             Vector3<Scalar> vector;
             if (s.quantity == Derivative::Position) vector = ws.position[k] + d - ws.position[axes];

@@ -25,7 +25,9 @@ struct Workspace {
         motion_angular(model.elements().size(), Vector3<Scalar>::Zero()),
         motion_linear(model.elements().size(), Vector3<Scalar>::Zero()),
         bias_angular(model.elements().size(), Vector3<Scalar>::Zero()),
-        bias_linear(model.elements().size(), Vector3<Scalar>::Zero()) {}
+        bias_linear(model.elements().size(), Vector3<Scalar>::Zero()),
+        body_centre(model.bodies().size(), Vector3<Scalar>::Zero()),
+        body_inertia(model.bodies().size(), Matrix3<Scalar>::Zero()) {}
 
   // Absolute kinematics of every frame, in ground axes (forward recursion).
   std::vector<Matrix3<Scalar>> rotation;
@@ -36,6 +38,13 @@ struct Workspace {
   // not proportional to q̈, per q̇² (a curve slider's κ n and κ' z).
   std::vector<Vector3<Scalar>> motion_angular, motion_linear;
   std::vector<Vector3<Scalar>> bias_angular, bias_linear;
+  // Per body, its centre of mass (from its frame's origin) and its inertia tensor in ground axes,
+  // R c and R I Rᵀ: computed by the first wrench pass on a geometry and reused by the next ones on
+  // it (a pass of the residual and the projections' passes share them). The geometry stage marks
+  // them stale; a pass must set its parameter seeds before it computes the geometry.
+  std::vector<Vector3<Scalar>> body_centre;
+  std::vector<Matrix3<Scalar>> body_inertia;
+  bool body_axes_current = false;
   // Coordinates (q, q̇, q̈), multipliers λ and residual f of a pass whose inputs are seeded (AdScalar),
   // kept between passes so that repeated passes allocate nothing.
   VectorX<Scalar> seeded_q, seeded_v, seeded_a, seeded_lambda, seeded_f;

@@ -49,16 +49,17 @@ void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::Matrix
     throw std::logic_error("AugmentedSolver::solveTransposed needs setTransposedMatrix");
   // Filled by columns of the transposes: a row of bbar without constraints (B.rows() = 0) would be
   // an offset from Eigen's null data pointer.
-  Eigen::MatrixXd tbar_t(xbar.cols(), xbar.rows()), bbar_t(constraints_, xbar.rows());
+  tbar_t_.resize(xbar.cols(), xbar.rows());
+  bbar_t_.resize(constraints_, xbar.rows());
   bottom_rhs_.setZero(constraints_);
   for (Eigen::Index r = 0; r < xbar.rows(); ++r) {
     top_rhs_ = -xbar.row(r).transpose();
     partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);
-    tbar_t.col(r) = dx_;
-    bbar_t.col(r) = dmu_;
+    tbar_t_.col(r) = dx_;
+    bbar_t_.col(r) = dmu_;
   }
-  tbar = tbar_t.transpose();
-  bbar = bbar_t.transpose();
+  tbar = tbar_t_.transpose();
+  bbar = bbar_t_.transpose();
 }
 
 Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,

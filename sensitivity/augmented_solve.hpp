@@ -39,6 +39,7 @@ class AugmentedSolver {
   Eigen::Index constraints_ = 0;
   Eigen::MatrixXd transposed_;  ///< Jᵀ for setTransposedMatrix
   mutable Eigen::VectorXd top_rhs_, bottom_rhs_, dx_, dmu_;  ///< one column's right-hand side and solution
+  mutable Eigen::MatrixXd tbar_t_, bbar_t_;  ///< solveTransposed's results, transposed
   Factored factored_ = Factored::None;
 };
 

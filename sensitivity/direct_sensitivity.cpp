@@ -34,7 +34,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
     if (block.empty() || k >= block_first + static_cast<Eigen::Index>(block.size())) {
       block_first = k;
-      block = d.points(k, std::min(k + TrajectoryDerivatives::kPointsPerBlock, d.timePoints()) - 1, jobs);
+      d.points(k, std::min(k + TrajectoryDerivatives::kPointsPerBlock, d.timePoints()) - 1, jobs, block);
     }
     const TrajectoryDerivatives::PointDerivatives& point = block[static_cast<std::size_t>(k - block_first)];
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at

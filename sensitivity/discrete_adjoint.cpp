@@ -11,62 +11,90 @@ namespace mbsopt {
 
 namespace {
 
-/// The constraints whose adjoint is not exactly zero at this step. Every operation of a backward
-/// step maps each constraint's row on its own (linear, row by row), so a zero row stays zero and a
-/// step without a non-zero row adds nothing: both are skipped. The result is the same to round-off
-/// (the same operations on fewer rows; Eigen's kernels may sum in another order).
-std::vector<Eigen::Index> nonZeroRows(const ResponseSeeds& bar) {
-  std::vector<Eigen::Index> rows;
+/// The constraints whose adjoint is not exactly zero at this step, into `rows`. Every operation of
+/// a backward step maps each constraint's row on its own (linear, row by row), so a zero row stays
+/// zero and a step without a non-zero row adds nothing: both are skipped. The result is the same to
+/// round-off (the same operations on fewer rows; Eigen's kernels may sum in another order).
+void nonZeroRows(const ResponseSeeds& bar, std::vector<Eigen::Index>& rows) {
+  rows.clear();
   for (Eigen::Index j = 0; j < bar.position.rows(); ++j)
     if (!bar.position.row(j).isZero(0.0) || !bar.velocity.row(j).isZero(0.0) || !bar.acceleration.row(j).isZero(0.0))
       rows.push_back(j);
-  return rows;
 }
 
-/// What one backward step hands to step k − 1: the adjoints of the predictors q̃, ṽ of step k, and
-/// its contribution to dΨ/db.
+/// What one backward step hands to step k − 1 (the adjoints of the predictors q̃, ṽ of step k, and
+/// its contribution to dΨ/db), with its intermediate matrices: kept from step to step, so that the
+/// sweep allocates nothing once their sizes are reached.
 struct BackwardStep {
   Eigen::MatrixXd q_pred, v_pred, dpsi_db;
+  Eigen::MatrixXd a_newton, v_total, a_total, tbar, bbar, iteration, product;
 };
 
-/// The transpose of directGradient's step k for the adjoint rows `bar` (the active constraints);
-/// `solver` is kept from step to step for its buffers.
-BackwardStep backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::PointDerivatives& point,
-                             const ResponseSeeds& bar, AugmentedSolver& solver) {
+/// The transpose of directGradient's step k for the adjoint rows `bar` (the active constraints),
+/// into `out`; `solver` is kept from step to step for its buffers.
+void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::PointDerivatives& point,
+                     const ResponseSeeds& bar, AugmentedSolver& solver, BackwardStep& out) {
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const StepDerivatives& s = point.step;
   const ClosureDerivatives& c = point.closure;
-  Eigen::MatrixXd q_total = bar.position, a_newton = bar.acceleration, v_newton = bar.velocity;
-  Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(bar.position.rows(), d.variableCount());
-  Eigen::MatrixXd jacobian(0, d.freeCount()), tbar, bbar;
-  if (d.constraintCount() > 0) jacobian = c.jacobian;
-  solver.setConstraintJacobian(jacobian);  // B's SVD once for the three solves
-  if (d.constraintCount() > 0) {
+  const bool loops = d.constraintCount() > 0;
+  // q_pred accumulates the adjoint of qₖ, v_pred that of q̇*, until they become those of q̃, ṽ.
+  out.q_pred = bar.position;
+  out.a_newton = bar.acceleration;
+  out.v_pred = bar.velocity;
+  out.dpsi_db.setZero(bar.position.rows(), d.variableCount());
+  if (loops) solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
+  else solver.setConstraintJacobian(Eigen::MatrixXd(0, d.freeCount()));  // allocates nothing: no rows
+  if (loops) {
     // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
-    // q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ).
+    // q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ). Each hands the adjoint of its x* to `newton`, adds
+    // its share to those of qₖ and b, and leaves its t̄, b̄ in `out`.
+    const auto backThroughProjection = [&](const Eigen::MatrixXd& xbar, const Eigen::MatrixXd& G,
+                                           const Eigen::MatrixXd& closure_q, const Eigen::MatrixXd& P,
+                                           Eigen::MatrixXd& newton) {
+      solver.solveTransposed(xbar, out.tbar, out.bbar);
+      newton.noalias() = out.tbar * s.mass;
+      out.product.noalias() = out.tbar * G;
+      out.product.noalias() += out.bbar * closure_q;
+      out.q_pred -= out.product;
+      out.dpsi_db.noalias() -= out.tbar * P;
+    };
     solver.setTransposedMatrix(s.mass);
-    solver.solveTransposed(bar.acceleration, tbar, bbar);
-    a_newton = tbar * s.mass;
-    q_total -= tbar * c.acceleration_projection + bbar * c.acceleration_q;
-    dpsi_db -= tbar * c.acceleration_projection_parameters;
-    const Eigen::MatrixXd v_total = bar.velocity - bbar * c.acceleration_v;
-    solver.solveTransposed(v_total, tbar, bbar);
-    v_newton = tbar * s.mass;
-    q_total -= tbar * c.velocity_projection + bbar * c.velocity_q;
-    dpsi_db -= tbar * c.velocity_projection_parameters;
+    backThroughProjection(bar.acceleration, c.acceleration_projection, c.acceleration_q,
+                          c.acceleration_projection_parameters, out.a_newton);
+    out.v_total = bar.velocity;
+    out.v_total.noalias() -= out.bbar * c.acceleration_v;
+    backThroughProjection(out.v_total, c.velocity_projection, c.velocity_q, c.velocity_projection_parameters,
+                          out.v_pred);
   }
   // Back through qₖ = q̃ + βh² q̈*, q̇* = ṽ + γh q̈* and Newton's system
   // q̈* = L(−(∂f/∂b + K_T q̃ + C_T ṽ), −B q̃ / (βh²)) with A = M + γh C_T + βh² K_T.
-  const Eigen::MatrixXd a_total = a_newton + beta * h * h * q_total + gamma * h * v_newton;
-  solver.setTransposedMatrix(s.mass + gamma * h * s.damping + beta * h * h * s.stiffness);
-  solver.solveTransposed(a_total, tbar, bbar);
-  dpsi_db -= tbar * s.parameters;
-  return {q_total - tbar * s.stiffness - bbar * jacobian / (beta * h * h), v_newton - tbar * s.damping, dpsi_db};
+  out.a_total = out.a_newton + beta * h * h * out.q_pred + gamma * h * out.v_pred;
+  out.iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
+  solver.setTransposedMatrix(out.iteration);
+  solver.solveTransposed(out.a_total, out.tbar, out.bbar);
+  out.dpsi_db.noalias() -= out.tbar * s.parameters;
+  out.q_pred.noalias() -= out.tbar * s.stiffness;
+  if (loops) {
+    out.product.noalias() = out.bbar * c.jacobian;
+    out.q_pred -= out.product / (beta * h * h);
+  }
+  out.v_pred.noalias() -= out.tbar * s.damping;
 }
 
-ResponseSeeds rowsOf(const ResponseSeeds& bar, const std::vector<Eigen::Index>& rows) {
-  return {bar.position(rows, Eigen::all), bar.velocity(rows, Eigen::all), bar.acceleration(rows, Eigen::all)};
+/// The rows `rows` of bar, into `out` (reusing its storage).
+void copyRows(const ResponseSeeds& bar, const std::vector<Eigen::Index>& rows, ResponseSeeds& out) {
+  const auto r = static_cast<Eigen::Index>(rows.size());
+  out.position.resize(r, bar.position.cols());
+  out.velocity.resize(r, bar.velocity.cols());
+  out.acceleration.resize(r, bar.acceleration.cols());
+  for (Eigen::Index i = 0; i < r; ++i) {
+    const Eigen::Index j = rows[static_cast<std::size_t>(i)];
+    out.position.row(i) = bar.position.row(j);
+    out.velocity.row(i) = bar.velocity.row(j);
+    out.acceleration.row(i) = bar.acceleration.row(j);
+  }
 }
 
 }  // namespace
@@ -80,32 +108,40 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), d.variableCount());
   // Adjoints of q_k, q̇_k, q̈_k (one row per constraint): their direct seeds, plus what flows back
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
-  ResponseSeeds bar = d.seeds(N);
+  ResponseSeeds bar = d.seeds(N), active;
   AugmentedSolver solver(settings.svd_threshold);
+  BackwardStep back;
+  std::vector<Eigen::Index> rows;
   // The step derivatives and seeds, which do not depend on the sweep, in blocks of points computed
   // on `jobs` threads, from the first step with a non-zero adjoint down.
   std::vector<TrajectoryDerivatives::PointDerivatives> block;
   Eigen::Index block_first = 0;
   for (Eigen::Index k = N; k >= 1; --k) {
-    const std::vector<Eigen::Index> rows = nonZeroRows(bar);
+    nonZeroRows(bar, rows);
     if (rows.empty()) {  // nothing flows back yet: no derivative of this step is needed
       bar = d.seeds(k - 1);
       continue;
     }
     if (block.empty() || k < block_first) {
       block_first = std::max<Eigen::Index>(1, k - TrajectoryDerivatives::kPointsPerBlock + 1);
-      block = d.points(block_first, k, jobs);
+      d.points(block_first, k, jobs, block);
     }
-    const BackwardStep back = backThroughStep(d, block[static_cast<std::size_t>(k - block_first)], rowsOf(bar, rows), solver);
-    dpsi_db(rows, Eigen::all) += back.dpsi_db;
+    copyRows(bar, rows, active);
+    backThroughStep(d, block[static_cast<std::size_t>(k - block_first)], active, solver, back);
     // Back through the predictor (32) to step k − 1, added to its own seeds.
-    bar = k - 1 >= block_first ? std::move(block[static_cast<std::size_t>(k - 1 - block_first)].seeds) : d.seeds(k - 1);
-    bar.position(rows, Eigen::all) += back.q_pred;
-    bar.velocity(rows, Eigen::all) += h * back.q_pred + back.v_pred;
-    bar.acceleration(rows, Eigen::all) += (0.5 - beta) * h * h * back.q_pred + (1.0 - gamma) * h * back.v_pred;
+    if (k - 1 >= block_first) bar = block[static_cast<std::size_t>(k - 1 - block_first)].seeds;
+    else bar = d.seeds(k - 1);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Eigen::Index j = rows[i], r = static_cast<Eigen::Index>(i);
+      dpsi_db.row(j) += back.dpsi_db.row(r);
+      bar.position.row(j) += back.q_pred.row(r);
+      bar.velocity.row(j) += h * back.q_pred.row(r) + back.v_pred.row(r);
+      bar.acceleration.row(j) += (0.5 - beta) * h * h * back.q_pred.row(r) + (1.0 - gamma) * h * back.v_pred.row(r);
+    }
   }
   // t₀: q₀, q̇₀ do not depend on b; q̈₀ = L(−∂f/∂b, 0) with J = M.
-  if (const std::vector<Eigen::Index> rows = nonZeroRows(bar); !rows.empty()) {
+  nonZeroRows(bar, rows);
+  if (!rows.empty()) {
     const StepDerivatives s = d.step(0);
     Eigen::MatrixXd tbar, bbar;
     solveAugmentedTransposed(s.mass, d.constraintJacobian(0), bar.acceleration(rows, Eigen::all),

@@ -26,8 +26,9 @@ std::vector<AdInput> adInputs(std::initializer_list<std::vector<AdInput>> parts)
   return out;
 }
 
-void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                   const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
+void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                   const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+                   const std::vector<AdInput>& inputs,
                    const std::vector<ParameterIndex>& parameters,
                    const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate) {
   const auto total = static_cast<Eigen::Index>(inputs.size());
@@ -37,6 +38,7 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eige
     seedVector(v, 0, 0, 0, ws.seeded_v);
     seedVector(a, 0, 0, 0, ws.seeded_a);
     ws.parameter_seeds.clear();
+    ws.body_axes_current = false;  // they carry the seeds of the parameters of inertia
     for (Eigen::Index j = 0; j < count; ++j) {
       const AdInput& input = inputs[static_cast<std::size_t>(first + j)];
       const auto direction = static_cast<int>(j);
@@ -52,19 +54,19 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eige
     evaluate(SeededState{ws.seeded_q, ws.seeded_v, ws.seeded_a}, first, count);
   }
   ws.parameter_seeds.clear();
+  ws.body_axes_current = false;
 }
 
-Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                           const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                           const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
-                           const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate) {
-  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(inputs.size()));
+void adJacobian(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+                const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
+                const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate, Eigen::MatrixXd& out) {
+  out.resize(rows, static_cast<Eigen::Index>(inputs.size()));
   VectorX<AdScalar>& g = ws.seeded_f;
   forEachAdPass(ws, q, v, a, inputs, parameters, [&](const SeededState& s, Eigen::Index first, Eigen::Index count) {
     evaluate(s, g);
     for (Eigen::Index i = 0; i < rows; ++i) out.row(i).segment(first, count) = g[i].derivatives().head(count);
   });
-  return out;
 }
 
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
@@ -73,8 +75,11 @@ Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, co
                                  const std::vector<ParameterIndex>& parameters) {
   seedVector(lambda, 0, 0, 0, ws.seeded_lambda);  // constant
   const VectorX<AdScalar>& lambda_ad = ws.seeded_lambda;
-  return adJacobian(ws, q, v, a, inputs, parameters, model.coordinateCount(),
-                    [&](const SeededState& s, VectorX<AdScalar>& f) { residual(model, ws, s.q, s.v, s.a, lambda_ad, t, f); });
+  Eigen::MatrixXd out;
+  adJacobian(
+      ws, q, v, a, inputs, parameters, model.coordinateCount(),
+      [&](const SeededState& s, VectorX<AdScalar>& f) { residual(model, ws, s.q, s.v, s.a, lambda_ad, t, f); }, out);
+  return out;
 }
 
 }  // namespace mbsopt

@@ -39,17 +39,18 @@ struct SeededState {
 /// unit derivative direction j in the state handed to it (parameters through ws.parameter_seeds,
 /// `parameters` being their indices in the model); evaluate(state, first, count) reads the
 /// derivatives it needs. Leaves no parameter seeded.
-void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                   const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
+void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                   const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+                   const std::vector<AdInput>& inputs,
                    const std::vector<ParameterIndex>& parameters,
                    const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate);
 
 /// ∂g/∂(inputs) of g = evaluate(state) (`rows` entries, evaluate writing them into its second
-/// argument) at (q, q̇, q̈): one column per input.
-Eigen::MatrixXd adJacobian(Workspace<AdScalar>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                           const Eigen::VectorXd& a, const std::vector<AdInput>& inputs,
-                           const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
-                           const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate);
+/// argument) at (q, q̇, q̈): one column per input, into `out` (reusing its storage).
+void adJacobian(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+                const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
+                const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate, Eigen::MatrixXd& out);
 
 /// ∂f/∂(inputs) at (q, q̇, q̈, λ, t): coordinateCount() rows, one column per input.
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,

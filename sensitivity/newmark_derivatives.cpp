@@ -47,19 +47,22 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
 
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   if (k == s.geometry_point) return;
-  const Eigen::VectorXd q = response_.trajectory.q.col(k);
-  if (model_.constraintCount() > 0) {
-    Eigen::VectorXd closure;  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
-    mbsopt::constraintJacobian(model_, s.plain_ws, q, model_.freeCoordinates(), closure, s.jacobian);
+  s.q = response_.trajectory.q.col(k);
+  if (model_.constraintCount() > 0) {  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
+    mbsopt::constraintJacobian(model_, s.plain_ws, s.q, model_.freeCoordinates(), s.closure, s.jacobian);
   } else {
-    frameGeometry(model_, s.plain_ws, q);
+    frameGeometry(model_, s.plain_ws, s.q);
     s.jacobian.resize(0, freeCount());
   }
   massMatrix(model_, s.plain_ws, model_.freeCoordinates(), s.mass);
   s.geometry_point = k;
 }
 
-StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) { return pointAt(k, scratch_).step; }
+StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
+  PointDerivatives point;
+  pointAt(k, scratch_, point);
+  return point.step;
+}
 
 StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   const Trajectory& tr = response_.trajectory;
@@ -86,36 +89,51 @@ Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
   return scratch_.jacobian;
 }
 
-TrajectoryDerivatives::PointDerivatives TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s) {
+namespace {
+
+/// out = the rows `rows` of source's columns [first, first + count), reusing out's storage.
+void copyRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset, Eigen::Index first,
+              Eigen::Index count, Eigen::MatrixXd& out) {
+  out.resize(static_cast<Eigen::Index>(rows.size()), count);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    out.row(static_cast<Eigen::Index>(r)) = source.row(row_offset + rows[r]).segment(first, count);
+}
+
+}  // namespace
+
+void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount(), p = variableCount();
   geometryAt(k, s);
-  PointDerivatives out;
-  out.seeds = seedsAt(k, s);
+  seedsAt(k, s, out.seeds);
   // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows).
-  const Eigen::VectorXd correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
-  const Eigen::VectorXd correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
-  Eigen::VectorXd mu_v(m), mu_a(m);
+  s.plain_correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
+  s.plain_correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
+  s.plain_mu_v.resize(m);
+  s.plain_mu_a.resize(m);
   if (m > 0) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> transposed(s.jacobian.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
-    mu_v = transposed.solve(-s.mass * correction_v(free));
-    mu_a = transposed.solve(-s.mass * correction_a(free));
+    s.jacobian_transposed = s.jacobian.transpose();
+    s.transposed_svd.compute(s.jacobian_transposed, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    s.plain_f = -s.mass * s.plain_correction_v(free);
+    s.plain_mu_v = s.transposed_svd.solve(s.plain_f);
+    s.plain_f = -s.mass * s.plain_correction_a(free);
+    s.plain_mu_a = s.transposed_svd.solve(s.plain_f);
   }
   // The constants of the passes.
   seedVector(tr.lambda.col(k), 0, 0, 0, s.lambda);
-  seedVector(mu_v, 0, 0, 0, s.mu_v);
-  seedVector(mu_a, 0, 0, 0, s.mu_a);
+  seedVector(s.plain_mu_v, 0, 0, 0, s.mu_v);
+  seedVector(s.plain_mu_a, 0, 0, 0, s.mu_a);
   seedVector(tr.a.col(k), 0, 0, 0, s.projected_a);
-  seedVector(Eigen::VectorXd::Zero(n), 0, 0, 0, s.zero_rates);
-  seedVector(correction_v, 0, 0, 0, s.correction_v);
-  seedVector(correction_a, 0, 0, 0, s.correction_a);
+  seedVector(s.plain_correction_v, 0, 0, 0, s.correction_v);
+  seedVector(s.plain_correction_a, 0, 0, 0, s.correction_a);
   // One evaluation per pass over the step's inputs (free q̇, free q, design parameters) shares the
   // geometry at q_k between four functions of it, in rows [f; ḃ; b̈; f_v; f_a]: f at the state Newton
   // converged to (C_T, K_T, ∂f/∂b); the closure rates at the projected state, q̇ seeded the same way
   // (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P).
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
-  const Eigen::MatrixXd d = adJacobian(
+  Eigen::MatrixXd& d = s.pass_jacobian;
+  adJacobian(
       s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, parameter_indices_, rows,
       [&](const SeededState& state, VectorX<AdScalar>& g) {
         g.resize(rows);
@@ -130,73 +148,84 @@ TrajectoryDerivatives::PointDerivatives TrajectoryDerivatives::pointAt(Eigen::In
         g.segment(n, m) = s.closure_rates;
         closureEquations(model_, s.ws, Derivative::Acceleration, s.closure_rates);
         g.segment(n + m, m) = s.closure_rates;
-        frameRates(model_, s.ws, s.zero_rates, s.correction_v, KinematicsLevel::Acceleration);
+        frameAccelerationsAtRest(model_, s.ws, s.correction_v);
         inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_v, s.f);
         g.segment(n + 2 * m, n) = s.f;
-        frameRates(model_, s.ws, s.zero_rates, s.correction_a, KinematicsLevel::Acceleration);
+        frameAccelerationsAtRest(model_, s.ws, s.correction_a);
         inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
         g.tail(n) = s.f;
-      });
+      },
+      d);
   // Columns: free q̇ [0, nf), free q [nf, 2nf), design parameters [2nf, 2nf + p).
-  const Eigen::MatrixXd step_rows = d.topRows(n)(free, Eigen::all);
-  out.step = {s.mass, step_rows.leftCols(nf), step_rows.middleCols(nf, nf), step_rows.rightCols(p)};
-  if (m == 0) return out;
+  out.step.mass = s.mass;
+  copyRows(d, free, 0, 0, nf, out.step.damping);
+  copyRows(d, free, 0, nf, nf, out.step.stiffness);
+  copyRows(d, free, 0, 2 * nf, p, out.step.parameters);
+  if (m == 0) return;
   ClosureDerivatives& c = out.closure;
   c.jacobian = s.jacobian;
   c.velocity_q = d.block(n, nf, m, nf);
   c.acceleration_q = d.block(n + m, nf, m, nf);
   c.acceleration_v = d.block(n + m, 0, m, nf);
-  const Eigen::MatrixXd projection_v = d.middleRows(n + 2 * m, n)(free, Eigen::all);
-  const Eigen::MatrixXd projection_a = d.bottomRows(n)(free, Eigen::all);
-  c.velocity_projection = projection_v.middleCols(nf, nf);
-  c.velocity_projection_parameters = projection_v.rightCols(p);
-  c.acceleration_projection = projection_a.middleCols(nf, nf);
-  c.acceleration_projection_parameters = projection_a.rightCols(p);
-  return out;
+  copyRows(d, free, n + 2 * m, nf, nf, c.velocity_projection);
+  copyRows(d, free, n + 2 * m, 2 * nf, p, c.velocity_projection_parameters);
+  copyRows(d, free, 2 * n + 2 * m, nf, nf, c.acceleration_projection);
+  copyRows(d, free, 2 * n + 2 * m, 2 * nf, p, c.acceleration_projection_parameters);
 }
 
-ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) { return pointAt(k, scratch_).closure; }
+ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
+  PointDerivatives point;
+  pointAt(k, scratch_, point);
+  return point.closure;
+}
 
-std::vector<TrajectoryDerivatives::PointDerivatives> TrajectoryDerivatives::points(Eigen::Index first,
-                                                                                   Eigen::Index last, int jobs) {
+void TrajectoryDerivatives::points(Eigen::Index first, Eigen::Index last, int jobs, std::vector<PointDerivatives>& out) {
   const auto count = static_cast<std::size_t>(std::max<Eigen::Index>(last - first + 1, 0));
-  std::vector<PointDerivatives> out(count);
+  out.resize(count);
   const auto threads = static_cast<std::size_t>(std::clamp<Eigen::Index>(jobs, 1, std::max<Eigen::Index>(count, 1)));
-  const auto compute = [&](std::size_t i, Scratch& s) { out[i] = pointAt(first + static_cast<Eigen::Index>(i), s); };
+  const auto compute = [&](std::size_t i, Scratch& s) { pointAt(first + static_cast<Eigen::Index>(i), s, out[i]); };
   if (threads == 1) {
     for (std::size_t i = 0; i < count; ++i) compute(i, scratch_);
-    return out;
+    return;
   }
   while (thread_scratch_.size() < threads) thread_scratch_.emplace_back(model_);
   // Thread t takes the points t, t + threads, …: neighbours share no work, the load is even.
   runInParallel(threads, static_cast<int>(threads), [&](std::size_t t) {
     for (std::size_t i = t; i < count; i += threads) compute(i, thread_scratch_[t]);
   });
+}
+
+ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
+  ResponseSeeds out;
+  seedsAt(k, scratch_, out);
   return out;
 }
 
-ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) { return seedsAt(k, scratch_); }
-
-ResponseSeeds TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch) {
+void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSeeds& out) {
   const Trajectory& tr = response_.trajectory;
   const Eigen::Index m = functionalCount(), nf = freeCount();
-  ResponseSeeds out{Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf), Eigen::MatrixXd::Zero(m, nf)};
+  out.position.setZero(m, nf);
+  out.velocity.setZero(m, nf);
+  out.acceleration.setZero(m, nf);
   const auto weight = [&](Eigen::Index j) {  // ∂Ψ/∂φ_k ∂φ/∂y
     const auto f = static_cast<std::size_t>(j);
     return functionals_[f].sign * response_.functionals[f].gradient[k];
   };
   // The sensors some constraint is sensitive to at k, each once (±y share one), in one set of passes.
-  std::vector<int> slot(model_.sensors().size(), -1);
-  std::vector<const Sensor*> sensors;
+  std::vector<int>& slot = scratch.sensor_slot;
+  std::vector<const Sensor*>& sensors = scratch.sensors;
+  slot.assign(model_.sensors().size(), -1);
+  sensors.clear();
   for (Eigen::Index j = 0; j < m; ++j) {
     const auto sensor = static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor);
     if (weight(j) == 0.0 || slot[sensor] >= 0) continue;
     slot[sensor] = static_cast<int>(sensors.size());
     sensors.push_back(&model_.sensors()[sensor]);
   }
-  if (sensors.empty()) return out;
-  const std::vector<ResponseJacobian> jacobians =
-      responseJacobians(model_, scratch.ws, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates());
+  if (sensors.empty()) return;
+  std::vector<ResponseJacobian>& jacobians = scratch.sensor_jacobians;
+  responseJacobians(model_, scratch.ws, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates(),
+                    jacobians);
   for (Eigen::Index j = 0; j < m; ++j) {
     if (weight(j) == 0.0) continue;
     const ResponseJacobian& J =
@@ -205,7 +234,6 @@ ResponseSeeds TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch) {
     out.velocity.row(j) = weight(j) * J.velocity;
     out.acceleration.row(j) = weight(j) * J.acceleration;
   }
-  return out;
 }
 
 DesignGradient TrajectoryDerivatives::gradient(const Eigen::MatrixXd& dpsi_db) const {

@@ -6,11 +6,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SVD>
 #include <string>
 #include <vector>
 
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/forward_ad.hpp"
+#include "sensitivity/response_jacobian.hpp"
 
 namespace mbsopt {
 
@@ -73,9 +75,10 @@ class TrajectoryDerivatives {
     ClosureDerivatives closure;
     ResponseSeeds seeds;
   };
-  /// Those of the time points first … last, in order, on `jobs` threads, each with workspaces of
-  /// its own: the same to the bit whatever the number of threads.
-  std::vector<PointDerivatives> points(Eigen::Index first, Eigen::Index last, int jobs);
+  /// Those of the time points first … last, in order, into `out` (resized to last − first + 1; the
+  /// matrices of a block kept from one call to the next are refilled without allocating), on `jobs`
+  /// threads, each with workspaces of its own: the same to the bit whatever the number of threads.
+  void points(Eigen::Index first, Eigen::Index last, int jobs, std::vector<PointDerivatives>& out);
   /// How many points the sweeps ask of points() at once: enough work to share between threads,
   /// little memory (a few kB a point).
   static constexpr Eigen::Index kPointsPerBlock = 256;
@@ -106,16 +109,25 @@ class TrajectoryDerivatives {
     Eigen::Index geometry_point = -1;
     Eigen::MatrixXd mass, jacobian;
     // The constants and intermediate results of pointAt's AD passes.
-    VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, zero_rates, correction_v, correction_a;
+    VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, correction_v, correction_a;
     VectorX<AdScalar> f, closure_rates;
+    // pointAt's buffers in double: the projections' corrections and multipliers, Bᵀ and its SVD,
+    // the Jacobian of the AD pass; seedsAt's sensor lists and their Jacobians.
+    Eigen::VectorXd q, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f;
+    Eigen::MatrixXd jacobian_transposed, pass_jacobian;
+    Eigen::JacobiSVD<Eigen::MatrixXd> transposed_svd;
+    std::vector<int> sensor_slot;
+    std::vector<const Sensor*> sensors;
+    std::vector<ResponseJacobian> sensor_jacobians;
   };
   Scratch scratch_;                     ///< of the calls on this object's thread
   std::vector<Scratch> thread_scratch_;  ///< of the threads of points()
 
   void geometryAt(Eigen::Index k, Scratch& s);
-  /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two shared.
-  PointDerivatives pointAt(Eigen::Index k, Scratch& s);
-  ResponseSeeds seedsAt(Eigen::Index k, Scratch& s);
+  /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two
+  /// shared; into `out`, reusing the storage of its matrices.
+  void pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out);
+  void seedsAt(Eigen::Index k, Scratch& s, ResponseSeeds& out);
 };
 
 }  // namespace mbsopt

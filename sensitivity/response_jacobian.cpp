@@ -6,12 +6,12 @@
 
 namespace mbsopt {
 
-std::vector<ResponseJacobian> responseJacobians(const Model& model, Workspace<AdScalar>& ws,
-                                                const std::vector<const Sensor*>& sensors, const Eigen::VectorXd& q,
-                                                const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                                                const std::vector<int>& columns) {
+void responseJacobians(const Model& model, Workspace<AdScalar>& ws, const std::vector<const Sensor*>& sensors,
+                       const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
+                       const Eigen::Ref<const Eigen::VectorXd>& a, const std::vector<int>& columns,
+                       std::vector<ResponseJacobian>& out) {
   const auto nc = static_cast<Eigen::Index>(columns.size());
-  std::vector<ResponseJacobian> out(sensors.size());
+  out.resize(sensors.size());
   for (ResponseJacobian& J : out) {
     J.position.resize(nc);
     J.velocity.resize(nc);
@@ -34,12 +34,13 @@ std::vector<ResponseJacobian> responseJacobians(const Model& model, Workspace<Ad
       }
     }
   });
-  return out;
 }
 
 ResponseJacobian responseJacobian(const Model& model, Workspace<AdScalar>& ws, const Sensor& sensor,
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
-  return responseJacobians(model, ws, {&sensor}, q, v, a, allCoordinates(model)).front();
+  std::vector<ResponseJacobian> out;
+  responseJacobians(model, ws, {&sensor}, q, v, a, allCoordinates(model), out);
+  return out.front();
 }
 
 }  // namespace mbsopt

@@ -23,10 +23,11 @@ ResponseJacobian responseJacobian(const Model& model, Workspace<AdScalar>& ws, c
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a);
 
 /// The same for several sensors at once, over the coordinates `columns` only (entry j of each row
-/// is the derivative in coordinate columns[j]): one kinematics evaluation per AD pass serves them all.
-std::vector<ResponseJacobian> responseJacobians(const Model& model, Workspace<AdScalar>& ws,
-                                                const std::vector<const Sensor*>& sensors, const Eigen::VectorXd& q,
-                                                const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                                                const std::vector<int>& columns);
+/// is the derivative in coordinate columns[j]): one kinematics evaluation per AD pass serves them
+/// all. Into `out`, one per sensor, reusing its storage.
+void responseJacobians(const Model& model, Workspace<AdScalar>& ws, const std::vector<const Sensor*>& sensors,
+                       const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
+                       const Eigen::Ref<const Eigen::VectorXd>& a, const std::vector<int>& columns,
+                       std::vector<ResponseJacobian>& out);
 
 }  // namespace mbsopt

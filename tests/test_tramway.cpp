@@ -130,3 +130,47 @@ TEST(Tramway, TrackRelativeChartKicksTheBogieYawRateAtCurvatureJumps) {
   EXPECT_LT(std::abs(yaw_rate_jump(BogieYawChart::Absolute)), 0.02 * kick);
   EXPECT_NEAR(yaw_rate_jump(BogieYawChart::RelativeToTrack), kick, 0.05 * kick);
 }
+
+TEST(Tramway, AccelerationsAtRestAreTheRatePassAtZeroSpeedToTheBit) {
+  // frameAccelerationsAtRest drops the terms of (20)-(21) in q̇, which are exact zeros at q̇ = 0: on
+  // the tram's offsets, revolute joints and curve sliders (in the curve, where the track's biases
+  // are not zero) it must give frameRates' values at q̇ = 0 to the last bit, in double and in AD
+  // (geometry seeded in q, so the derivatives are not zero either).
+  const TramwayRun run = simulate({}, {}, 1e-3, 4.0);
+  const Model& model = run.scene.model;
+  const Eigen::Index k = run.trajectory.time.size() - 1;
+  const Eigen::VectorXd q = run.trajectory.q.col(k);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(q.size());
+  Eigen::VectorXd a(q.size());
+  for (Eigen::Index i = 0; i < a.size(); ++i) a[i] = 0.3 * static_cast<double>(i + 1) - 1.1;  // any accelerations
+
+  Workspace<double> rates(model), rest(model);
+  forwardKinematics(model, rates, q, zero, a, KinematicsLevel::Acceleration);
+  frameGeometry(model, rest, q);
+  frameAccelerationsAtRest(model, rest, a);
+  for (std::size_t f = 0; f < rates.rotation.size(); ++f) {
+    EXPECT_EQ(rest.angular_velocity[f], Eigen::Vector3d::Zero()) << "frame " << f;
+    EXPECT_EQ(rest.velocity[f], Eigen::Vector3d::Zero()) << "frame " << f;
+    EXPECT_EQ(rest.angular_acceleration[f], rates.angular_acceleration[f]) << "frame " << f;
+    EXPECT_EQ(rest.acceleration[f], rates.acceleration[f]) << "frame " << f;
+  }
+
+  VectorX<AdScalar> q_ad, zero_ad, a_ad;
+  seedVector(q, 0, 0, q.size(), q_ad);
+  seedVector(zero, 0, 0, 0, zero_ad);
+  seedVector(a, 0, 0, 0, a_ad);
+  Workspace<AdScalar> rates_ad(model), rest_ad(model);
+  forwardKinematics(model, rates_ad, q_ad, zero_ad, a_ad, KinematicsLevel::Acceleration);
+  forwardKinematics(model, rest_ad, q_ad, zero_ad, a_ad, KinematicsLevel::Velocity);  // geometry and joint axes
+  frameAccelerationsAtRest(model, rest_ad, a_ad);
+  bool seeded = false;
+  for (std::size_t f = 0; f < rates_ad.rotation.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const AdScalar& expected = rates_ad.acceleration[f][i];
+      EXPECT_EQ(rest_ad.acceleration[f][i].value(), expected.value()) << "frame " << f;
+      EXPECT_EQ(rest_ad.acceleration[f][i].derivatives(), expected.derivatives()) << "frame " << f;
+      EXPECT_EQ(rest_ad.angular_acceleration[f][i].derivatives(), rates_ad.angular_acceleration[f][i].derivatives());
+      seeded = seeded || !expected.derivatives().isZero(0.0);
+    }
+  EXPECT_TRUE(seeded) << "no acceleration depends on q: the AD comparison checks nothing";
+}
