@@ -22,11 +22,12 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀, λ₀; b) = 0 with b̈ = 0 gives
   // [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b; 0].
   Eigen::MatrixXd Sq = Eigen::MatrixXd::Zero(nf, p), Sv = Eigen::MatrixXd::Zero(nf, p);
-  StepDerivatives s = d.step(0);
-  Eigen::MatrixXd Sa = solveAugmented(s.mass, d.constraintJacobian(0), -s.parameters, Eigen::MatrixXd::Zero(m, p),
-                                      settings.svd_threshold);
+  const StepDerivatives initial = d.step(0);
+  Eigen::MatrixXd Sa = solveAugmented(initial.mass, d.constraintJacobian(0), -initial.parameters,
+                                      Eigen::MatrixXd::Zero(m, p), settings.svd_threshold);
   accumulate(d.seeds(0), Sq, Sv, Sa);
   AugmentedSolver solver(settings.svd_threshold);
+  const Eigen::MatrixXd no_constraints(0, nf);
   // The step derivatives and seeds, which do not depend on the recursion, in blocks computed on
   // `jobs` threads.
   std::vector<TrajectoryDerivatives::PointDerivatives> block;
@@ -42,15 +43,14 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     // A = M + γh C_T + βh² K_T.
     const Eigen::MatrixXd Sq_pred = Sq + h * Sv + (0.5 - beta) * h * h * Sa;
     const Eigen::MatrixXd Sv_pred = Sv + (1.0 - gamma) * h * Sa;
-    s = point.step;
+    const StepDerivatives& s = point.step;
+    const ClosureDerivatives& c = point.closure;
+    const Eigen::MatrixXd& jacobian = m > 0 ? c.jacobian : no_constraints;
     const Eigen::MatrixXd iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
-    ClosureDerivatives c;
-    c.jacobian.resize(0, nf);
-    if (m > 0) c = point.closure;
-    solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
+    solver.setConstraintJacobian(jacobian);  // B's SVD once for the three solves
     solver.setMatrix(iteration);
     const Eigen::MatrixXd Sa_newton =
-        solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -c.jacobian * Sq_pred / (beta * h * h));
+        solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -jacobian * Sq_pred / (beta * h * h));
     Sq = Sq_pred + beta * h * h * Sa_newton;
     Sv = Sv_pred + gamma * h * Sa_newton;
     Sa = Sa_newton;
