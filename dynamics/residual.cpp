@@ -17,11 +17,14 @@ Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInpu
   return input.parameter ? parameter(model, ws, *input.parameter) : Scalar(input.function.value(t));
 }
 
-/// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
-/// At rest (every frame velocity zero) the velocity terms, zero there, are skipped. Each body's
+/// Whether the frames in the workspace move: at rest every frame velocity is zero, and the terms in
+/// them are skipped (exact zeros there).
+enum class FrameMotion { Moving, AtRest };
+
+/// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)). Each body's
 /// centre of mass and inertia tensor in ground axes are computed once per geometry (see Workspace).
 template <class Scalar>
-void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, bool at_rest) {
+void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
   const auto& bodies = model.bodies();
   if (!ws.body_axes_current) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -41,7 +44,7 @@ void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Sc
     const Vector3<Scalar>& c = ws.body_centre[i];
     const Matrix3<Scalar>& inertia = ws.body_inertia[i];
     const Scalar mass = parameter(model, ws, body.mass);
-    if (at_rest) {
+    if (motion == FrameMotion::AtRest) {
       const Vector3<Scalar> force = mass * ((ws.acceleration[k] + alpha.cross(c)) - g);
       ws.force[k] += force;
       ws.moment[k] += inertia * alpha + c.cross(force);
@@ -105,15 +108,14 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
-/// The body wrenches with gravity g at the kinematics in ws (at rest: with every frame velocity
-/// zero), every other wrench cleared.
+/// The body wrenches with gravity g at the kinematics in ws, every other wrench cleared.
 template <class Scalar>
-void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, bool at_rest) {
+void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
     ws.force[k].setZero();
     ws.moment[k].setZero();
   }
-  addBodyWrenches(model, ws, g, at_rest);
+  addBodyWrenches(model, ws, g, motion);
 }
 
 /// Backward recursion (22)-(23) and the residual of each active element (24), added to f.
@@ -147,7 +149,7 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
 template <class Scalar>
 void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                             const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
-  startWrenches(model, ws, parameter(model, ws, model.gravityParameters()), false);
+  startWrenches(model, ws, parameter(model, ws, model.gravityParameters()), FrameMotion::Moving);
   f.setZero(model.coordinateCount());
   for (const ForceElement& element : model.forces()) {
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
@@ -171,7 +173,7 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
                                          VectorX<Scalar>& f) {
   if (lambda.size() != model.constraintCount())
     throw std::invalid_argument("inertialAndLoopForces: λ needs " + std::to_string(model.constraintCount()) + " entries");
-  startWrenches(model, ws, Vector3<Scalar>(Vector3<Scalar>::Zero()), true);
+  startWrenches(model, ws, Vector3<Scalar>(Vector3<Scalar>::Zero()), FrameMotion::AtRest);
   f.setZero(model.coordinateCount());
   if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);

@@ -32,7 +32,8 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
 template <class Scalar>
 void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
                             const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f);
-/// M(q) q̈ + B(q)ᵀλ alone, with the kinematics of (q, 0, q̈) already in ws: the residual at q̇ = 0
+/// M(q) q̈ + B(q)ᵀλ alone, with the kinematics of (q, 0, q̈) already in ws (frameAccelerationsAtRest
+/// on its geometry; the frame velocities are taken to be zero and not read): the residual at q̇ = 0
 /// without gravity and force elements, i.e. f(q, 0, q̈, λ) − f(q, 0, 0, 0) (what a projection's
 /// correction q̈ = Δ with multipliers λ = μ adds to f). lambda: constraintCount() multipliers.
 template <class Scalar>
