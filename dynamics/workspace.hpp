@@ -41,7 +41,7 @@ struct Workspace {
   // Per body, its centre of mass (from its frame's origin) and its inertia tensor in ground axes,
   // R c and R I Rᵀ: computed by the first wrench pass on a geometry and reused by the next ones on
   // it (a pass of the residual and the projections' passes share them). The geometry stage marks
-  // them stale; a pass must set its parameter seeds before it computes the geometry.
+  // them stale: like the geometry, they carry the seeds of the pass that computed it.
   std::vector<Vector3<Scalar>> body_centre;
   std::vector<Matrix3<Scalar>> body_inertia;
   bool body_axes_current = false;

@@ -27,7 +27,6 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
                                       Eigen::MatrixXd::Zero(m, p), settings.svd_threshold);
   accumulate(d.seeds(0), Sq, Sv, Sa);
   AugmentedSolver solver(settings.svd_threshold);
-  const Eigen::MatrixXd no_constraints(0, nf);
   // The step derivatives and seeds, which do not depend on the recursion, in blocks computed on
   // `jobs` threads.
   std::vector<TrajectoryDerivatives::PointDerivatives> block;
@@ -45,12 +44,11 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     const Eigen::MatrixXd Sv_pred = Sv + (1.0 - gamma) * h * Sa;
     const StepDerivatives& s = point.step;
     const ClosureDerivatives& c = point.closure;
-    const Eigen::MatrixXd& jacobian = m > 0 ? c.jacobian : no_constraints;
     const Eigen::MatrixXd iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
-    solver.setConstraintJacobian(jacobian);  // B's SVD once for the three solves
+    solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
     solver.setMatrix(iteration);
     const Eigen::MatrixXd Sa_newton =
-        solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -jacobian * Sq_pred / (beta * h * h));
+        solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -c.jacobian * Sq_pred / (beta * h * h));
     Sq = Sq_pred + beta * h * h * Sa_newton;
     Sv = Sv_pred + gamma * h * Sa_newton;
     Sa = Sa_newton;

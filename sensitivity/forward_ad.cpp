@@ -38,7 +38,6 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::Vector
     seedVector(v, 0, 0, 0, ws.seeded_v);
     seedVector(a, 0, 0, 0, ws.seeded_a);
     ws.parameter_seeds.clear();
-    ws.body_axes_current = false;  // they carry the seeds of the parameters of inertia
     for (Eigen::Index j = 0; j < count; ++j) {
       const AdInput& input = inputs[static_cast<std::size_t>(first + j)];
       const auto direction = static_cast<int>(j);
@@ -54,7 +53,6 @@ void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::Vector
     evaluate(SeededState{ws.seeded_q, ws.seeded_v, ws.seeded_a}, first, count);
   }
   ws.parameter_seeds.clear();
-  ws.body_axes_current = false;
 }
 
 void adJacobian(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,

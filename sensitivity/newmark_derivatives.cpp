@@ -161,9 +161,9 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   copyRows(d, free, 0, 0, nf, out.step.damping);
   copyRows(d, free, 0, nf, nf, out.step.stiffness);
   copyRows(d, free, 0, 2 * nf, p, out.step.parameters);
-  if (m == 0) return;
   ClosureDerivatives& c = out.closure;
-  c.jacobian = s.jacobian;
+  c.jacobian = s.jacobian;  // no rows without cut joints
+  if (m == 0) return;
   c.velocity_q = d.block(n, nf, m, nf);
   c.acceleration_q = d.block(n + m, nf, m, nf);
   c.acceleration_v = d.block(n + m, 0, m, nf);

@@ -28,7 +28,7 @@ struct StepDerivatives {
 /// G = ∂(M(q)Δ + B(q)ᵀμ)/∂q and P = ∂(M Δ + Bᵀμ)/∂b, which carry its dependence on q and on the
 /// design variables through M and B.
 struct ClosureDerivatives {
-  Eigen::MatrixXd jacobian;                        ///< B
+  Eigen::MatrixXd jacobian;                        ///< B; without cut joints it has no rows and the rest is empty
   Eigen::MatrixXd velocity_q;                      ///< ∂ḃ/∂q at (q_k, q̇_k)
   Eigen::MatrixXd acceleration_q, acceleration_v;  ///< ∂b̈/∂q, ∂b̈/∂q̇ at (q_k, q̇_k, q̈_k)
   Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
