@@ -25,7 +25,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
   RelativeMotion<Scalar> m;
   std::visit(Overloaded{
                  [&](const Offset& e) {
-                   m.rotation = Re * e.rotation;
+                   m.rotation = e.rotates ? Matrix3<Scalar>(Re * e.rotation) : Re;
                    m.translation = Re * e.translation;
                  },
                  [&](const RevoluteJoint& e) {

@@ -144,7 +144,7 @@ FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Ei
   if (!translation.allFinite() || !rotation.allFinite()) throw std::invalid_argument(name + ": offset must be finite");
   if ((rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm() > 1e-9 || rotation.determinant() < 0.0)
     throw std::invalid_argument(name + ": offset rotation is not a proper rotation matrix");
-  return addElement(name, parent, Offset{rotation, translation}, false);
+  return addElement(name, parent, Offset{rotation, translation, rotation != Eigen::Matrix3d::Identity()}, false);
 }
 
 FrameIndex Model::addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis) {

@@ -28,6 +28,7 @@ enum class ParameterIndex : int {};
 struct Offset {  ///< passive: constant rotation and translation, both in the entry frame
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  bool rotates = false;  ///< rotation ≠ I: the kinematics multiply by it (most offsets only translate)
 };
 struct RevoluteJoint {  ///< active: rotation q about a unit axis of the entry frame
   Eigen::Vector3d axis;
