@@ -1,5 +1,6 @@
 #include "dynamics/condition_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dynamics/lu_solve.hpp"
@@ -13,6 +14,35 @@ constexpr int kMaxIterations = 5;  // LAPACK's ITMAX
 double signOf(double v) { return v >= 0.0 ? 1.0 : -1.0; }
 
 }  // namespace
+
+double reciprocalConditionLowerBound(const Eigen::MatrixXd& a, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
+                                     Eigen::VectorXd& y) {
+  const Eigen::Index n = a.rows();
+  if (n == 0) return 1.0;
+  const Eigen::MatrixXd& f = lu.matrixLU();
+  const double norm = a.cwiseAbs().colwise().sum().maxCoeff();  // ‖A‖₁
+  y.resize(n);
+  // U: the comparison matrix's transpose is lower triangular; y = C(U)⁻ᵀ 1 forward, column sums of C(U)⁻¹.
+  double inverse_u = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double* u = f.data() + i * n;  // column i of U: rows 0..i
+    double sum = 1.0;
+    for (Eigen::Index k = 0; k < i; ++k) sum += std::abs(u[k]) * y[k];
+    y[i] = sum / std::abs(u[i]);
+    inverse_u = std::max(inverse_u, y[i]);
+  }
+  // L (unit diagonal): y = C(L)⁻ᵀ 1 backward.
+  double inverse_l = 0.0;
+  for (Eigen::Index i = n; i-- > 0;) {
+    const double* l = f.data() + i * n;  // column i of L: rows i+1..n−1
+    double sum = 1.0;
+    for (Eigen::Index k = i + 1; k < n; ++k) sum += std::abs(l[k]) * y[k];
+    y[i] = sum;
+    inverse_l = std::max(inverse_l, sum);
+  }
+  const double bound = norm * inverse_u * inverse_l;
+  return std::isfinite(bound) && bound > 0.0 ? 1.0 / bound : 0.0;
+}
 
 double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
                                                const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {

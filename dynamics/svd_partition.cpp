@@ -16,6 +16,7 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
     v1_.resize(n, 0);
     v2_ = Eigen::MatrixXd::Identity(n, n);
     inverse_s1_.resize(0);
+    x_r_.resize(0);
     return;
   }
   // (43) in two stages, as Eigen's JacobiSVD does for a wide matrix: Bᵀ P = Q R by Householder QR
@@ -42,15 +43,57 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   x_r_.resize(rank_);
 }
 
+namespace {
+
+// The products of the partition, on raw column-major data: the matrices have a few rows and
+// columns, where Eigen's dynamic-size product kernels and expressions spend more on choosing and
+// peeling their loops than on the arithmetic (perf on BM_TramwaySimulation); for the large chains
+// the inner loops run down contiguous columns, which the compiler vectorises.
+
+/// C = A B (A rows × inner, B inner × cols), or C += A B when `accumulate`.
+void multiply(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index rows, Eigen::Index inner, Eigen::Index cols,
+              bool accumulate) {
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    double* cj = c + j * rows;
+    if (!accumulate) std::fill(cj, cj + rows, 0.0);
+    for (Eigen::Index k = 0; k < inner; ++k) {
+      const double* ak = a + k * rows;
+      const double bkj = b[k + j * inner];
+      for (Eigen::Index i = 0; i < rows; ++i) cj[i] += ak[i] * bkj;
+    }
+  }
+}
+
+/// C = Aᵀ B (A inner × rows, B inner × cols): a dot product down two columns per coefficient.
+void multiplyTransposed(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index rows, Eigen::Index inner,
+                        Eigen::Index cols) {
+  for (Eigen::Index j = 0; j < cols; ++j)
+    for (Eigen::Index i = 0; i < rows; ++i) c[i + j * rows] = dotProduct(a + i * inner, b + j * inner, inner);
+}
+
+/// y = A x, or y += A x when `accumulate`.
+void multiply(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
+  multiply(a.data(), x.data(), y.data(), a.rows(), a.cols(), 1, accumulate);
+}
+
+/// y = Aᵀ x.
+void multiplyTransposed(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  multiplyTransposed(a.data(), x.data(), y.data(), a.cols(), a.rows(), 1);
+}
+
+}  // namespace
+
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   J_ = J;
-  const Eigen::Index free = v2_.cols(), k = reflectors_;
+  const Eigen::Index n = J.rows(), free = v2_.cols(), k = reflectors_;
   if (free == 0) return true;
   if (k == 0) {
     reduced_matrix_ = J;  // V₂ = I
-  } else if (J.rows() <= kReflectorsFrom) {
-    j_v2_.noalias() = J.lazyProduct(v2_);
-    reduced_matrix_.noalias() = v2_.transpose().lazyProduct(j_v2_);
+  } else if (n <= kReflectorsFrom) {
+    j_v2_.resize(n, free);
+    reduced_matrix_.resize(free, free);
+    multiply(J.data(), v2_.data(), j_v2_.data(), n, n, free, false);
+    multiplyTransposed(v2_.data(), j_v2_.data(), reduced_matrix_.data(), free, n, free);
   } else {
     // V₂ᵀ J V₂, the last n − rank rows and columns of Vᵀ J V with V = Q diag(W̃, I): T = Qᵀ J Q by the
     // k reflectors on either side, then W̃ on the first k rows and columns of T.
@@ -64,42 +107,47 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
     reduced_matrix_ = rotated_.bottomRightCorner(free, free);
   }
   reduced_.compute(reduced_matrix_);
+  // Hager's estimate is never below the true reciprocal condition, which is never below the
+  // triangles' bound: a bound above the threshold (with a factor 2 for round-off) decides as the
+  // estimate would, at the cost of one solve instead of five or more.
+  if (reduced_matrix_.rows() <= kBoundUpTo &&
+      reciprocalConditionLowerBound(reduced_matrix_, reduced_, bound_scratch_) > 2.0 * kSingular)
+    return true;
   const double reciprocal_condition = condition_.reciprocalCondition(reduced_matrix_, reduced_);
-  return reciprocal_condition > 1e-13 && std::isfinite(reciprocal_condition);
+  return reciprocal_condition > kSingular && std::isfinite(reciprocal_condition);
 }
-
-// The products below use lazyProduct (coefficient by coefficient): the matrices have a few rows
-// and columns, where the blocked matrix-vector kernels cost more than the arithmetic.
-
-namespace {
-
-/// dx = V₁ x_r. Without constraints (rank 0) V₁ is n × 0 and Eigen's null data pointer: each
-/// coefficient of the lazy product would offset it by its row (undefined behaviour), so zero.
-void rangeStep(const Eigen::MatrixXd& v1, const Eigen::VectorXd& x_r, Eigen::VectorXd& dx) {
-  if (v1.cols() == 0) dx.setZero(v1.rows());
-  else dx.noalias() = v1.lazyProduct(x_r);
-}
-
-}  // namespace
 
 void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
                          Eigen::VectorXd& dmu) const {
-  x_r_.noalias() = -(inverse_s1_.asDiagonal() * u1_.transpose().lazyProduct(g));
-  rangeStep(v1_, x_r_, dx);
+  const Eigen::Index n = v1_.rows();
+  dx.resize(n);
+  dmu.resize(u1_.rows());
+  work_.resize(n);
+  multiplyTransposed(u1_, g, x_r_);  // x_r = −S₁⁻¹ U₁ᵀ g
+  for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= -inverse_s1_[i];
+  multiply(v1_, x_r_, dx, false);  // V₁ x_r (zero without constraints: V₁ is n × 0)
   if (v2_.cols() > 0) {
-    work_.noalias() = r + J_.lazyProduct(dx);
-    reduced_rhs_.noalias() = -v2_.transpose().lazyProduct(work_);
+    work_ = r;
+    multiply(J_, dx, work_, true);  // r + J V₁ x_r
+    reduced_rhs_.resize(v2_.cols());
+    multiplyTransposed(v2_, work_, reduced_rhs_);
+    reduced_rhs_ = -reduced_rhs_;
     luSolve(reduced_, reduced_rhs_, x_n_);
-    dx.noalias() += v2_.lazyProduct(x_n_);
+    multiply(v2_, x_n_, dx, true);
   }
-  work_.noalias() = r + J_.lazyProduct(dx);
-  x_r_.noalias() = inverse_s1_.asDiagonal() * v1_.transpose().lazyProduct(work_);
-  dmu.noalias() = -u1_.lazyProduct(x_r_);
+  work_ = r;
+  multiply(J_, dx, work_, true);  // r + J Δx
+  multiplyTransposed(v1_, work_, x_r_);
+  for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= inverse_s1_[i];
+  multiply(u1_, x_r_, dmu, false);
+  dmu = -dmu;
 }
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
-  x_r_.noalias() = inverse_s1_.asDiagonal() * u1_.transpose().lazyProduct(c);
-  rangeStep(v1_, x_r_, dx);
+  dx.resize(v1_.rows());
+  multiplyTransposed(u1_, c, x_r_);
+  for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= inverse_s1_[i];
+  multiply(v1_, x_r_, dx, false);
 }
 
 }  // namespace mbsopt
