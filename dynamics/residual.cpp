@@ -1,6 +1,7 @@
 #include "dynamics/residual.hpp"
 
 #include <cmath>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -58,9 +59,11 @@ void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Sc
   }
 }
 
-/// Point-to-point spring-dampers act as applied (so subtracted) forces on their two frames.
+/// Point-to-point spring-dampers act as applied (so subtracted) forces on their two frames, with the
+/// stiffness and damping given (the element's parameters, or 1 and 0 for the derivative in one).
 template <class Scalar>
-void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Workspace<Scalar>& ws) {
+void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Workspace<Scalar>& ws,
+                            const Scalar& stiffness, const Scalar& damping) {
   using std::sqrt;
   const auto a = static_cast<std::size_t>(s.frame_a), b = static_cast<std::size_t>(s.frame_b);
   const Vector3<Scalar> ra = ws.rotation[a] * s.point_a;
@@ -72,8 +75,7 @@ void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Work
   if (!(valueOf(length) > 1e-12 * (1.0 + std::abs(model.value(s.rest_length)))))
     throw DegenerateElementError(s.name, "point spring-damper '" + s.name + "': its two points coincide, so its direction is undefined");
   const Vector3<Scalar> u = d / length;
-  const Scalar tension = parameter(model, ws, s.stiffness) * (length - parameter(model, ws, s.rest_length)) +
-                         parameter(model, ws, s.damping) * u.dot(d_rate);
+  const Scalar tension = stiffness * (length - parameter(model, ws, s.rest_length)) + damping * u.dot(d_rate);
   const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched
   ws.force[a] -= on_a;
   ws.moment[a] -= ra.cross(on_a);
@@ -81,10 +83,11 @@ void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Work
   ws.moment[b] += rb.cross(on_a);
 }
 
-/// Track guidance torque on its frame, reaction on the track's frame, and −κτ on the slider coordinate.
+/// Track guidance torque on its frame, reaction on the track's frame, and −κτ on the slider
+/// coordinate, with the stiffness and damping given (as for the point spring-dampers).
 template <class Scalar>
 void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                      const VectorX<Scalar>& v, VectorX<Scalar>& f) {
+                      const VectorX<Scalar>& v, VectorX<Scalar>& f, const Scalar& stiffness, const Scalar& damping) {
   using std::atan2;
   using std::cos;
   using std::sin;
@@ -101,20 +104,24 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
   const Vector3<Scalar> binormal = ws.rotation[base].col(2);
   const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
-  const Scalar torque =
-      -parameter(model, ws, g.stiffness) * deviation - parameter(model, ws, g.damping) * deviation_rate;
+  const Scalar torque = -stiffness * deviation - damping * deviation_rate;
   ws.moment[frame] -= torque * binormal;  // applied on the frame
   ws.moment[base] += torque * binormal;   // reaction on the track
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
-/// The body wrenches with gravity g at the kinematics in ws, every other wrench cleared.
 template <class Scalar>
-void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
+void clearWrenches(Workspace<Scalar>& ws) {
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
     ws.force[k].setZero();
     ws.moment[k].setZero();
   }
+}
+
+/// The body wrenches with gravity g at the kinematics in ws, every other wrench cleared.
+template <class Scalar>
+void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
+  clearWrenches(ws);
   addBodyWrenches(model, ws, g, motion);
 }
 
@@ -157,11 +164,17 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
                             f[i] += parameter(model, ws, s.stiffness) * (q[i] - timeValue(model, ws, s.rest, t)) +
                                     parameter(model, ws, s.damping) * (v[i] - Scalar(s.rest.function.rate(t)));
                           },
-                          [&](const PointSpringDamper& s) { addPointSpringWrenches(model, s, ws); },
+                          [&](const PointSpringDamper& s) {
+                            addPointSpringWrenches(model, s, ws, parameter(model, ws, s.stiffness),
+                                                   parameter(model, ws, s.damping));
+                          },
                           [&](const JointActuation& s) {
                             f[static_cast<Eigen::Index>(s.coordinate)] -= timeValue(model, ws, s.force, t);
                           },
-                          [&](const TrackGuidance& g) { addTrackGuidance(model, g, ws, q, v, f); }},
+                          [&](const TrackGuidance& g) {
+                            addTrackGuidance(model, g, ws, q, v, f, parameter(model, ws, g.stiffness),
+                                             parameter(model, ws, g.damping));
+                          }},
                element);
   }
   if (model.constraintCount() > 0 && lambda.size() > 0) addConstraintWrenches(model, ws, lambda);
@@ -177,6 +190,59 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
   f.setZero(model.coordinateCount());
   if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);
+}
+
+bool isLinearForceParameter(const Model& model, ParameterIndex p) {
+  for (const ForceElement& element : model.forces()) {
+    const bool owned = std::visit(Overloaded{[p](const JointActuation&) { return false; },
+                                             [p](const auto& e) { return p == e.stiffness || p == e.damping; }},
+                                  element);
+    if (owned) return true;
+  }
+  return false;
+}
+
+bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v, double t, ParameterIndex p, Eigen::VectorXd& column) {
+  // The element's force is k·(a stiffness term) + c·(a damping term): ∂f/∂k is its force with k = 1,
+  // c = 0, carried to the coordinates by the same backward recursion (22)-(24).
+  const auto unit = [p](ParameterIndex stiffness, ParameterIndex damping) {
+    return std::pair{p == stiffness ? 1.0 : 0.0, p == damping ? 1.0 : 0.0};
+  };
+  const auto carry = [&] {  // the wrenches of the unit force, to the coordinates
+    addElementResiduals(model, ws, column);
+    return true;
+  };
+  for (const ForceElement& element : model.forces()) {
+    const bool owned = std::visit(
+        Overloaded{[&](const JointSpringDamper& s) {
+                     if (p != s.stiffness && p != s.damping) return false;
+                     const auto i = static_cast<Eigen::Index>(s.coordinate);
+                     column.setZero(model.coordinateCount());
+                     column[i] = p == s.stiffness ? q[i] - model.value(s.rest, t) : v[i] - s.rest.function.rate(t);
+                     return true;
+                   },
+                   [&](const PointSpringDamper& s) {
+                     if (p != s.stiffness && p != s.damping) return false;
+                     const auto [k, c] = unit(s.stiffness, s.damping);
+                     clearWrenches(ws);
+                     column.setZero(model.coordinateCount());
+                     addPointSpringWrenches(model, s, ws, k, c);
+                     return carry();
+                   },
+                   [&](const TrackGuidance& g) {
+                     if (p != g.stiffness && p != g.damping) return false;
+                     const auto [k, c] = unit(g.stiffness, g.damping);
+                     clearWrenches(ws);
+                     column.setZero(model.coordinateCount());
+                     addTrackGuidance(model, g, ws, q, v, column, k, c);
+                     return carry();
+                   },
+                   [](const JointActuation&) { return false; }},
+        element);
+    if (owned) return true;
+  }
+  return false;
 }
 
 template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,

@@ -39,6 +39,18 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
 template <class Scalar>
 void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda,
                                          VectorX<Scalar>& f);
+/// Whether the parameter p is the stiffness or the damping of a joint spring-damper, a point
+/// spring-damper or a track guidance: f is then linear in it, through that element alone.
+bool isLinearForceParameter(const Model& model, ParameterIndex p);
+/// ∂f/∂p into `column` (coordinateCount() rows) when the parameter p enters f linearly through one
+/// force element, as the stiffness or the damping of a joint spring-damper, a point spring-damper
+/// or a track guidance; false (column untouched) for any other parameter. Needs ws to hold the
+/// geometry and the frame velocities of (q, q̇) (forwardKinematics at Velocity level or beyond, or
+/// frameRates on its geometry); overwrites its wrenches. The exact derivative at the cost of one
+/// backward pass in double, where a forward-AD pass would carry p as one more direction.
+bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v, double t, ParameterIndex p, Eigen::VectorXd& column);
+
 extern template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                       const VectorX<double>&, const VectorX<double>&, const VectorX<double>&,
                                       double, VectorX<double>&);

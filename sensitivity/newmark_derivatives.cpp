@@ -39,10 +39,26 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       scratch_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
   parameter_indices_ = parameterIndices(model_, parameters_);
+  for (const ParameterIndex index : parameter_indices_) {
+    const bool linear = isLinearForceParameter(model_, index);
+    ad_parameter_.push_back(linear ? -1 : static_cast<int>(ad_parameter_indices_.size()));
+    if (!linear) ad_parameter_indices_.push_back(index);
+  }
   const std::vector<int>& free = model_.freeCoordinates();
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
-  step_inputs_ = adInputs({free_v, free_q, parameterInputs(parameters_.size())});
+  step_inputs_ = adInputs({free_v, free_q, parameterInputs(ad_parameter_indices_.size())});
+}
+
+void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
+                                                   Eigen::MatrixXd& parameters) {
+  if (std::find(ad_parameter_.begin(), ad_parameter_.end(), -1) == ad_parameter_.end()) return;
+  frameRates(model_, s.plain_ws, v, v, KinematicsLevel::Velocity);  // (q̈ is not read at velocity level)
+  for (std::size_t j = 0; j < ad_parameter_.size(); ++j) {
+    if (ad_parameter_[j] >= 0) continue;
+    linearForceParameterColumn(model_, s.plain_ws, s.q, v, time(k), parameter_indices_[j], s.column);
+    parameters.col(static_cast<Eigen::Index>(j)) = s.column(model_.freeCoordinates());
+  }
 }
 
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
@@ -74,14 +90,20 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
     const Eigen::MatrixXd transposed = constraintJacobian(k).transpose();
     lambda = transposed.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(-f(model_.freeCoordinates()));
   }
-  // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes over the step's inputs.
+  // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes over the step's inputs, and
+  // the columns of the parameters f is linear in in double.
   const Eigen::Index nf = freeCount();
   const Eigen::MatrixXd derivatives =
       residualJacobian(model_, scratch_.ws, tr.q.col(k), tr.v.col(k), tr.a.col(k), lambda, tr.time[k], step_inputs_,
-                       parameter_indices_)(model_.freeCoordinates(), Eigen::all);
+                       ad_parameter_indices_)(model_.freeCoordinates(), Eigen::all);
   geometryAt(k, scratch_);
-  return {scratch_.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
-          derivatives.rightCols(variableCount())};
+  StepDerivatives out{scratch_.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
+                      Eigen::MatrixXd(nf, variableCount())};
+  for (std::size_t j = 0; j < ad_parameter_.size(); ++j)
+    if (ad_parameter_[j] >= 0) out.parameters.col(static_cast<Eigen::Index>(j)) = derivatives.col(2 * nf + ad_parameter_[j]);
+  scratch_.v = tr.v.col(k);
+  linearParameterColumns(k, scratch_.v, scratch_, out.parameters);
+  return out;
 }
 
 Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
@@ -99,12 +121,23 @@ void copyRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen
     out.row(static_cast<Eigen::Index>(r)) = source.row(row_offset + rows[r]).segment(first, count);
 }
 
+/// out = one column per design variable: the rows `rows` of source's column first + direction[j]
+/// for a variable with an AD direction, zero for the others (−1), reusing out's storage.
+void copyParameterRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset,
+                       Eigen::Index first, const std::vector<int>& direction, Eigen::MatrixXd& out) {
+  out.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(direction.size()));
+  for (std::size_t j = 0; j < direction.size(); ++j)
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j)) =
+          direction[j] >= 0 ? source(row_offset + rows[r], first + direction[j]) : 0.0;
+}
+
 }  // namespace
 
 void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
-  const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount(), p = variableCount();
+  const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount();
   geometryAt(k, s);
   seedsAt(k, s, out.seeds);
   // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows).
@@ -134,7 +167,7 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
   Eigen::MatrixXd& d = s.pass_jacobian;
   adJacobian(
-      s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, parameter_indices_, rows,
+      s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, ad_parameter_indices_, rows,
       [&](const SeededState& state, VectorX<AdScalar>& g) {
         g.resize(rows);
         forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
@@ -156,11 +189,15 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
         g.tail(n) = s.f;
       },
       d);
-  // Columns: free q̇ [0, nf), free q [nf, 2nf), design parameters [2nf, 2nf + p).
+  // Columns: free q̇ [0, nf), free q [nf, 2nf), the AD passes' design parameters from 2nf on; the
+  // parameters f is linear in (force elements' stiffness and damping) in double, and with zero
+  // columns in the projections (M and B do not depend on them).
   out.step.mass = s.mass;
   copyRows(d, free, 0, 0, nf, out.step.damping);
   copyRows(d, free, 0, nf, nf, out.step.stiffness);
-  copyRows(d, free, 0, 2 * nf, p, out.step.parameters);
+  copyParameterRows(d, free, 0, 2 * nf, ad_parameter_, out.step.parameters);
+  s.v = tr.v_unprojected.col(k);
+  linearParameterColumns(k, s.v, s, out.step.parameters);
   ClosureDerivatives& c = out.closure;
   c.jacobian = s.jacobian;  // no rows without cut joints
   if (m == 0) return;
@@ -168,9 +205,9 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   c.acceleration_q = d.block(n + m, nf, m, nf);
   c.acceleration_v = d.block(n + m, 0, m, nf);
   copyRows(d, free, n + 2 * m, nf, nf, c.velocity_projection);
-  copyRows(d, free, n + 2 * m, 2 * nf, p, c.velocity_projection_parameters);
+  copyParameterRows(d, free, n + 2 * m, 2 * nf, ad_parameter_, c.velocity_projection_parameters);
   copyRows(d, free, 2 * n + 2 * m, nf, nf, c.acceleration_projection);
-  copyRows(d, free, 2 * n + 2 * m, 2 * nf, p, c.acceleration_projection_parameters);
+  copyParameterRows(d, free, 2 * n + 2 * m, 2 * nf, ad_parameter_, c.acceleration_projection_parameters);
 }
 
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {

@@ -95,8 +95,13 @@ class TrajectoryDerivatives {
   Model model_;
   DesignResponse response_;
   std::vector<std::string> parameters_;
-  std::vector<ParameterIndex> parameter_indices_;  ///< their indices in model_, for seeding
-  /// The inputs of the AD passes, listed once: free q̇, free q, design parameters.
+  std::vector<ParameterIndex> parameter_indices_;  ///< their indices in model_
+  /// Per design variable, its direction among the AD passes' parameters, or −1 when f is linear in
+  /// it through a force element (a stiffness or a damping): its column of ∂f/∂b is then computed in
+  /// double (linearForceParameterColumn), and M and B, so the projections, do not depend on it.
+  std::vector<int> ad_parameter_;
+  std::vector<ParameterIndex> ad_parameter_indices_;  ///< the model indices of the AD passes' parameters
+  /// The inputs of the AD passes, listed once: free q̇, free q, the design parameters f is not linear in.
   std::vector<AdInput> step_inputs_;
 
   /// The mutable state of the evaluations at a time point: workspaces, and M(q_k), B(q_k) from one
@@ -113,7 +118,7 @@ class TrajectoryDerivatives {
     VectorX<AdScalar> f, closure_rates;
     // pointAt's buffers in double: the projections' corrections and multipliers, Bᵀ and its SVD,
     // the Jacobian of the AD pass; seedsAt's sensor lists and their Jacobians.
-    Eigen::VectorXd q, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f;
+    Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column;
     Eigen::MatrixXd jacobian_transposed, pass_jacobian;
     Eigen::JacobiSVD<Eigen::MatrixXd> transposed_svd;
     std::vector<int> sensor_slot;
@@ -124,6 +129,9 @@ class TrajectoryDerivatives {
   std::vector<Scratch> thread_scratch_;  ///< of the threads of points()
 
   void geometryAt(Eigen::Index k, Scratch& s);
+  /// The columns of ∂f/∂b (free rows) of the design variables f is linear in, at (q_k, v) with
+  /// the geometry of q_k in s.plain_ws (geometryAt), into `parameters`; the other columns untouched.
+  void linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s, Eigen::MatrixXd& parameters);
   /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two
   /// shared; into `out`, reusing the storage of its matrices.
   void pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out);

@@ -40,6 +40,34 @@ void expectCentralDifferences(Model model, const Eigen::VectorXd& q, const Eigen
   EXPECT_TRUE(ws_ad.parameter_seeds.empty());
 }
 
+// The columns of ∂f/∂b computed in double for the parameters f is linear in (a force element's
+// stiffness or damping: linearForceParameterColumn, what the exact gradients use instead of an AD
+// direction) against the forward-AD columns of the whole residual: the same derivative of a linear
+// function, summed in another order, so equal to round-off (1e-12 of the column). Every other
+// parameter is refused, and the state is chosen so that no column is zero.
+void expectLinearForceColumnsMatchAd(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                     const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t,
+                                     int expected_linear) {
+  const std::vector<std::string> names = model.parameterNames();
+  Workspace<AdScalar> ws_ad(model);
+  const Eigen::MatrixXd J = parameterJacobian(model, ws_ad, q, v, a, lambda, t, names);
+  Workspace<double> ws(model);
+  forwardKinematics(model, ws, q, v, a, KinematicsLevel::Velocity);
+  int linear = 0;
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const ParameterIndex index = model.parameterIndex(names[j]);
+    Eigen::VectorXd column;
+    const bool computed = linearForceParameterColumn(model, ws, q, v, t, index, column);
+    EXPECT_EQ(computed, isLinearForceParameter(model, index)) << names[j];
+    if (!computed) continue;
+    ++linear;
+    const Eigen::VectorXd ad = J.col(static_cast<Eigen::Index>(j));
+    ASSERT_GT(ad.cwiseAbs().maxCoeff(), 0.0) << names[j];
+    EXPECT_LE((column - ad).cwiseAbs().maxCoeff(), 1e-12 * ad.cwiseAbs().maxCoeff()) << names[j];
+  }
+  EXPECT_EQ(linear, expected_linear);
+}
+
 // The tram mid-curve: masses, centres of mass, inertias, secondary springs and dampers, track
 // guidance, gravity (zero here, but its derivative is not).
 TEST(ParameterJacobian, TramwayMatchesCentralDifferences) {
@@ -49,6 +77,10 @@ TEST(ParameterJacobian, TramwayMatchesCentralDifferences) {
   const Eigen::Index k = trajectory.time.size() - 1;
   expectCentralDifferences(scene.model, trajectory.q.col(k), trajectory.v.col(k), trajectory.a.col(k),
                            trajectory.lambda.col(k), trajectory.time[k]);
+  // The stiffness and damping of the two secondary suspensions and the two track guidances (the
+  // recursion carries a guidance's torque to every coordinate behind it), in double against AD.
+  expectLinearForceColumnsMatchAd(scene.model, trajectory.q.col(k), trajectory.v.col(k), trajectory.a.col(k),
+                                  trajectory.lambda.col(k), trajectory.time[k], 8);
 }
 
 // A spatial double pendulum with offset centres of mass, a joint spring with a rest angle, a point
@@ -67,6 +99,8 @@ TEST(ParameterJacobian, ForceElementsAndGravityMatchCentralDifferences) {
   model.addJointActuation("motor", "shoulder", TimeFunction::constant(1.5));
   const Eigen::VectorXd q = Eigen::Vector2d(0.4, -0.7), v = Eigen::Vector2d(1.1, -0.6), a = Eigen::Vector2d(-2.0, 3.0);
   expectCentralDifferences(model, q, v, a, Eigen::VectorXd(), 0.3);
+  // The joint spring's and the strut's stiffness and damping, in double against AD.
+  expectLinearForceColumnsMatchAd(model, q, v, a, Eigen::VectorXd(), 0.3, 4);
 }
 
 // Parameters are seeded by their index in the model, not by the address of their storage: a copy
