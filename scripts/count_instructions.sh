@@ -47,11 +47,11 @@ calls=$(awk '/^c?fn=\([0-9]+\) mbsopt::NewmarkIntegrator::simulate\([^{]*\)$/ { 
 echo "instructions in one tramway design evaluation: $((count / calls)) (over $calls evaluations)"
 echo "per function: callgrind_annotate --inclusive=yes $out"
 
-# The adjoint gradient: bench_gradients' GradientAdjoint/jobs:1 times adjointGradient once per
+# The adjoint gradient: bench_gradients' GradientAdjoint/jobs:1/variables:4 times adjointGradient once per
 # iteration, and under valgrind runs one iteration.
 out=build/portable/callgrind.adjoint.out
 valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::adjointGradient*' \
-  build/portable/bench/bench_gradients --benchmark_filter='GradientAdjoint/jobs:1' \
+  build/portable/bench/bench_gradients --benchmark_filter='GradientAdjoint/jobs:1/variables:4' \
   --benchmark_min_time=0.01 2> build/portable/callgrind.adjoint.log > build/portable/callgrind.adjoint.txt
 iterations=$(awk '/^BM_TramwayGradientAdjoint/ {print $6}' build/portable/callgrind.adjoint.txt)
 [ "$iterations" = "1" ] || { echo "count_instructions.sh: expected one adjoint iteration, got '$iterations'" >&2; exit 1; }
