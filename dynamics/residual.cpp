@@ -1,9 +1,9 @@
 #include "dynamics/residual.hpp"
 
 #include <cmath>
-#include <utility>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
@@ -110,6 +110,7 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
+/// Every frame's force and moment set to zero.
 template <class Scalar>
 void clearWrenches(Workspace<Scalar>& ws) {
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
@@ -194,7 +195,7 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
 
 bool isLinearForceParameter(const Model& model, ParameterIndex p) {
   for (const ForceElement& element : model.forces()) {
-    const bool owned = std::visit(Overloaded{[p](const JointActuation&) { return false; },
+    const bool owned = std::visit(Overloaded{[](const JointActuation&) { return false; },
                                              [p](const auto& e) { return p == e.stiffness || p == e.damping; }},
                                   element);
     if (owned) return true;
