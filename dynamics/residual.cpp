@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
@@ -193,57 +192,46 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
   addElementResiduals(model, ws, f);
 }
 
-bool isLinearForceParameter(const Model& model, ParameterIndex p) {
+namespace {
+
+/// The force element whose stiffness or damping p is (f is linear in p through it alone), or null.
+const ForceElement* linearForceOwner(const Model& model, ParameterIndex p) {
   for (const ForceElement& element : model.forces()) {
     const bool owned = std::visit(Overloaded{[](const JointActuation&) { return false; },
                                              [p](const auto& e) { return p == e.stiffness || p == e.damping; }},
                                   element);
-    if (owned) return true;
+    if (owned) return &element;
   }
-  return false;
+  return nullptr;
 }
+
+}  // namespace
+
+bool isLinearForceParameter(const Model& model, ParameterIndex p) { return linearForceOwner(model, p) != nullptr; }
 
 bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v, double t, ParameterIndex p, Eigen::VectorXd& column) {
+  const ForceElement* owner = linearForceOwner(model, p);
+  if (!owner) return false;
   // The element's force is k·(a stiffness term) + c·(a damping term): ∂f/∂k is its force with k = 1,
   // c = 0, carried to the coordinates by the same backward recursion (22)-(24).
-  const auto unit = [p](ParameterIndex stiffness, ParameterIndex damping) {
-    return std::pair{p == stiffness ? 1.0 : 0.0, p == damping ? 1.0 : 0.0};
-  };
-  const auto carry = [&] {  // the wrenches of the unit force, to the coordinates
-    addElementResiduals(model, ws, column);
-    return true;
-  };
-  for (const ForceElement& element : model.forces()) {
-    const bool owned = std::visit(
-        Overloaded{[&](const JointSpringDamper& s) {
-                     if (p != s.stiffness && p != s.damping) return false;
-                     const auto i = static_cast<Eigen::Index>(s.coordinate);
-                     column.setZero(model.coordinateCount());
-                     column[i] = p == s.stiffness ? q[i] - model.value(s.rest, t) : v[i] - s.rest.function.rate(t);
-                     return true;
-                   },
-                   [&](const PointSpringDamper& s) {
-                     if (p != s.stiffness && p != s.damping) return false;
-                     const auto [k, c] = unit(s.stiffness, s.damping);
-                     clearWrenches(ws);
-                     column.setZero(model.coordinateCount());
-                     addPointSpringWrenches(model, s, ws, k, c);
-                     return carry();
-                   },
-                   [&](const TrackGuidance& g) {
-                     if (p != g.stiffness && p != g.damping) return false;
-                     const auto [k, c] = unit(g.stiffness, g.damping);
-                     clearWrenches(ws);
-                     column.setZero(model.coordinateCount());
-                     addTrackGuidance(model, g, ws, q, v, column, k, c);
-                     return carry();
-                   },
-                   [](const JointActuation&) { return false; }},
-        element);
-    if (owned) return true;
-  }
-  return false;
+  column.setZero(model.coordinateCount());
+  clearWrenches(ws);
+  std::visit(Overloaded{[&](const JointSpringDamper& s) {
+                          const auto i = static_cast<Eigen::Index>(s.coordinate);
+                          column[i] = p == s.stiffness ? q[i] - model.value(s.rest, t) : v[i] - s.rest.function.rate(t);
+                        },
+                        [&](const PointSpringDamper& s) {
+                          addPointSpringWrenches(model, s, ws, p == s.stiffness ? 1.0 : 0.0, p == s.damping ? 1.0 : 0.0);
+                        },
+                        [&](const TrackGuidance& g) {
+                          addTrackGuidance(model, g, ws, q, v, column, p == g.stiffness ? 1.0 : 0.0,
+                                           p == g.damping ? 1.0 : 0.0);
+                        },
+                        [](const JointActuation&) {}},
+             *owner);
+  addElementResiduals(model, ws, column);  // the unit force's wrenches, to the coordinates
+  return true;
 }
 
 template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,

@@ -26,6 +26,25 @@ Model checkedModel(const DesignProblem& problem, const Eigen::VectorXd& x) {
   return model;
 }
 
+/// out = the rows `rows` of source's columns [first, first + count), reusing out's storage.
+void copyRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset, Eigen::Index first,
+              Eigen::Index count, Eigen::MatrixXd& out) {
+  out.resize(static_cast<Eigen::Index>(rows.size()), count);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    out.row(static_cast<Eigen::Index>(r)) = source.row(row_offset + rows[r]).segment(first, count);
+}
+
+/// out = one column per design variable: the rows `rows` of source's column first + direction[j]
+/// for a variable with an AD direction, zero for the others (−1), reusing out's storage.
+void copyParameterRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset,
+                       Eigen::Index first, const std::vector<int>& direction, Eigen::MatrixXd& out) {
+  out.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(direction.size()));
+  for (std::size_t j = 0; j < direction.size(); ++j)
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j)) =
+          direction[j] >= 0 ? source(row_offset + rows[r], first + direction[j]) : 0.0;
+}
+
 }  // namespace
 
 TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
@@ -52,7 +71,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
                                                    Eigen::MatrixXd& parameters) {
-  if (std::find(ad_parameter_.begin(), ad_parameter_.end(), -1) == ad_parameter_.end()) return;
+  if (ad_parameter_indices_.size() == parameter_indices_.size()) return;  // every variable has an AD direction
   frameRates(model_, s.plain_ws, v, v, KinematicsLevel::Velocity);  // (q̈ is not read at velocity level)
   for (std::size_t j = 0; j < ad_parameter_.size(); ++j) {
     if (ad_parameter_[j] >= 0) continue;
@@ -93,14 +112,14 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   // M = ∂f/∂q̈ in double; C_T, K_T and ∂f/∂b in one set of AD passes over the step's inputs, and
   // the columns of the parameters f is linear in in double.
   const Eigen::Index nf = freeCount();
-  const Eigen::MatrixXd derivatives =
-      residualJacobian(model_, scratch_.ws, tr.q.col(k), tr.v.col(k), tr.a.col(k), lambda, tr.time[k], step_inputs_,
-                       ad_parameter_indices_)(model_.freeCoordinates(), Eigen::all);
+  const std::vector<int>& free = model_.freeCoordinates();
+  const Eigen::MatrixXd d = residualJacobian(model_, scratch_.ws, tr.q.col(k), tr.v.col(k), tr.a.col(k), lambda,
+                                             tr.time[k], step_inputs_, ad_parameter_indices_);
   geometryAt(k, scratch_);
-  StepDerivatives out{scratch_.mass, derivatives.leftCols(nf), derivatives.middleCols(nf, nf),
-                      Eigen::MatrixXd(nf, variableCount())};
-  for (std::size_t j = 0; j < ad_parameter_.size(); ++j)
-    if (ad_parameter_[j] >= 0) out.parameters.col(static_cast<Eigen::Index>(j)) = derivatives.col(2 * nf + ad_parameter_[j]);
+  StepDerivatives out{scratch_.mass, {}, {}, {}};
+  copyRows(d, free, 0, 0, nf, out.damping);
+  copyRows(d, free, 0, nf, nf, out.stiffness);
+  copyParameterRows(d, free, 0, 2 * nf, ad_parameter_, out.parameters);
   scratch_.v = tr.v.col(k);
   linearParameterColumns(k, scratch_.v, scratch_, out.parameters);
   return out;
@@ -111,28 +130,6 @@ Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
   return scratch_.jacobian;
 }
 
-namespace {
-
-/// out = the rows `rows` of source's columns [first, first + count), reusing out's storage.
-void copyRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset, Eigen::Index first,
-              Eigen::Index count, Eigen::MatrixXd& out) {
-  out.resize(static_cast<Eigen::Index>(rows.size()), count);
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    out.row(static_cast<Eigen::Index>(r)) = source.row(row_offset + rows[r]).segment(first, count);
-}
-
-/// out = one column per design variable: the rows `rows` of source's column first + direction[j]
-/// for a variable with an AD direction, zero for the others (−1), reusing out's storage.
-void copyParameterRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset,
-                       Eigen::Index first, const std::vector<int>& direction, Eigen::MatrixXd& out) {
-  out.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(direction.size()));
-  for (std::size_t j = 0; j < direction.size(); ++j)
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j)) =
-          direction[j] >= 0 ? source(row_offset + rows[r], first + direction[j]) : 0.0;
-}
-
-}  // namespace
 
 void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
   const Trajectory& tr = response_.trajectory;
