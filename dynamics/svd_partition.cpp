@@ -8,7 +8,6 @@ namespace mbsopt {
 
 void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   const Eigen::Index m = B.rows(), n = B.cols();
-  reflectors_ = 0;
   if (m == 0) {
     rank_ = 0;
     singular_values_.resize(0);
@@ -19,27 +18,20 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
     x_r_.resize(0);
     return;
   }
-  // (43) in two stages, as Eigen's JacobiSVD does for a wide matrix: Bᵀ P = Q R by Householder QR
-  // with column pivoting (k = min(m, n) reflectors, R = [R_k; 0]), so B = (P R_kᵀ) Q_kᵀ; then the
-  // SVD of the small m × k matrix P R_kᵀ = Ũ S W̃ᵀ gives B = Ũ S (Q_k W̃)ᵀ: U = Ũ, and in the
-  // coordinates of Q the right singular vectors are W̃ on the first k and the identity on the rest.
-  // Keeping Q as its reflectors lets setIterationMatrix form V₂ᵀ J V₂ in O(n² k), not O(n³).
-  qr_.compute(B.transpose());
-  reflectors_ = std::min(m, n);
-  small_ = qr_.matrixQR().topRows(reflectors_).triangularView<Eigen::Upper>().transpose();
-  permuted_small_.noalias() = qr_.colsPermutation() * small_;
-  small_svd_.compute(permuted_small_, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  singular_values_ = small_svd_.singularValues();
-  const double largest = singular_values_.size() > 0 ? singular_values_[0] : 0.0;
+  // (43) from the one-sided Jacobi SVD of Bᵀ: Bᵀ W = X Σ, so B = W Σ Xᵀ, U = W and V₁ the directions
+  // of the first r columns of X Σ; V₂, an orthonormal basis of their complement, from the Householder
+  // QR of V₁ (its last n − r columns of Q), kept as reflectors for setIterationMatrix.
+  transposed_ = B.transpose();
+  jacobi_.compute(transposed_);
+  singular_values_ = jacobi_.singularValues().head(std::min(m, n));
+  const double largest = singular_values_[0];
   rank_ = 0;
   while (rank_ < singular_values_.size() && singular_values_[rank_] > threshold_ * largest && largest > 0.0) ++rank_;
-  u1_ = small_svd_.matrixU().leftCols(rank_);
-  v_.setIdentity(n, n);
-  v_.topLeftCorner(reflectors_, reflectors_) = small_svd_.matrixV();
-  qr_.householderQ().applyThisOnTheLeft(v_, householder_workspace_);  // V = Q diag(W̃, I)
-  v1_ = v_.leftCols(rank_);
-  v2_ = v_.rightCols(n - rank_);
+  u1_ = jacobi_.rotations().leftCols(rank_);
   inverse_s1_ = singular_values_.head(rank_).cwiseInverse();
+  v1_ = jacobi_.orthogonalColumns().leftCols(rank_) * inverse_s1_.asDiagonal();
+  complement_.compute(v1_);
+  complement_.complement(v2_);
   x_r_.resize(rank_);
 }
 
@@ -85,7 +77,7 @@ void multiplyTransposed(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eige
 
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   J_ = J;
-  const Eigen::Index n = J.rows(), free = v2_.cols(), k = reflectors_;
+  const Eigen::Index n = J.rows(), free = v2_.cols(), k = rank_;
   if (free == 0) return true;
   if (k == 0) {
     reduced_matrix_ = J;  // V₂ = I
@@ -95,15 +87,9 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
     multiply(J.data(), v2_.data(), j_v2_.data(), n, n, free, false);
     multiplyTransposed(v2_.data(), j_v2_.data(), reduced_matrix_.data(), free, n, free);
   } else {
-    // V₂ᵀ J V₂, the last n − rank rows and columns of Vᵀ J V with V = Q diag(W̃, I): T = Qᵀ J Q by the
-    // k reflectors on either side, then W̃ on the first k rows and columns of T.
+    // V₂ᵀ J V₂, the last n − r rows and columns of Qᵀ J Q, by the r reflectors on either side.
     rotated_ = J;
-    qr_.householderQ().transpose().applyThisOnTheLeft(rotated_, householder_workspace_);
-    qr_.householderQ().applyThisOnTheRight(rotated_, householder_workspace_);
-    rows_k_.noalias() = small_svd_.matrixV().transpose() * rotated_.topRows(k);
-    rotated_.topRows(k) = rows_k_;
-    columns_k_.noalias() = rotated_.leftCols(k) * small_svd_.matrixV();
-    rotated_.leftCols(k) = columns_k_;
+    complement_.transformSimilar(rotated_);
     reduced_matrix_ = rotated_.bottomRightCorner(free, free);
   }
   reduced_.compute(reduced_matrix_);

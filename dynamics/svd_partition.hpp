@@ -7,14 +7,16 @@
 //     x_r = −S₁⁻¹ U₁ᵀ g                         (third row of (48))
 //     (V₂ᵀ J V₂) x_n = −V₂ᵀ (r + J V₁ x_r)       (second row)
 //     Δμ = −U₁ S₁⁻¹ V₁ᵀ (r + J Δx)               (first row; minimum-norm multipliers)
+// The SVD is the one-sided Jacobi SVD of Bᵀ (one_sided_jacobi.hpp), V₂ the complement of V₁ from
+// V₁'s Householder reflectors (householder_basis.hpp).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/LU>
-#include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include "dynamics/condition_estimate.hpp"
+#include "dynamics/householder_basis.hpp"
+#include "dynamics/one_sided_jacobi.hpp"
 
 namespace mbsopt {
 
@@ -22,7 +24,7 @@ class SvdPartition {
  public:
   explicit SvdPartition(double relative_threshold = 1e-8) : threshold_(relative_threshold) {}
 
-  /// SVD of B (m × n, m may be 0). Call again whenever B changes.
+  /// SVD of B (m × n, m may be 0), V₁ and V₂. Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition
   /// number in the 1-norm, as Hager and Higham's O(n²) estimator gives it (condition_estimate.hpp),
@@ -43,7 +45,7 @@ class SvdPartition {
 
  private:
   /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat
-  /// applying reflectors); from there on by the reflectors, O(n² k) instead of O(n³)
+  /// applying reflectors); from there on by the reflectors of V₁, O(n² r) instead of O(n³)
   /// (bench_dynamics: BM_ClosedChainNewmarkStep, BM_TramwaySimulation).
   static constexpr Eigen::Index kReflectorsFrom = 16;
   /// A reduced matrix whose reciprocal condition number (1-norm) is below this is singular.
@@ -55,16 +57,14 @@ class SvdPartition {
 
   double threshold_;
   int rank_ = 0;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;  ///< of Bᵀ: its reflectors are Q
-  Eigen::Index reflectors_ = 0;                     ///< k = min(m, n), 0 without constraints
-  Eigen::MatrixXd small_, permuted_small_;          ///< R_kᵀ and P R_kᵀ
-  Eigen::JacobiSVD<Eigen::MatrixXd> small_svd_;     ///< P R_kᵀ = Ũ S W̃ᵀ
+  Eigen::MatrixXd transposed_;                ///< Bᵀ
+  OneSidedJacobiSvd jacobi_;                   ///< Bᵀ = V Σ Uᵀ
+  HouseholderBasis complement_;                ///< V₁ = Q [R; 0]: V₂ is the rest of Q
   Eigen::VectorXd singular_values_;
-  Eigen::MatrixXd u1_, v_, v1_, v2_;
+  Eigen::MatrixXd u1_, v1_, v2_;
   Eigen::VectorXd inverse_s1_;
   Eigen::MatrixXd J_;
-  Eigen::MatrixXd j_v2_, rotated_, rows_k_, columns_k_, reduced_matrix_;  ///< J V₂; Qᵀ J Q and its pieces; V₂ᵀ J V₂
-  Eigen::VectorXd householder_workspace_;
+  Eigen::MatrixXd j_v2_, rotated_, reduced_matrix_;  ///< J V₂; Qᵀ J Q; V₂ᵀ J V₂
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
   ConditionEstimator condition_;
   Eigen::VectorXd bound_scratch_;

@@ -137,18 +137,20 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount();
   geometryAt(k, s);
   seedsAt(k, s, out.seeds);
-  // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows).
+  // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), B's
+  // rank decided as the integrator's partition decided it (the settings' SVD threshold).
   s.plain_correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
   s.plain_correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
   s.plain_mu_v.resize(m);
   s.plain_mu_a.resize(m);
   if (m > 0) {
     s.jacobian_transposed = s.jacobian.transpose();
-    s.transposed_svd.compute(s.jacobian_transposed, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    s.transposed_svd.compute(s.jacobian_transposed);
+    const double threshold = settings().svd_threshold;
     s.plain_f = -s.mass * s.plain_correction_v(free);
-    s.plain_mu_v = s.transposed_svd.solve(s.plain_f);
+    s.transposed_svd.solveLeastSquares(s.plain_f, threshold, s.plain_mu_v, s.svd_work);
     s.plain_f = -s.mass * s.plain_correction_a(free);
-    s.plain_mu_a = s.transposed_svd.solve(s.plain_f);
+    s.transposed_svd.solveLeastSquares(s.plain_f, threshold, s.plain_mu_a, s.svd_work);
   }
   // The constants of the passes.
   seedVector(tr.lambda.col(k), 0, 0, 0, s.lambda);

@@ -6,10 +6,10 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/SVD>
 #include <string>
 #include <vector>
 
+#include "dynamics/one_sided_jacobi.hpp"
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/forward_ad.hpp"
 #include "sensitivity/response_jacobian.hpp"
@@ -120,7 +120,8 @@ class TrajectoryDerivatives {
     // the Jacobian of the AD pass; seedsAt's sensor lists and their Jacobians.
     Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column;
     Eigen::MatrixXd jacobian_transposed, pass_jacobian;
-    Eigen::JacobiSVD<Eigen::MatrixXd> transposed_svd;
+    OneSidedJacobiSvd transposed_svd;
+    Eigen::VectorXd svd_work;
     std::vector<int> sensor_slot;
     std::vector<const Sensor*> sensors;
     std::vector<ResponseJacobian> sensor_jacobians;

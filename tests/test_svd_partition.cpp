@@ -1,7 +1,7 @@
 // The augmented solve of SvdPartition (dynamics/svd_partition.hpp) against the equations it
 // solves, [J Bᵀ; B 0][Δx; Δμ] = −[r; g], on random systems with consistent right-hand sides: full
 // row rank and with a dependent row, with few coordinates (V₂ᵀ J V₂ from the explicit V₂) and with
-// many (from the Householder reflectors of Bᵀ). The residuals must vanish to round-off.
+// many (from the Householder reflectors of V₁). The residuals must vanish to round-off.
 #include <gtest/gtest.h>
 
 #include <random>

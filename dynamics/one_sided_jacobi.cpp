@@ -1,0 +1,90 @@
+#include "dynamics/one_sided_jacobi.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dynamics/lu_solve.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// (x, y) ← (c x − s y, s x + c y) over n entries.
+void rotate(double* __restrict x, double* __restrict y, Eigen::Index n, double c, double s) {
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double xi = x[i], yi = y[i];
+    x[i] = c * xi - s * yi;
+    y[i] = s * xi + c * yi;
+  }
+}
+
+}  // namespace
+
+void OneSidedJacobiSvd::compute(const Eigen::MatrixXd& a) {
+  const Eigen::Index rows = a.rows(), cols = a.cols();
+  constexpr double epsilon = std::numeric_limits<double>::epsilon();
+  work_columns_ = a;
+  work_rotations_.setIdentity(cols, cols);
+  squared_norms_.resize(cols);
+  double frobenius_squared = 0.0;
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    const double* column = work_columns_.data() + j * rows;
+    squared_norms_[j] = dotProduct(column, column, rows);
+    frobenius_squared += squared_norms_[j];
+  }
+  const double negligible_squared = epsilon * epsilon * frobenius_squared;
+  const double tolerance = std::sqrt(static_cast<double>(rows)) * epsilon;
+  sweeps_ = 0;
+  bool rotated = cols > 1;
+  while (rotated && sweeps_ < kMaxSweeps) {
+    rotated = false;
+    ++sweeps_;
+    for (Eigen::Index p = 0; p + 1 < cols; ++p)
+      for (Eigen::Index q = p + 1; q < cols; ++q) {
+        const double alpha = squared_norms_[p], beta = squared_norms_[q];
+        if (alpha <= negligible_squared || beta <= negligible_squared) continue;
+        double* column_p = work_columns_.data() + p * rows;
+        double* column_q = work_columns_.data() + q * rows;
+        const double gamma = dotProduct(column_p, column_q, rows);
+        if (std::abs(gamma) <= tolerance * std::sqrt(alpha) * std::sqrt(beta)) continue;
+        // The rotation that diagonalises [α γ; γ β] (Golub and Van Loan, sym.schur2): the smaller
+        // root t = tan θ of t² + 2ζt − 1 = 0, ζ = (β − α)/(2γ).
+        const double zeta = (beta - alpha) / (2.0 * gamma);
+        const double t = (zeta >= 0.0 ? 1.0 : -1.0) / (std::abs(zeta) + std::hypot(1.0, zeta));
+        const double c = 1.0 / std::sqrt(1.0 + t * t), s = c * t;
+        rotate(column_p, column_q, rows, c, s);
+        rotate(work_rotations_.data() + p * cols, work_rotations_.data() + q * cols, cols, c, s);
+        squared_norms_[p] = dotProduct(column_p, column_p, rows);
+        squared_norms_[q] = dotProduct(column_q, column_q, rows);
+        rotated = true;
+      }
+  }
+  // Columns in decreasing norm, equal norms in their order (std::sort: stable_sort would allocate).
+  order_.resize(static_cast<std::size_t>(cols));
+  for (Eigen::Index j = 0; j < cols; ++j) order_[static_cast<std::size_t>(j)] = j;
+  std::sort(order_.begin(), order_.end(), [&](Eigen::Index i, Eigen::Index j) {
+    return squared_norms_[i] > squared_norms_[j] || (squared_norms_[i] == squared_norms_[j] && i < j);
+  });
+  columns_.resize(rows, cols);
+  rotations_.resize(cols, cols);
+  sigma_.resize(cols);
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    const Eigen::Index from = order_[static_cast<std::size_t>(j)];
+    columns_.col(j) = work_columns_.col(from);
+    rotations_.col(j) = work_rotations_.col(from);
+    sigma_[j] = std::sqrt(squared_norms_[from]);
+  }
+}
+
+void OneSidedJacobiSvd::solveLeastSquares(const Eigen::VectorXd& b, double relative_threshold, Eigen::VectorXd& x,
+                                          Eigen::VectorXd& work) const {
+  const Eigen::Index rows = columns_.rows(), cols = columns_.cols();
+  work.resize(cols);
+  const double cutoff = cols > 0 ? relative_threshold * sigma_[0] : 0.0;
+  for (Eigen::Index j = 0; j < cols; ++j)  // Σ⁺ Xᵀ b = Σ⁺ Σ⁻¹ (X Σ)ᵀ b
+    work[j] = sigma_[j] > cutoff ? dotProduct(columns_.data() + j * rows, b.data(), rows) / (sigma_[j] * sigma_[j]) : 0.0;
+  x.noalias() = rotations_ * work;
+}
+
+}  // namespace mbsopt

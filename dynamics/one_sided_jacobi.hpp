@@ -1,0 +1,49 @@
+// Singular value decomposition of a matrix with few columns by one-sided Jacobi rotations
+// (M. R. Hestenes, J. SIAM 6 (1958) 51-90; J. Demmel and K. Veselić, "Jacobi's method is more
+// accurate than QR", SIAM J. Matrix Anal. Appl. 13 (1992) 1204-1245): plane rotations W applied on
+// the right make the columns of A W mutually orthogonal, so A W = X Σ with Σ the column norms and X
+// their directions, and A = X Σ Wᵀ. A sweep over the column pairs costs O(rows · cols²), and the
+// sweeps converge quadratically. For the transposed constraint Jacobian of a Newmark step (a handful
+// of closure equations, rows = the free coordinates) this is a few hundred operations on data it
+// keeps between calls, where a QR-preconditioned two-sided SVD of dynamic size spends thousands on
+// choosing its kernels (callgrind on BM_TramwaySimulation).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace mbsopt {
+
+class OneSidedJacobiSvd {
+ public:
+  /// Rotates until no pair of columns of A W is further from orthogonal than √rows · ε relative to
+  /// the product of their norms (the test of LAPACK's xGESVJ), or kMaxSweeps sweeps. Columns whose
+  /// norm is below ε ‖A‖_F are round-off of a zero column: no rotation involves them. Allocates
+  /// nothing once its buffers have A's size.
+  void compute(const Eigen::MatrixXd& a);
+
+  /// Σ: the column norms of A W in decreasing order, one per column of A; those beyond the rank of
+  /// A are round-off (and beyond min(rows, cols) there are only such).
+  const Eigen::VectorXd& singularValues() const { return sigma_; }
+  /// A W with its columns in the order of singularValues(): mutually orthogonal, column j of norm σ_j.
+  const Eigen::MatrixXd& orthogonalColumns() const { return columns_; }
+  /// W, cols × cols, orthogonal, its columns in the same order.
+  const Eigen::MatrixXd& rotations() const { return rotations_; }
+  /// The minimum-norm least-squares solution of A x = b, x = W Σ⁺ Xᵀ b, with the singular values
+  /// at or below `relative_threshold` σ₀ taken as zero. Allocates nothing once x and `work` have
+  /// their sizes.
+  void solveLeastSquares(const Eigen::VectorXd& b, double relative_threshold, Eigen::VectorXd& x,
+                         Eigen::VectorXd& work) const;
+  /// The sweeps the last compute() took, the last one rotating nothing unless kMaxSweeps was reached.
+  int sweeps() const { return sweeps_; }
+
+  static constexpr int kMaxSweeps = 30;
+
+ private:
+  Eigen::MatrixXd work_columns_, work_rotations_, columns_, rotations_;
+  Eigen::VectorXd squared_norms_, sigma_;
+  std::vector<Eigen::Index> order_;
+  int sweeps_ = 0;
+};
+
+}  // namespace mbsopt
