@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dynamics/lu_solve.hpp"
+#include "dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 
@@ -13,14 +13,27 @@ constexpr int kMaxIterations = 5;  // LAPACK's ITMAX
 
 double signOf(double v) { return v >= 0.0 ? 1.0 : -1.0; }
 
+/// ‖A‖₁, the largest column sum of |A|.
+double oneNorm(const Eigen::MatrixXd& a) {
+  const Eigen::Index rows = a.rows();
+  double norm = 0.0;
+  for (Eigen::Index j = 0; j < a.cols(); ++j) {
+    const double* column = a.data() + j * rows;
+    double sum = 0.0;
+    for (Eigen::Index i = 0; i < rows; ++i) sum += std::abs(column[i]);
+    norm = std::max(norm, sum);
+  }
+  return norm;
+}
+
 }  // namespace
 
-double reciprocalConditionLowerBound(const Eigen::MatrixXd& a, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
+double reciprocalConditionLowerBound(const Eigen::MatrixXd& a, const LuFactors& lu,
                                      Eigen::VectorXd& y) {
   const Eigen::Index n = a.rows();
   if (n == 0) return 1.0;
   const Eigen::MatrixXd& f = lu.matrixLU();
-  const double norm = a.cwiseAbs().colwise().sum().maxCoeff();  // ‖A‖₁
+  const double norm = oneNorm(a);
   y.resize(n);
   // U: the comparison matrix's transpose is lower triangular; y = C(U)⁻ᵀ 1 forward, column sums of C(U)⁻¹.
   double inverse_u = 0.0;
@@ -45,10 +58,10 @@ double reciprocalConditionLowerBound(const Eigen::MatrixXd& a, const Eigen::Part
 }
 
 double ConditionEstimator::reciprocalCondition(const Eigen::MatrixXd& a,
-                                               const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
+                                               const LuFactors& lu) {
   const Eigen::Index n = a.rows();
   if (n == 0) return 1.0;
-  const double norm = a.cwiseAbs().colwise().sum().maxCoeff();  // ‖A‖₁
+  const double norm = oneNorm(a);
   // Hager's iteration: a local maximum of ‖A⁻¹x‖₁ over the unit 1-norm ball, searched from
   // x = (1/n, …, 1/n) along the vertices e_j the gradient sign(A⁻¹x)ᵀA⁻¹ points to.
   x_.setConstant(n, 1.0 / static_cast<double>(n));

@@ -6,7 +6,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+
+#include "dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 
@@ -18,7 +19,7 @@ namespace mbsopt {
 /// true value for ill-conditioned triangles, but for a well-conditioned matrix it is a cheap proof
 /// that the matrix is not singular, which is all a step needs before it can skip the estimate below.
 /// 0 when a pivot is zero or a sum is not finite.
-double reciprocalConditionLowerBound(const Eigen::MatrixXd& a, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
+double reciprocalConditionLowerBound(const Eigen::MatrixXd& a, const LuFactors& lu,
                                      Eigen::VectorXd& scratch);
 
 class ConditionEstimator {
@@ -27,7 +28,7 @@ class ConditionEstimator {
   /// ‖x‖₁ = 1, so it never exceeds ‖A⁻¹‖₁ and the result never falls below the exact reciprocal
   /// condition number; Higham reports it is rarely more than 3 times above it. 0 when a solve is
   /// not finite (an exactly singular U).
-  double reciprocalCondition(const Eigen::MatrixXd& a, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu);
+  double reciprocalCondition(const Eigen::MatrixXd& a, const LuFactors& lu);
 
  private:
   Eigen::VectorXd x_, y_, z_, w_, sign_;

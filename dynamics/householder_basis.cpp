@@ -2,15 +2,15 @@
 
 #include <cmath>
 
+#include "dynamics/lu_factors.hpp"
+
 namespace mbsopt {
 
 namespace {
 
 /// y ← H y = y − τ v (vᵀ y) on the entries k … n − 1 of a column y, v stored below row k of `v`.
 void reflect(const double* __restrict v, double tau, Eigen::Index k, Eigen::Index n, double* __restrict y) {
-  double w = y[k];
-  for (Eigen::Index i = k + 1; i < n; ++i) w += v[i] * y[i];
-  w *= tau;
+  const double w = tau * (y[k] + dotProduct(v + k + 1, y + k + 1, n - k - 1));
   y[k] -= w;
   for (Eigen::Index i = k + 1; i < n; ++i) y[i] -= w * v[i];
 }
@@ -53,20 +53,20 @@ void HouseholderBasis::transformSimilar(Eigen::MatrixXd& x) {
   for (Eigen::Index k = 0; k < r; ++k)  // Qᵀ x = H_{r−1} (⋯ (H_0 x)), column by column
     for (Eigen::Index j = 0; j < n; ++j) reflect(reflectors_.data() + k * n, tau_[k], k, n, x.data() + j * n);
   row_work_.resize(n);
-  double* w = row_work_.data();
+  double* __restrict w = row_work_.data();
   for (Eigen::Index k = 0; k < r; ++k) {  // (Qᵀ x) Q = ((Qᵀ x) H_0) ⋯ H_{r−1}: x ← x − τ (x v) vᵀ
     const double* v = reflectors_.data() + k * n;
     const double tau = tau_[k];
-    double* column_k = x.data() + k * n;
+    double* __restrict column_k = x.data() + k * n;
     for (Eigen::Index i = 0; i < n; ++i) w[i] = column_k[i];
     for (Eigen::Index c = k + 1; c < n; ++c) {
-      const double* column = x.data() + c * n;
+      const double* __restrict column = x.data() + c * n;
       for (Eigen::Index i = 0; i < n; ++i) w[i] += column[i] * v[c];
     }
     for (Eigen::Index i = 0; i < n; ++i) w[i] *= tau;
     for (Eigen::Index i = 0; i < n; ++i) column_k[i] -= w[i];
     for (Eigen::Index c = k + 1; c < n; ++c) {
-      double* column = x.data() + c * n;
+      double* __restrict column = x.data() + c * n;
       for (Eigen::Index i = 0; i < n; ++i) column[i] -= w[i] * v[c];
     }
   }

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dynamics/lu_solve.hpp"
+#include "dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dynamics/lu_solve.hpp"
+#include "dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 

@@ -12,7 +12,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include "dynamics/condition_estimate.hpp"
 #include "dynamics/householder_basis.hpp"
@@ -65,7 +64,7 @@ class SvdPartition {
   Eigen::VectorXd inverse_s1_;
   Eigen::MatrixXd J_;
   Eigen::MatrixXd j_v2_, rotated_, reduced_matrix_;  ///< J V₂; Qᵀ J Q; V₂ᵀ J V₂
-  Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;
+  LuFactors reduced_;
   ConditionEstimator condition_;
   Eigen::VectorXd bound_scratch_;
   mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of solve(): no allocation

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "dynamics/condition_estimate.hpp"
-#include "dynamics/lu_solve.hpp"
+#include "dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 namespace {
@@ -20,7 +22,8 @@ double exactReciprocalCondition(const Eigen::MatrixXd& a) {
 }
 
 double estimated(const Eigen::MatrixXd& a) {
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
+  LuFactors lu;
+  lu.compute(a);
   ConditionEstimator estimator;
   return estimator.reciprocalCondition(a, lu);
 }
@@ -32,7 +35,40 @@ Eigen::MatrixXd hilbert(int n) {
   return h;
 }
 
-// The substitution loops of lu_solve.hpp against a residual computed independently: A x − b and
+// The factors of lu_factors.hpp against their definition, P A = L U with the permutation a
+// rearrangement of the rows, |l_ij| ≤ 1 (partial pivoting), to round-off of ‖A‖ times the growth
+// factor (modest for random matrices); and a matrix with an exact zero pivot factors without a
+// division by zero: its U has the zero on the diagonal.
+TEST(LuFactors, FactorWithPartialPivoting) {
+  std::mt19937 random(10);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  LuFactors lu;  // one object for every size: its buffers are resized
+  for (int n = 1; n <= 40; ++n) {
+    const Eigen::MatrixXd a = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return uniform(random); });
+    lu.compute(a);
+    const Eigen::MatrixXd l = lu.matrixLU().triangularView<Eigen::UnitLower>();
+    const Eigen::MatrixXd u = lu.matrixLU().triangularView<Eigen::Upper>();
+    Eigen::MatrixXd permuted(n, n);
+    std::vector<int> seen(static_cast<std::size_t>(n), 0);
+    for (int k = 0; k < n; ++k) {
+      const int row = lu.rows()[static_cast<std::size_t>(k)];
+      ASSERT_TRUE(row >= 0 && row < n);
+      ++seen[static_cast<std::size_t>(row)];
+      permuted.row(k) = a.row(row);
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), n) << "n = " << n;
+    EXPECT_LE(l.cwiseAbs().maxCoeff(), 1.0);
+    EXPECT_LE((permuted - l * u).cwiseAbs().maxCoeff(), 1e2 * n * std::numeric_limits<double>::epsilon() * u.cwiseAbs().maxCoeff())
+        << "n = " << n;
+  }
+  Eigen::MatrixXd singular(3, 3);
+  singular << 1, 2, 3, 2, 4, 6, 1, 1, 1;  // row 1 = 2 row 0, exactly: the last pivot is an exact zero
+  lu.compute(singular);
+  EXPECT_TRUE(lu.matrixLU().allFinite());
+  EXPECT_EQ(lu.matrixLU().diagonal().cwiseAbs().minCoeff(), 0.0);
+}
+
+// The substitution loops of lu_factors.hpp against a residual computed independently: A x − b and
 // Aᵀ x − b at round-off (‖A‖ ‖x‖ ε times a modest growth factor), for random matrices whose partial
 // pivoting swaps rows, sizes 1 to 40.
 TEST(LuSolve, SolvesWithTheMatrixAndItsTransposeToRoundOff) {
@@ -45,7 +81,8 @@ TEST(LuSolve, SolvesWithTheMatrixAndItsTransposeToRoundOff) {
       b[i] = uniform(random);
       for (int j = 0; j < n; ++j) a(i, j) = uniform(random);
     }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
+    LuFactors lu;
+    lu.compute(a);
     Eigen::VectorXd x, w;
     const auto tolerance = [&](const Eigen::VectorXd& solution) {
       return 1e3 * n * std::numeric_limits<double>::epsilon() * a.cwiseAbs().colwise().sum().maxCoeff() *
@@ -106,7 +143,8 @@ TEST(ConditionEstimate, ReportsSingularMatrices) {
 }
 
 double lowerBound(const Eigen::MatrixXd& a) {
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
+  LuFactors lu;
+  lu.compute(a);
   Eigen::VectorXd scratch;
   return reciprocalConditionLowerBound(a, lu, scratch);
 }

@@ -1,13 +1,13 @@
-// Solves with the factors of Eigen's PartialPivLU (PA = LU) by plain substitution along the
-// contiguous columns of L and U, on raw pointers. For the few-by-few reduced matrices of a Newmark
-// step, Eigen's solve() spends more time choosing and blocking its kernels than on the O(n²)
-// arithmetic, and so do its dynamic-size vector expressions (callgrind and perf on
-// BM_TramwaySimulation); these loops allocate nothing and stay O(n²) for the large chains, where the
-// compiler vectorises their inner loops.
+// LU factors with partial pivoting, P A = L U, and the solves with them, by plain loops along the
+// contiguous columns of L and U on raw pointers. For the few-by-few reduced matrices of a Newmark
+// step, Eigen's PartialPivLU spends more time choosing and blocking its kernels than on the O(n³)
+// and O(n²) arithmetic, and so do its dynamic-size vector expressions (callgrind and perf on
+// BM_TramwaySimulation); these loops allocate nothing once sized and stay the textbook algorithms
+// for the large chains, where the compiler vectorises their inner loops.
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+#include <vector>
 
 namespace mbsopt {
 
@@ -20,14 +20,32 @@ inline double dotProduct(const double* a, const double* b, Eigen::Index n) {
   return sum;
 }
 
+/// P A = L U by Gaussian elimination with partial pivoting, right-looking (Golub and Van Loan,
+/// "Matrix Computations", 4th ed., Algorithm 3.4.1; LAPACK's xGETF2): the pivot of column k is its
+/// entry of largest magnitude on or below the diagonal, the first of equal ones. A zero pivot leaves
+/// its column unscaled and the elimination goes on (a singular U), as in LAPACK; the solves then
+/// give infinities, which the condition estimates report as singular.
+class LuFactors {
+ public:
+  void compute(const Eigen::MatrixXd& a);
+  /// L below the diagonal (its unit diagonal implied), U on and above.
+  const Eigen::MatrixXd& matrixLU() const { return lu_; }
+  /// Row k of P A is row rows()[k] of A.
+  const std::vector<int>& rows() const { return rows_; }
+
+ private:
+  Eigen::MatrixXd lu_;
+  std::vector<int> rows_;
+};
+
 /// x = A⁻¹ b: L U x = P b, forward with the unit lower triangle, then back with the upper one.
-inline void luSolve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+inline void luSolve(const LuFactors& lu, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
   x.resize(n);
-  const int* p = lu.permutationP().indices().data();
+  const int* p = lu.rows().data();
   double* y = x.data();
-  for (Eigen::Index i = 0; i < n; ++i) y[p[i]] = b[i];  // y = P b
+  for (Eigen::Index i = 0; i < n; ++i) y[i] = b[p[i]];  // y = P b
   for (Eigen::Index j = 0; j + 1 < n; ++j) {
     const double* l = f.data() + j * n;
     const double yj = y[j];
@@ -42,7 +60,7 @@ inline void luSolve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen:
 
 /// x = A⁻ᵀ b: Aᵀ = Uᵀ Lᵀ P, so Uᵀ w = b forward, Lᵀ u = w backward (dot products down the columns of
 /// U and L), then x = Pᵀ u. `w` is scratch.
-inline void luSolveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b,
+inline void luSolveTransposed(const LuFactors& lu, const Eigen::VectorXd& b,
                               Eigen::VectorXd& w, Eigen::VectorXd& x) {
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
@@ -57,8 +75,8 @@ inline void luSolveTransposed(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, co
     v[i] -= dotProduct(l + i + 1, v + i + 1, n - 1 - i);
   }
   x.resize(n);
-  const int* p = lu.permutationP().indices().data();
-  for (Eigen::Index i = 0; i < n; ++i) x[i] = v[p[i]];  // x = Pᵀ w
+  const int* p = lu.rows().data();
+  for (Eigen::Index i = 0; i < n; ++i) x[p[i]] = v[i];  // x = Pᵀ w
 }
 
 }  // namespace mbsopt
