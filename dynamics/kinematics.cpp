@@ -17,6 +17,7 @@ struct RelativeMotion {
   Vector3<Scalar> linear_axis = Vector3<Scalar>::Zero();   ///< ∂v_rel/∂q̇
   Vector3<Scalar> angular_bias = Vector3<Scalar>::Zero();  ///< (α_rel − angular_axis·q̈)/q̇²
   Vector3<Scalar> linear_bias = Vector3<Scalar>::Zero();   ///< (a_rel − linear_axis·q̈)/q̇²
+  SliderTrack<Scalar> track;                               ///< a curve slider's track at s
 };
 
 template <class Scalar>
@@ -47,6 +48,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                    const Scalar& heading = track.heading;
                    const Scalar& curvature = track.curvature;
                    const Scalar cos_heading = cos(heading), sin_heading = sin(heading);
+                   m.track = {cos_heading, sin_heading, curvature};
                    const Vector3<Scalar> tangent(cos_heading, sin_heading, Scalar(0));
                    const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
                    m.translation = Re * (point.position + tangent_at_s * ds);
@@ -80,6 +82,7 @@ void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
     const RelativeMotion<Scalar> rel = relativeMotion(element.kind, ws.rotation[e], qi, axes);
     ws.rotation[s] = rel.rotation;
     ws.position[s] = ws.position[e] + rel.translation;
+    if (std::holds_alternative<CurveSliderJoint>(element.kind)) ws.slider_track[k] = rel.track;
     if (!axes) continue;
     ws.motion_angular[k] = rel.angular_axis;
     ws.motion_linear[k] = rel.linear_axis;

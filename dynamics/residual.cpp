@@ -85,21 +85,18 @@ void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Work
 /// Track guidance torque on its frame, reaction on the track's frame, and −κτ on the slider
 /// coordinate, with the stiffness and damping given (as for the point spring-dampers).
 template <class Scalar>
-void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                      const VectorX<Scalar>& v, VectorX<Scalar>& f, const Scalar& stiffness, const Scalar& damping) {
+void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scalar>& ws, const VectorX<Scalar>& v,
+                      VectorX<Scalar>& f, const Scalar& stiffness, const Scalar& damping) {
   using std::atan2;
-  using std::cos;
-  using std::sin;
-  const KinematicElement& slider =
-      model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(g.slider_coordinate)].element)];
-  const Track& track = *std::get<CurveSliderJoint>(slider.kind).track;
+  const auto element = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(g.slider_coordinate)].element);
+  const KinematicElement& slider = model.elements()[element];
   const auto base = static_cast<std::size_t>(slider.entry), frame = static_cast<std::size_t>(g.frame);
   const auto i = static_cast<Eigen::Index>(g.slider_coordinate);
-  const TrackState<Scalar> state = trackStateAt(track, q[i]);
-  const Scalar& heading = state.heading;
-  const Scalar& curvature = state.curvature;
+  const SliderTrack<Scalar>& track = ws.slider_track[element];  // ψ(s) and κ(s) of the geometry stage
+  const Scalar& c = track.cos_heading;
+  const Scalar& s = track.sin_heading;
+  const Scalar& curvature = track.curvature;
   const Vector3<Scalar> x = ws.rotation[base].transpose() * ws.rotation[frame].col(0);  // frame heading in base axes
-  const Scalar c = cos(heading), s = sin(heading);
   const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
   const Vector3<Scalar> binormal = ws.rotation[base].col(2);
   const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
@@ -172,7 +169,7 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
                             f[static_cast<Eigen::Index>(s.coordinate)] -= timeValue(model, ws, s.force, t);
                           },
                           [&](const TrackGuidance& g) {
-                            addTrackGuidance(model, g, ws, q, v, f, parameter(model, ws, g.stiffness),
+                            addTrackGuidance(model, g, ws, v, f, parameter(model, ws, g.stiffness),
                                              parameter(model, ws, g.damping));
                           }},
                element);
@@ -225,7 +222,7 @@ bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const
                           addPointSpringWrenches(model, s, ws, p == s.stiffness ? 1.0 : 0.0, p == s.damping ? 1.0 : 0.0);
                         },
                         [&](const TrackGuidance& g) {
-                          addTrackGuidance(model, g, ws, q, v, column, p == g.stiffness ? 1.0 : 0.0,
+                          addTrackGuidance(model, g, ws, v, column, p == g.stiffness ? 1.0 : 0.0,
                                            p == g.damping ? 1.0 : 0.0);
                         },
                         [](const JointActuation&) {}},

@@ -11,6 +11,13 @@
 
 namespace mbsopt {
 
+/// The track geometry at a curve slider's coordinate that force elements reuse (track guidance):
+/// the tangent's direction cosines and the curvature, with the derivatives of the pass.
+template <class Scalar>
+struct SliderTrack {
+  Scalar cos_heading{0}, sin_heading{0}, curvature{0};  ///< cos ψ(s), sin ψ(s), κ(s)
+};
+
 template <class Scalar>
 struct Workspace {
   explicit Workspace(const Model& model)
@@ -27,7 +34,8 @@ struct Workspace {
         bias_angular(model.elements().size(), Vector3<Scalar>::Zero()),
         bias_linear(model.elements().size(), Vector3<Scalar>::Zero()),
         body_centre(model.bodies().size(), Vector3<Scalar>::Zero()),
-        body_inertia(model.bodies().size(), Matrix3<Scalar>::Zero()) {}
+        body_inertia(model.bodies().size(), Matrix3<Scalar>::Zero()),
+        slider_track(model.elements().size()) {}
 
   // Absolute kinematics of every frame, in ground axes (forward recursion).
   std::vector<Matrix3<Scalar>> rotation;
@@ -45,6 +53,8 @@ struct Workspace {
   std::vector<Vector3<Scalar>> body_centre;
   std::vector<Matrix3<Scalar>> body_inertia;
   bool body_axes_current = false;
+  // Per element, for the curve sliders only: their track at s, set by the geometry stage.
+  std::vector<SliderTrack<Scalar>> slider_track;
   // Coordinates (q, q̇, q̈), multipliers λ and residual f of a pass whose inputs are seeded (AdScalar),
   // kept between passes so that repeated passes allocate nothing.
   VectorX<Scalar> seeded_q, seeded_v, seeded_a, seeded_lambda, seeded_f;
