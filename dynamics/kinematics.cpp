@@ -30,7 +30,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                    m.translation = Re * e.translation;
                  },
                  [&](const RevoluteJoint& e) {
-                   m.rotation = Re * axisRotation(e.axis, q);
+                   m.rotation = turnedAbout(Re, e.axis, q);
                    m.angular_axis = Re * e.axis;
                  },
                  [&](const PrismaticJoint& e) {
@@ -61,7 +61,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                      m.rotation = Re;
                      return;
                    }
-                   m.rotation = Re * axisRotation(Eigen::Vector3d::UnitZ(), heading);
+                   m.rotation = turnedAbout(Re, Eigen::Vector3d::UnitZ(), heading);
                    m.angular_axis = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
                    if (rates)  // α = (κ s̈ + κ' ṡ²) z
                      m.angular_bias = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative));

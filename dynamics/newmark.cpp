@@ -323,18 +323,15 @@ void NewmarkIntegrator::projectOntoConstraints() {
   // onto the constraint: min ½ΔᵀMΔ subject to B(x − Δ) + c₀ = 0, i.e. [M Bᵀ; B 0][−Δ; μ] = −[0; c];
   // the kinetic energy removed is then ½ΔᵀMΔ ≥ 0, never more.
   if (model_.constraintCount() == 0) return;
-  const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
-  if (zero_.size() != nf) zero_.setZero(nf);
-  const Eigen::VectorXd& zero = zero_;
   // Velocities: ḃ = B q̇ + ∂b/∂t = 0.
   frameRates(model_, ws_, v_, a_, KinematicsLevel::Velocity);
   closureEquations(model_, ws_, Derivative::Velocity, closure_);
-  partition_.solve(zero, closure_, correction_, dlambda_);
+  partition_.project(closure_, correction_);
   for (std::size_t k = 0; k < free_.size(); ++k) v_[free_[k]] += correction_[static_cast<Eigen::Index>(k)];
   // Accelerations: b̈ = 0.
   frameRates(model_, ws_, v_, a_, KinematicsLevel::Acceleration);
   closureEquations(model_, ws_, Derivative::Acceleration, closure_);
-  partition_.solve(zero, closure_, correction_, dlambda_);
+  partition_.project(closure_, correction_);
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += correction_[static_cast<Eigen::Index>(k)];
 }
 

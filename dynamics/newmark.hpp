@@ -197,7 +197,7 @@ class NewmarkIntegrator {
   Eigen::VectorXd a_accepted_;  ///< q̈ₙ, the start of the last retry
   Eigen::VectorXd a_newton_, a_newton_previous_, a_newton_before_;  ///< converged Newton accelerations before projection
   int newton_history_ = 0;
-  Eigen::VectorXd f_, zero_, closure_, r_free_, da_, dlambda_, correction_;
+  Eigen::VectorXd f_, closure_, r_free_, da_, dlambda_, correction_;
   Eigen::VectorXd position_closure_;  ///< b(q) at the last accepted q (or at q₀)
   Eigen::MatrixXd B_free_;
   bool reduced_dirty_ = true;  ///< V₂ᵀJV₂ must be refactored (J or B changed)

@@ -103,24 +103,31 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   return reciprocal_condition > kSingular && std::isfinite(reciprocal_condition);
 }
 
-void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
-                         Eigen::VectorXd& dmu) const {
+void SvdPartition::increment(const Eigen::VectorXd* r, const Eigen::VectorXd& g, Eigen::VectorXd& dx) const {
   const Eigen::Index n = v1_.rows();
   dx.resize(n);
-  dmu.resize(u1_.rows());
   work_.resize(n);
   multiplyTransposed(u1_, g, x_r_);  // x_r = −S₁⁻¹ U₁ᵀ g
   for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= -inverse_s1_[i];
   multiply(v1_, x_r_, dx, false);  // V₁ x_r (zero without constraints: V₁ is n × 0)
-  if (v2_.cols() > 0) {
-    work_ = r;
+  if (v2_.cols() == 0) return;
+  if (r) {
+    work_ = *r;
     multiply(J_, dx, work_, true);  // r + J V₁ x_r
-    reduced_rhs_.resize(v2_.cols());
-    multiplyTransposed(v2_, work_, reduced_rhs_);
-    reduced_rhs_ = -reduced_rhs_;
-    luSolve(reduced_, reduced_rhs_, x_n_);
-    multiply(v2_, x_n_, dx, true);
+  } else {
+    multiply(J_, dx, work_, false);
   }
+  reduced_rhs_.resize(v2_.cols());
+  multiplyTransposed(v2_, work_, reduced_rhs_);
+  reduced_rhs_ = -reduced_rhs_;
+  luSolve(reduced_, reduced_rhs_, x_n_);
+  multiply(v2_, x_n_, dx, true);
+}
+
+void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
+                         Eigen::VectorXd& dmu) const {
+  increment(&r, g, dx);
+  dmu.resize(u1_.rows());
   work_ = r;
   multiply(J_, dx, work_, true);  // r + J Δx
   multiplyTransposed(v1_, work_, x_r_);
@@ -128,6 +135,8 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
   multiply(u1_, x_r_, dmu, false);
   dmu = -dmu;
 }
+
+void SvdPartition::project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const { increment(nullptr, g, dx); }
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
   dx.resize(v1_.rows());

@@ -33,6 +33,8 @@ class SvdPartition {
   bool setIterationMatrix(const Eigen::MatrixXd& J);
 
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
+  /// Δx of the system with r = 0 (a projection onto the constraints), without the multipliers.
+  void project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
   /// Minimum-norm least-squares solution of B Δx = c: Δx = V₁ S₁⁻¹ U₁ᵀ c (= B⁺c).
   void pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const;
 
@@ -67,7 +69,10 @@ class SvdPartition {
   LuFactors reduced_;
   ConditionEstimator condition_;
   Eigen::VectorXd bound_scratch_;
-  mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of solve(): no allocation
+  mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of the solves: no allocation
+
+  /// Δx of (48) into dx, r = 0 when null.
+  void increment(const Eigen::VectorXd* r, const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
 };
 
 }  // namespace mbsopt

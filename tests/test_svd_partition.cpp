@@ -1,7 +1,8 @@
 // The augmented solve of SvdPartition (dynamics/svd_partition.hpp) against the equations it
 // solves, [J Bᵀ; B 0][Δx; Δμ] = −[r; g], on random systems with consistent right-hand sides: full
 // row rank and with a dependent row, with few coordinates (V₂ᵀ J V₂ from the explicit V₂) and with
-// many (from the Householder reflectors of V₁). The residuals must vanish to round-off.
+// many (from the Householder reflectors of V₁). The residuals must vanish to round-off; and so
+// must those of the projection, the system with r = 0 solved without its multipliers.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -50,6 +51,12 @@ void expectSolves(const System& s, int expected_rank) {
   const double scale = s.J.norm() * dx.norm() + s.B.norm() * dmu.norm() + s.r.norm();
   EXPECT_LT((s.J * dx + s.B.transpose() * dmu + s.r).norm(), 1e-12 * scale) << "n = " << n;
   EXPECT_LT((s.B * dx + s.g).norm(), 1e-12 * (s.B.norm() * dx.norm() + s.g.norm())) << "n = " << n;
+  // The projection (r = 0, no multipliers): B Δ = −g, and J Δ in the range of Bᵀ (V₂ᵀ J Δ = 0), the
+  // first row of the system with some multipliers.
+  Eigen::VectorXd projection;
+  partition.project(s.g, projection);
+  EXPECT_LT((s.B * projection + s.g).norm(), 1e-12 * (s.B.norm() * projection.norm() + s.g.norm())) << "n = " << n;
+  EXPECT_LT((v2.transpose() * s.J * projection).norm(), 1e-12 * s.J.norm() * projection.norm()) << "n = " << n;
 }
 
 TEST(SvdPartition, SolvesTheAugmentedSystemWithFewCoordinates) {
