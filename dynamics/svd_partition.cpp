@@ -24,7 +24,7 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   transposed_ = B.transpose();
   jacobi_.compute(transposed_);
   singular_values_ = jacobi_.singularValues().head(std::min(m, n));
-  const double largest = singular_values_[0];
+  const double largest = singular_values_.size() > 0 ? singular_values_[0] : 0.0;  // none: no free coordinate
   rank_ = 0;
   while (rank_ < singular_values_.size() && singular_values_[rank_] > threshold_ * largest && largest > 0.0) ++rank_;
   u1_ = jacobi_.rotations().leftCols(rank_);

@@ -86,5 +86,20 @@ TEST(SvdPartition, WithoutConstraintsSolvesJ) {
   EXPECT_EQ(dmu.size(), 0);
 }
 
+// Loop equations on a model whose coordinates are all driven: B has rows and no column. Nothing is
+// free, so nothing is solved, and no singular value may be read.
+TEST(SvdPartition, WithoutFreeCoordinatesHasNothingToSolve) {
+  SvdPartition partition(1e-8);
+  partition.setConstraintJacobian(Eigen::MatrixXd(2, 0));
+  EXPECT_EQ(partition.rank(), 0);
+  EXPECT_EQ(partition.singularValues().size(), 0);
+  EXPECT_EQ(partition.freeDirections().size(), 0);
+  EXPECT_TRUE(partition.setIterationMatrix(Eigen::MatrixXd(0, 0)));
+  Eigen::VectorXd dx, dmu;
+  partition.solve(Eigen::VectorXd(0), Eigen::VectorXd::Zero(2), dx, dmu);
+  EXPECT_EQ(dx.size(), 0);
+  EXPECT_TRUE(dmu.isZero(0.0));
+}
+
 }  // namespace
 }  // namespace mbsopt
