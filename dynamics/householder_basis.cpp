@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "dynamics/lu_factors.hpp"
+#include "dynamics/dot_product.hpp"
 
 namespace mbsopt {
 

@@ -9,16 +9,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace mbsopt {
+#include "dynamics/dot_product.hpp"
 
-/// Σ aₖbₖ over n contiguous entries. A plain loop for a few entries; from 16 on Eigen's dot, whose
-/// SIMD partial sums the compiler may not form itself (it must keep a loop's order of additions).
-inline double dotProduct(const double* a, const double* b, Eigen::Index n) {
-  if (n >= 16) return Eigen::Map<const Eigen::VectorXd>(a, n).dot(Eigen::Map<const Eigen::VectorXd>(b, n));
-  double sum = 0.0;
-  for (Eigen::Index k = 0; k < n; ++k) sum += a[k] * b[k];
-  return sum;
-}
+namespace mbsopt {
 
 /// P A = L U by Gaussian elimination with partial pivoting, right-looking (Golub and Van Loan,
 /// "Matrix Computations", 4th ed., Algorithm 3.4.1; LAPACK's xGETF2): the pivot of column k is its

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dynamics/lu_factors.hpp"
+#include "dynamics/dot_product.hpp"
 
 namespace mbsopt {
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/dot_product.hpp"
 #include "dynamics/lu_factors.hpp"
 
 namespace mbsopt {
