@@ -7,6 +7,7 @@
 // zeros, so no branch or AD derivative is trivially empty.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -100,6 +101,11 @@ void timeNewmarkSteps(benchmark::State& bench, const Scene& scene) {
   }
   bench.counters["newton/step"] =
       benchmark::Counter(static_cast<double>(newton_iterations), benchmark::Counter::kAvgIterations);
+  // Factorizations of the reduced matrix per step since the last initialize(): 1 while Newton
+  // reuses the projections' (J = M), 2 once J has its tangent part.
+  const IntegratorStatistics& statistics = integrator.statistics();
+  bench.counters["factorizations/step"] =
+      static_cast<double>(statistics.factorizations) / static_cast<double>(std::max(1L, statistics.steps));
 }
 
 // ---- tramway ----

@@ -25,6 +25,9 @@ std::string describe(const std::string& what, double time, long step, double res
 
 // Contraction rate of the modified Newton iteration above which the iteration matrix is refreshed.
 constexpr double kSlowContraction = 0.05;
+// Increments within this factor of the round-off floor are noise: there an iteration that stops
+// shrinking has converged (stagnation), and its contraction rate says nothing about the matrix.
+constexpr double kNoiseBand = 64.0;
 // Steps between two measurements of the Newton contraction rate, and the safety factor on that
 // rate when it is used to accept a first iterate.
 constexpr long kRateCheckInterval = 16;
@@ -121,6 +124,11 @@ void NewmarkIntegrator::failSingular(const std::string& reason, const Eigen::Mat
                         t_, step_count_, r_free_.size() ? r_free_.norm() : 0.0, element);
 }
 
+void NewmarkIntegrator::factor(const Eigen::MatrixXd& matrix, const char* name) {
+  if (!partition_.setIterationMatrix(matrix)) failSingular(std::string(name) + " is singular on the free directions", matrix);
+  ++stats_.factorizations;
+}
+
 void NewmarkIntegrator::setDriven(double t) {
   for (int i : model_.drivenCoordinates()) {
     const TimeFunction& motion = model_.coordinates()[static_cast<std::size_t>(i)].motion;
@@ -162,7 +170,8 @@ void NewmarkIntegrator::updateIterationMatrix() {
 void NewmarkIntegrator::updateMassMatrix() {
   // Needs ws_ to hold the rotations, positions and joint axes at q_; leaves them in place.
   massMatrix(model_, ws_, free_, mass_);
-  J_ = mass_ + tangent_part_;
+  if (tangents_in_use_) J_ = mass_ + tangent_part_;
+  else J_ = mass_;
   ++stats_.mass_updates;
   reduced_dirty_ = true;
 }
@@ -211,7 +220,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   evaluateResidual();
   if (!r_free_.allFinite()) fail("the initial residual is not finite", r_free_);
   massMatrix(model_, ws_, free_, mass_);
-  if (!partition_.setIterationMatrix(mass_)) failSingular("the mass matrix is singular on the free directions", mass_);
+  factor(mass_, "the mass matrix");
   reduced_dirty_ = true;  // the partition now holds M, not J
   projectOntoConstraints();  // velocities first, then b̈ with q̈ = 0 as the right-hand side
   evaluateResidual();
@@ -219,11 +228,35 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   partition_.solve(r_free_, closure_, da_, dlambda_);
   for (std::size_t k = 0; k < free_.size(); ++k) a_[free_[k]] += da_[static_cast<Eigen::Index>(k)];
   lambda_ += dlambda_;
-  J_.resize(0, 0);  // the first step evaluates the tangent matrices
+  // The first step evaluates the tangent matrices (and B at its first iterate). With position-level
+  // closure every step then factors M(qₙ₊₁) for its projections, and J = M lets that one
+  // factorization serve the next step's Newton iterations too: the tangent part γh C_T + βh² K_T
+  // stays out of J until Newton's contraction asks for it. Otherwise J keeps it from the first step.
+  J_.resize(0, 0);
+  tangents_in_use_ = !refactorsMassEveryStep();
   v_unprojected_ = v_;
   a_unprojected_ = a_;
   measureClosure();
   energy_watch_.start(model_, ws_, q_, v_, t_, settings_.energy_tolerance);
+}
+
+bool NewmarkIntegrator::refactorsMassEveryStep() const {
+  return settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0;
+}
+
+double NewmarkIntegrator::incrementRoundoffFloor(double beta_h2) const {
+  // Needs roundoff_ to have measured the current geometry (relativeResidual). The closure rows'
+  // round-off ε‖s‖ (positions, newton_convergence.hpp), divided by βh² as the rows are, and mapped
+  // into q̈ through B⁺, whose gain is 1/σ_r, σ_r the smallest singular value the partition keeps;
+  // and at least the round-off of the coordinates themselves, ε‖q‖∞ / βh² (a joint angle that has
+  // wound up many turns carries ε|q| into every rotation after it, which the reach does not see).
+  if (model_.constraintCount() == 0 || settings_.closure != ClosureLevel::Position) return 0.0;
+  double coordinates = 1.0;
+  for (int i : free_) coordinates = std::max(coordinates, std::abs(q_[i]));
+  const double floor = std::numeric_limits<double>::epsilon() * coordinates / beta_h2;
+  if (partition_.rank() == 0) return floor;
+  const double smallest_kept = partition_.singularValues()[partition_.rank() - 1];
+  return std::max(floor, roundoff_.closureRoundoff(model_) / (beta_h2 * smallest_kept));
 }
 
 void NewmarkIntegrator::applyNewmarkUpdate() {
@@ -239,12 +272,9 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
   const double beta_h2 = settings_.beta * h * h;
   const bool position_closure = settings_.closure == ClosureLevel::Position;
   Refresh refresh = fresh_jacobian || J_.size() == 0 ? Refresh::Tangents : Refresh::None;
+  if (fresh_jacobian) tangents_in_use_ = true;
   bool mass_refreshed = false;
-  // Round-off floor of the increments: ε‖q‖ in the closure, amplified by 1/(βh²).
-  double position_scale = 1.0;
-  for (int i : free_) position_scale = std::max(position_scale, std::abs(q_pred_[i]));
-  const double roundoff_floor =
-      model_.constraintCount() > 0 && position_closure ? 2.2e-16 * position_scale / beta_h2 : 0.0;
+  double roundoff_floor = 0.0;  // of the increments, set at the first residual (incrementRoundoffFloor)
   double previous = 0.0;
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
     applyNewmarkUpdate();
@@ -258,6 +288,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     // have no such scale, and only the increment test below applies.
     last_relative_residual_ =
         roundoff_.relativeResidual(model_, ws_, r_free_, free_, lambda_, position_closure ? closure_ : no_rows_);
+    if (k == 0) roundoff_floor = incrementRoundoffFloor(beta_h2);
     if (position_closure || model_.constraintCount() == 0) {
       // Not before the first iteration matrix exists: the next steps reuse its tangent part.
       if (last_relative_residual_ <= NewtonRoundoff::kFactor && J_.size() > 0) {
@@ -276,7 +307,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     }
     refresh = Refresh::None;
     if (reduced_dirty_) {
-      if (!partition_.setIterationMatrix(J_)) failSingular("the iteration matrix is singular on the free directions", J_);
+      factor(J_, "the iteration matrix");
       reduced_dirty_ = false;
     }
     partition_.solve(r_free_, closure_, da_, dlambda_);
@@ -303,15 +334,17 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
         settings_.accept_by_contraction_rate && contraction_ > 0.0 && step_count_ % kRateCheckInterval != 0;
     const bool small =
         increment <= target || (k == 0 && rate_known && kRateSafety * contraction_ * increment <= target);
-    const bool stagnant = k > 0 && increment <= 64.0 * roundoff_floor && increment > 0.2 * previous;
+    const bool stagnant = k > 0 && increment <= kNoiseBand * roundoff_floor && increment > 0.2 * previous;
     if (small || stagnant) {
       applyNewmarkUpdate();
       return true;
     }
     // Slow contraction above round-off: the reused matrix is stale. Refresh M (cheap) first, and
     // the whole tangent (AD) when that was not enough.
-    if (k > 0 && increment > kSlowContraction * previous)
+    if (k > 0 && increment > kSlowContraction * previous && increment > kNoiseBand * roundoff_floor) {
       refresh = mass_refreshed ? Refresh::Tangents : Refresh::Mass;
+      if (refresh == Refresh::Tangents) tangents_in_use_ = true;  // J keeps them from now on
+    }
     previous = increment;
   }
   return false;
@@ -390,11 +423,12 @@ void NewmarkIntegrator::step() {
   ++newton_history_;
   v_unprojected_ = v_;
   a_unprojected_ = a_;
-  if (settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0) {
+  if (refactorsMassEveryStep()) {
     // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
     updateConstraintPartition();
     updateMassMatrix();
-    if (!partition_.setIterationMatrix(mass_)) failSingular("the mass matrix is singular on the free directions", mass_);
+    factor(mass_, "the mass matrix");
+    reduced_dirty_ = tangents_in_use_;  // J = M: this factorization is the next step's too
     projectOntoConstraints();
     if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);
   } else {

@@ -6,7 +6,10 @@
 //     q̇ₙ₊₁ = ṽ + γh q̈ₙ₊₁,    ṽ = q̇ₙ + (1 − γ) h q̈ₙ
 //     f(q̈ₙ₊₁, q̇ₙ₊₁, qₙ₊₁, tₙ₊₁) + Bᵀλₙ₊₁ = 0                                         (37)
 //     b(qₙ₊₁, tₙ₊₁) / (βh²) = 0        (position-level closure; the paper's (38) is an option)
-// Newton matrix [J Bᵀ; B 0] with J = M + γh C_T + βh² K_T (33). After convergence the velocities
+// Newton matrix [J Bᵀ; B 0] with J = M + γh C_T + βh² K_T (33), kept while Newton contracts
+// (modified Newton). With position-level closure every step factors M(qₙ₊₁) for its projections,
+// and J = M lets that factorization serve the next step's iterations: the tangent part (AD) joins
+// J only when the contraction asks for it. After convergence the velocities
 // and accelerations are projected onto the velocity- and acceleration-level constraints
 // (minimum-norm correction through the same SVD), which removes the weak instability of the
 // trapezoidal rule on index-3 equations (the ALI3-P idea).
@@ -43,7 +46,8 @@ struct NewmarkSettings {
   double end_time = 1.0;   ///< [s]
   double beta = 0.25;      ///< Newmark β
   double gamma = 0.5;      ///< Newmark γ
-  /// On ‖Δq̈‖∞ relative to 1 + ‖q̈‖∞ (‖q̈‖∞ capped at 2‖q̈ₙ‖∞ + 1, the last accepted step's). An
+  /// On ‖Δq̈‖∞ relative to 1 + ‖q̈‖∞ (‖q̈‖∞ capped at 2‖q̈ₙ‖∞ + 1, the last accepted step's), or
+  /// below the increments' round-off floor (the closure rows' round-off through B⁺ over βh²). An
   /// iterate whose every residual row is at its round-off level is accepted too (newton_convergence.hpp).
   double newton_tolerance = 1e-10;
   int max_newton_iterations = 30;
@@ -101,6 +105,10 @@ struct IntegratorStatistics {
   long newton_iterations = 0;
   long jacobian_updates = 0;  ///< full tangent matrices (AD)
   long mass_updates = 0;      ///< mass-matrix-only refreshes of the iteration matrix
+  /// Reduced matrices V₂ᵀMV₂ or V₂ᵀJV₂ factored: one per step with position-level closure while J = M
+  /// (the projections' factorization serves the next step's Newton iterations), two once J has its
+  /// tangent part.
+  long factorizations = 0;
   double max_closure_error = 0.0;  ///< max over steps of ‖b(q)‖∞
   /// Max over steps of the last Newton residual evaluated in the step, each row relative to the
   /// magnitude of its terms (NewtonRoundoff; ≈ 1e-14 at round-off). 0 without a position closure.
@@ -164,6 +172,10 @@ class NewmarkIntegrator {
   void checkInitialClosure() const;
   void evaluateResidual();    ///< f_ and its free rows r_free_ at the current state
   void applyNewmarkUpdate();  ///< q, q̇ of the free coordinates from q̈ and the predictors (32)
+  /// Position-level closure: every step factors M(qₙ₊₁) for its projections.
+  bool refactorsMassEveryStep() const;
+  /// The size of a Newton increment of q̈ that round-off in the closure rows alone can cause.
+  double incrementRoundoffFloor(double beta_h2) const;
   void measureClosure();
   /// Every sensor at the current state, into `values`. Needs ws_ to hold the geometry with the joint
   /// axes at q_, as initialize() and step() leave it.
@@ -173,6 +185,8 @@ class NewmarkIntegrator {
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
   /// For an iteration matrix singular on the free directions: names the coordinate it leaves free.
   [[noreturn]] void failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const;
+  /// Factors V₂ᵀ matrix V₂ in the partition; a singular one ends the run naming `name`.
+  void factor(const Eigen::MatrixXd& matrix, const char* name);
 
   const Model& model_;
   NewmarkSettings settings_;
@@ -186,6 +200,7 @@ class NewmarkIntegrator {
   TangentMatrices tangents_;
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale
   Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
+  bool tangents_in_use_ = false;  ///< J has its tangent part (else J = M, see initialize())
 
   std::vector<int> free_;
   double t_ = 0.0;

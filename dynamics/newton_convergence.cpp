@@ -106,4 +106,14 @@ double NewtonRoundoff::relativeResidual(const Model& model, const Workspace<doub
   return largest;
 }
 
+double NewtonRoundoff::closureRoundoff(const Model& model) const {
+  double sum = 0.0;
+  for (const CutJoint& cut : model.cuts())
+    for (int k = 0; k < equationCount(cut.kind); ++k) {
+      const double scale = closureRowScale(cut, k, reach_, depth_);
+      sum += scale * scale;
+    }
+  return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
+}
+
 }  // namespace mbsopt

@@ -7,6 +7,11 @@
 // round-off of each version's own equations, so the trajectories agree to round-off amplified over
 // the run (bounded here by 1e-7 rad, far below the 1e-4 rad the Newmark error is at h = 1 ms), and
 // every version must complete.
+//
+// One factorization per step: with the loops closed at position level every step factors M(qₙ₊₁)
+// for its projections, and Newton's next iterations reuse it (J = M) until their contraction asks
+// for the tangent part; every factorization then follows a change of the matrix (a step's M, or a
+// refresh of M or of the AD tangents inside Newton), none is repeated for Newton.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -15,7 +20,9 @@
 
 #include "dynamics/newmark.hpp"
 #include "dynamics/run_checks.hpp"
+#include "problems/chain_scenes.hpp"
 #include "problems/scene_file.hpp"
+#include "problems/tramway.hpp"
 
 namespace mbsopt {
 namespace {
@@ -67,6 +74,20 @@ TEST(NewtonConvergence, TheSameMechanismInOtherUnitsAndFarFromTheOriginFollowsTh
     // stopped at round-off or at the increment tolerance 1e-10, never far from a solution.
     EXPECT_LT(other.statistics.max_relative_residual, 1e-6);
   }
+}
+
+TEST(NewtonConvergence, NewtonReusesTheProjectionsFactorizationOfEachStep) {
+  const auto expectOneFactorizationPerChange = [](const Scene& scene, const std::string& name) {
+    const Trajectory run = NewmarkIntegrator(scene.model, scene.settings).simulate(scene.q0, scene.v0);
+    const IntegratorStatistics& s = run.statistics;
+    ASSERT_GT(s.steps, 100) << name;
+    EXPECT_EQ(s.jacobian_updates, 1) << name << ": the AD tangents once, for the first step";
+    EXPECT_GE(s.mass_updates, s.steps) << name << ": a fresh M for every step's projections";
+    // The initial M, then one per change of M or of the tangents: no second one per step for J.
+    EXPECT_EQ(s.factorizations, 1 + s.mass_updates + s.jacobian_updates) << name;
+  };
+  expectOneFactorizationPerChange(tramwayScene(), "tramway");
+  expectOneFactorizationPerChange(closedPlanarChainScene(24), "closed chain of 24 links");
 }
 
 TEST(RunChecks, LoopsThatDriftPastTheClosureToleranceStopTheRunAtTheCut) {
