@@ -250,13 +250,16 @@ double NewmarkIntegrator::incrementRoundoffFloor(double beta_h2) const {
   // into q̈ through B⁺, whose gain is 1/σ_r, σ_r the smallest singular value the partition keeps;
   // and at least the round-off of the coordinates themselves, ε‖q‖∞ / βh² (a joint angle that has
   // wound up many turns carries ε|q| into every rotation after it, which the reach does not see).
+  // The gain is taken as at most 1: near a singular configuration a small σ_r must not let an
+  // increment that is still converging pass for noise (the stagnation test, which needs the
+  // increments to have stopped shrinking, handles what it amplifies).
   if (model_.constraintCount() == 0 || settings_.closure != ClosureLevel::Position) return 0.0;
   double coordinates = 1.0;
   for (int i : free_) coordinates = std::max(coordinates, std::abs(q_[i]));
   const double floor = std::numeric_limits<double>::epsilon() * coordinates / beta_h2;
   if (partition_.rank() == 0) return floor;
   const double smallest_kept = partition_.singularValues()[partition_.rank() - 1];
-  return std::max(floor, roundoff_.closureRoundoff(model_) / (beta_h2 * smallest_kept));
+  return std::max(floor, roundoff_.closureRoundoff(model_) / (beta_h2 * std::max(1.0, smallest_kept)));
 }
 
 void NewmarkIntegrator::applyNewmarkUpdate() {

@@ -54,8 +54,8 @@ class NewtonRoundoff {
 
   /// ε ‖s‖₂ with s the closure rows' scales (ρ_a + ρ_b, d_a + d_b + 1) at the state of the last
   /// relativeResidual call: how far round-off alone can leave the closure rows from zero. Divided by
-  /// βh² and by B's smallest retained singular value, it is how far that round-off moves a Newton
-  /// increment of q̈ (the floor below which increments carry no information).
+  /// βh² and by B's smallest retained singular value (when above 1), it is how far that round-off
+  /// moves a Newton increment of q̈ (the floor below which increments carry no information).
   double closureRoundoff(const Model& model) const;
 
  private:
