@@ -26,7 +26,7 @@ struct TramwayProblem {
   double simulation_seconds = 0.0;  ///< the fastest of a few plain runs, for `over_simulation`
 
   /// The paper's 4 variables, or 8 with the two track guidances' stiffness and damping (bounds ±50 %
-  /// around their values): a problem whose force parameters would need a second 16-wide AD pass.
+  /// around their values): force parameters that take no AD direction (f is linear in them).
   explicit TramwayProblem(int variables) {
     problem.design.artificial.initial = 2.0;
     if (variables == 8)

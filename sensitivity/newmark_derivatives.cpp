@@ -66,7 +66,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   const std::vector<int>& free = model_.freeCoordinates();
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
-  step_inputs_ = adInputs({free_v, free_q, parameterInputs(ad_parameter_indices_.size())});
+  step_inputs_ = adInputs({free_q, parameterInputs(ad_parameter_indices_.size()), free_v});
 }
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
@@ -117,9 +117,10 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
                                              tr.time[k], step_inputs_, ad_parameter_indices_);
   geometryAt(k, scratch_);
   StepDerivatives out{scratch_.mass, {}, {}, {}};
-  copyRows(d, free, 0, 0, nf, out.damping);
-  copyRows(d, free, 0, nf, nf, out.stiffness);
-  copyParameterRows(d, free, 0, 2 * nf, ad_parameter_, out.parameters);
+  const Eigen::Index velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
+  copyRows(d, free, 0, velocities, nf, out.damping);
+  copyRows(d, free, 0, 0, nf, out.stiffness);
+  copyParameterRows(d, free, 0, nf, ad_parameter_, out.parameters);
   scratch_.v = tr.v.col(k);
   linearParameterColumns(k, scratch_.v, scratch_, out.parameters);
   return out;
@@ -159,54 +160,65 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   seedVector(tr.a.col(k), 0, 0, 0, s.projected_a);
   seedVector(s.plain_correction_v, 0, 0, 0, s.correction_v);
   seedVector(s.plain_correction_a, 0, 0, 0, s.correction_a);
-  // One evaluation per pass over the step's inputs (free q̇, free q, design parameters) shares the
-  // geometry at q_k between four functions of it, in rows [f; ḃ; b̈; f_v; f_a]: f at the state Newton
-  // converged to (C_T, K_T, ∂f/∂b); the closure rates at the projected state, q̇ seeded the same way
-  // (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P).
+  // One evaluation per pass over the step's inputs (free q, the design parameters, free q̇) shares
+  // the geometry at q_k between four functions of it, in rows [f; ḃ; b̈; f_v; f_a]: f at the state
+  // Newton converged to (K_T, ∂f/∂b, C_T); the closure rates at the projected state, q̇ seeded the
+  // same way (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P). A
+  // pass of velocities alone evaluates f and b̈ only: ḃ's derivative in q̇ is not used, and
+  // M(q)Δ + B(q)ᵀμ does not depend on q̇ (its rows get zero derivatives).
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
+  const Eigen::Index velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
   Eigen::MatrixXd& d = s.pass_jacobian;
-  adJacobian(
-      s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, ad_parameter_indices_, rows,
-      [&](const SeededState& state, VectorX<AdScalar>& g) {
-        g.resize(rows);
-        forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
-        residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);
-        g.head(n) = s.f;
-        if (m == 0) return;
-        s.projected_v = state.v;
-        for (Eigen::Index i = 0; i < n; ++i) s.projected_v[i].value() = tr.v(i, k);
-        frameRates(model_, s.ws, s.projected_v, s.projected_a, KinematicsLevel::Acceleration);
+  d.resize(rows, velocities + nf);
+  VectorX<AdScalar>& g = s.ws.seeded_f;
+  const auto evaluate = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
+    g.resize(rows);
+    forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
+    residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);
+    g.head(n) = s.f;
+    if (m > 0) {
+      s.projected_v = state.v;
+      for (Eigen::Index i = 0; i < n; ++i) s.projected_v[i].value() = tr.v(i, k);
+      frameRates(model_, s.ws, s.projected_v, s.projected_a, KinematicsLevel::Acceleration);
+      closureEquations(model_, s.ws, Derivative::Acceleration, s.closure_rates);
+      g.segment(n + m, m) = s.closure_rates;
+      if (first < velocities) {  // the pass seeds some q or parameter
         closureEquations(model_, s.ws, Derivative::Velocity, s.closure_rates);
         g.segment(n, m) = s.closure_rates;
-        closureEquations(model_, s.ws, Derivative::Acceleration, s.closure_rates);
-        g.segment(n + m, m) = s.closure_rates;
         frameAccelerationsAtRest(model_, s.ws, s.correction_v);
         inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_v, s.f);
         g.segment(n + 2 * m, n) = s.f;
         frameAccelerationsAtRest(model_, s.ws, s.correction_a);
         inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
         g.tail(n) = s.f;
-      },
-      d);
-  // Columns: free q̇ [0, nf), free q [nf, 2nf), the AD passes' design parameters from 2nf on; the
-  // parameters f is linear in (force elements' stiffness and damping) in double, and with zero
+      } else {
+        for (Eigen::Index i = n; i < n + m; ++i) g[i].derivatives().setZero();
+        for (Eigen::Index i = n + 2 * m; i < rows; ++i) g[i].derivatives().setZero();
+      }
+    }
+    for (Eigen::Index i = 0; i < rows; ++i) d.row(i).segment(first, count) = g[i].derivatives().head(count);
+  };
+  forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, ad_parameter_indices_,
+                evaluate);
+  // Columns: free q [0, nf), the AD passes' design parameters [nf, velocities), free q̇ from
+  // velocities on; the parameters f is linear in (force elements' stiffness and damping) in double, and with zero
   // columns in the projections (M and B do not depend on them).
   out.step.mass = s.mass;
-  copyRows(d, free, 0, 0, nf, out.step.damping);
-  copyRows(d, free, 0, nf, nf, out.step.stiffness);
-  copyParameterRows(d, free, 0, 2 * nf, ad_parameter_, out.step.parameters);
+  copyRows(d, free, 0, velocities, nf, out.step.damping);
+  copyRows(d, free, 0, 0, nf, out.step.stiffness);
+  copyParameterRows(d, free, 0, nf, ad_parameter_, out.step.parameters);
   s.v = tr.v_unprojected.col(k);
   linearParameterColumns(k, s.v, s, out.step.parameters);
   ClosureDerivatives& c = out.closure;
   c.jacobian = s.jacobian;  // no rows without cut joints
   if (m == 0) return;
-  c.velocity_q = d.block(n, nf, m, nf);
-  c.acceleration_q = d.block(n + m, nf, m, nf);
-  c.acceleration_v = d.block(n + m, 0, m, nf);
-  copyRows(d, free, n + 2 * m, nf, nf, c.velocity_projection);
-  copyParameterRows(d, free, n + 2 * m, 2 * nf, ad_parameter_, c.velocity_projection_parameters);
-  copyRows(d, free, 2 * n + 2 * m, nf, nf, c.acceleration_projection);
-  copyParameterRows(d, free, 2 * n + 2 * m, 2 * nf, ad_parameter_, c.acceleration_projection_parameters);
+  c.velocity_q = d.block(n, 0, m, nf);
+  c.acceleration_q = d.block(n + m, 0, m, nf);
+  c.acceleration_v = d.block(n + m, velocities, m, nf);
+  copyRows(d, free, n + 2 * m, 0, nf, c.velocity_projection);
+  copyParameterRows(d, free, n + 2 * m, nf, ad_parameter_, c.velocity_projection_parameters);
+  copyRows(d, free, 2 * n + 2 * m, 0, nf, c.acceleration_projection);
+  copyParameterRows(d, free, 2 * n + 2 * m, nf, ad_parameter_, c.acceleration_projection_parameters);
 }
 
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
