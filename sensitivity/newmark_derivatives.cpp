@@ -8,6 +8,7 @@
 #include "dynamics/kinematics.hpp"
 #include "dynamics/mass_matrix.hpp"
 #include "dynamics/residual.hpp"
+#include "dynamics/sensors.hpp"
 #include "dynamics/tangent.hpp"
 #include "sensitivity/forward_ad.hpp"
 #include "sensitivity/parallel_runs.hpp"
@@ -67,6 +68,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
   step_inputs_ = adInputs({free_q, parameterInputs(ad_parameter_indices_.size()), free_v});
+  sensed_step_inputs_ = adInputs({step_inputs_, adInputs(AdInput::Kind::Acceleration, free)});
 }
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
@@ -132,12 +134,37 @@ Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
 }
 
 
+void TrajectoryDerivatives::sensorDerivatives(Scratch& s, const VectorX<AdScalar>& q, const VectorX<AdScalar>& v,
+                                              const VectorX<AdScalar>& a, Eigen::Index first, Eigen::Index count) const {
+  // The pass's inputs are sensed_step_inputs_: free q [0, nf), parameters, free q̇, free q̈ (last nf).
+  const Eigen::Index nf = freeCount(), velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
+  for (std::size_t i = 0; i < s.sensors.size(); ++i) {
+    const AdScalar y = sensorValue(*s.sensors[i], s.ws, q, v, a);
+    ResponseJacobian& J = s.sensor_jacobians[i];
+    J.value = y.value();
+    for (Eigen::Index j = 0; j < count; ++j) {
+      const Eigen::Index input = first + j;
+      if (input < nf) J.position[input] = y.derivatives()[j];
+      else if (input >= velocities + nf) J.acceleration[input - velocities - nf] = y.derivatives()[j];
+      else if (input >= velocities) J.velocity[input - velocities] = y.derivatives()[j];
+    }
+  }
+}
+
 void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount();
   geometryAt(k, s);
-  seedsAt(k, s, out.seeds);
+  // The sensors' derivatives come from the same passes (at the projected state, q̈ seeded too).
+  const bool sensed = selectSensors(k, s);
+  const std::vector<AdInput>& inputs = sensed ? sensed_step_inputs_ : step_inputs_;
+  s.sensor_jacobians.resize(s.sensors.size());
+  for (ResponseJacobian& J : s.sensor_jacobians) {
+    J.position.resize(nf);
+    J.velocity.resize(nf);
+    J.acceleration.resize(nf);
+  }
   // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), B's
   // rank decided as the integrator's partition decided it (the settings' SVD threshold).
   s.plain_correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
@@ -157,7 +184,6 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   seedVector(tr.lambda.col(k), 0, 0, 0, s.lambda);
   seedVector(s.plain_mu_v, 0, 0, 0, s.mu_v);
   seedVector(s.plain_mu_a, 0, 0, 0, s.mu_a);
-  seedVector(tr.a.col(k), 0, 0, 0, s.projected_a);
   seedVector(s.plain_correction_v, 0, 0, 0, s.correction_v);
   seedVector(s.plain_correction_a, 0, 0, 0, s.correction_a);
   // One evaluation per pass over the step's inputs (free q, the design parameters, free q̇) shares
@@ -165,21 +191,29 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   // Newton converged to (K_T, ∂f/∂b, C_T); the closure rates at the projected state, q̇ seeded the
   // same way (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P). A
   // pass of velocities alone evaluates f and b̈ only: ḃ's derivative in q̇ is not used, and
-  // M(q)Δ + B(q)ᵀμ does not depend on q̇ (its rows get zero derivatives).
+  // M(q)Δ + B(q)ᵀμ does not depend on q̇ (its rows get zero derivatives). With sensors to
+  // differentiate, free q̈ is seeded last, and each sensor is evaluated at the projected state.
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
   const Eigen::Index velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
   Eigen::MatrixXd& d = s.pass_jacobian;
-  d.resize(rows, velocities + nf);
+  d.resize(rows, static_cast<Eigen::Index>(inputs.size()));
   VectorX<AdScalar>& g = s.ws.seeded_f;
   const auto evaluate = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
     g.resize(rows);
     forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
     residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);
     g.head(n) = s.f;
-    if (m > 0) {
+    if (m == 0) {  // no projections: the state Newton converged to is the trajectory's
+      if (sensed) sensorDerivatives(s, state.q, state.v, state.a, first, count);
+    } else {
       s.projected_v = state.v;
-      for (Eigen::Index i = 0; i < n; ++i) s.projected_v[i].value() = tr.v(i, k);
+      s.projected_a = state.a;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        s.projected_v[i].value() = tr.v(i, k);
+        s.projected_a[i].value() = tr.a(i, k);
+      }
       frameRates(model_, s.ws, s.projected_v, s.projected_a, KinematicsLevel::Acceleration);
+      if (sensed) sensorDerivatives(s, state.q, s.projected_v, s.projected_a, first, count);
       closureEquations(model_, s.ws, Derivative::Acceleration, s.closure_rates);
       g.segment(n + m, m) = s.closure_rates;
       if (first < velocities) {  // the pass seeds some q or parameter
@@ -198,8 +232,9 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
     }
     for (Eigen::Index i = 0; i < rows; ++i) d.row(i).segment(first, count) = g[i].derivatives().head(count);
   };
-  forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), step_inputs_, ad_parameter_indices_,
+  forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), inputs, ad_parameter_indices_,
                 evaluate);
+  sensorSeeds(k, s, out.seeds);
   // Columns: free q [0, nf), the AD passes' design parameters [nf, velocities), free q̇ from
   // velocities on; the parameters f is linear in (force elements' stiffness and damping) in double, and with zero
   // columns in the projections (M and B do not depend on them).
@@ -249,39 +284,48 @@ ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
   return out;
 }
 
-void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSeeds& out) {
-  const Trajectory& tr = response_.trajectory;
-  const Eigen::Index m = functionalCount(), nf = freeCount();
-  out.position.setZero(m, nf);
-  out.velocity.setZero(m, nf);
-  out.acceleration.setZero(m, nf);
-  const auto weight = [&](Eigen::Index j) {  // ∂Ψ/∂φ_k ∂φ/∂y
-    const auto f = static_cast<std::size_t>(j);
-    return functionals_[f].sign * response_.functionals[f].gradient[k];
-  };
-  // The sensors some constraint is sensitive to at k, each once (±y share one), in one set of passes.
+double TrajectoryDerivatives::seedWeight(Eigen::Index j, Eigen::Index k) const {  // ∂Ψ/∂φ_k ∂φ/∂y
+  const auto f = static_cast<std::size_t>(j);
+  return functionals_[f].sign * response_.functionals[f].gradient[k];
+}
+
+bool TrajectoryDerivatives::selectSensors(Eigen::Index k, Scratch& scratch) const {
+  // The sensors some constraint is sensitive to at k, each once (±y share one).
   std::vector<int>& slot = scratch.sensor_slot;
   std::vector<const Sensor*>& sensors = scratch.sensors;
   slot.assign(model_.sensors().size(), -1);
   sensors.clear();
-  for (Eigen::Index j = 0; j < m; ++j) {
+  for (Eigen::Index j = 0; j < functionalCount(); ++j) {
     const auto sensor = static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor);
-    if (weight(j) == 0.0 || slot[sensor] >= 0) continue;
+    if (seedWeight(j, k) == 0.0 || slot[sensor] >= 0) continue;
     slot[sensor] = static_cast<int>(sensors.size());
     sensors.push_back(&model_.sensors()[sensor]);
   }
-  if (sensors.empty()) return;
-  std::vector<ResponseJacobian>& jacobians = scratch.sensor_jacobians;
-  responseJacobians(model_, scratch.ws, sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k), model_.freeCoordinates(),
-                    jacobians);
+  return !sensors.empty();
+}
+
+void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const Scratch& scratch, ResponseSeeds& out) const {
+  const Eigen::Index m = functionalCount(), nf = freeCount();
+  out.position.setZero(m, nf);
+  out.velocity.setZero(m, nf);
+  out.acceleration.setZero(m, nf);
   for (Eigen::Index j = 0; j < m; ++j) {
-    if (weight(j) == 0.0) continue;
-    const ResponseJacobian& J =
-        jacobians[static_cast<std::size_t>(slot[static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor)])];
-    out.position.row(j) = weight(j) * J.position;
-    out.velocity.row(j) = weight(j) * J.velocity;
-    out.acceleration.row(j) = weight(j) * J.acceleration;
+    const double weight = seedWeight(j, k);
+    if (weight == 0.0) continue;
+    const auto sensor = static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor);
+    const ResponseJacobian& J = scratch.sensor_jacobians[static_cast<std::size_t>(scratch.sensor_slot[sensor])];
+    out.position.row(j) = weight * J.position;
+    out.velocity.row(j) = weight * J.velocity;
+    out.acceleration.row(j) = weight * J.acceleration;
   }
+}
+
+void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSeeds& out) {
+  const Trajectory& tr = response_.trajectory;
+  if (selectSensors(k, scratch))  // every selected sensor in one set of passes
+    responseJacobians(model_, scratch.ws, scratch.sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k),
+                      model_.freeCoordinates(), scratch.sensor_jacobians);
+  sensorSeeds(k, scratch, out);
 }
 
 DesignGradient TrajectoryDerivatives::gradient(const Eigen::MatrixXd& dpsi_db) const {

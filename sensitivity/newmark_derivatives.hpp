@@ -104,6 +104,8 @@ class TrajectoryDerivatives {
   /// The inputs of the AD passes, listed once: free q, the design parameters f is not linear in, free
   /// q̇ (last, so that a pass of velocities alone can skip what does not depend on them).
   std::vector<AdInput> step_inputs_;
+  /// The same followed by free q̈: the inputs of a time point whose sensors are differentiated too.
+  std::vector<AdInput> sensed_step_inputs_;
 
   /// The mutable state of the evaluations at a time point: workspaces, and M(q_k), B(q_k) from one
   /// kinematics pass, kept for the time point last asked (a step and its closure share them). One
@@ -118,7 +120,7 @@ class TrajectoryDerivatives {
     VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, correction_v, correction_a;
     VectorX<AdScalar> f, closure_rates;
     // pointAt's buffers in double: the projections' corrections and multipliers, Bᵀ and its SVD,
-    // the Jacobian of the AD pass; seedsAt's sensor lists and their Jacobians.
+    // the Jacobian of the AD pass; the sensors selected at a time point and their Jacobians.
     Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column;
     Eigen::MatrixXd jacobian_transposed, pass_jacobian;
     OneSidedJacobiSvd transposed_svd;
@@ -138,6 +140,17 @@ class TrajectoryDerivatives {
   /// shared; into `out`, reusing the storage of its matrices.
   void pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out);
   void seedsAt(Eigen::Index k, Scratch& s, ResponseSeeds& out);
+  /// ∂Ψ_j/∂φ_k ∂φ/∂y: the weight of constraint j's sensor at time point k.
+  double seedWeight(Eigen::Index j, Eigen::Index k) const;
+  /// The sensors some constraint is sensitive to at k, each once, into s.sensors and s.sensor_slot;
+  /// false when there is none.
+  bool selectSensors(Eigen::Index k, Scratch& s) const;
+  /// The seeds at k from the selected sensors' Jacobians in s.sensor_jacobians.
+  void sensorSeeds(Eigen::Index k, const Scratch& s, ResponseSeeds& out) const;
+  /// Inside a pass of pointAt over sensed_step_inputs_ (inputs first … first + count − 1), with ws at
+  /// the kinematics of (q, v, a): each selected sensor's value and its derivatives in those inputs.
+  void sensorDerivatives(Scratch& s, const VectorX<AdScalar>& q, const VectorX<AdScalar>& v, const VectorX<AdScalar>& a,
+                         Eigen::Index first, Eigen::Index count) const;
 };
 
 }  // namespace mbsopt
