@@ -5,9 +5,11 @@
 // simulation, the measure (targets: adjoint ≤ 1.0, direct ≤ 0.3 per design variable).
 // Adjoint and direct run with 1 and 2 threads for their step derivatives (`jobs`): the first is
 // the method's cost, the second its wall time on two cores. With `variables:8` the two track
-// guidances' stiffness and damping are design variables too.
+// guidances' stiffness and damping are design variables too. BM_TramwayStepDerivatives times what
+// adjoint and direct compute at each time point before their sweep, against a simulated step.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "problems/tramway.hpp"
@@ -15,6 +17,7 @@
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/direct_sensitivity.hpp"
 #include "sensitivity/discrete_adjoint.hpp"
+#include "sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 namespace {
@@ -101,6 +104,31 @@ void BM_TramwayGradientDirect(benchmark::State& state) {
       static_cast<int>(state.range(1)));
 }
 BENCHMARK(BM_TramwayGradientDirect)->Apply(exactGradientRuns);
+
+/// What the exact methods compute at each time point before their sweep (TrajectoryDerivatives::
+/// points: M, C_T, K_T, ∂f/∂b, the closure and projection derivatives, the sensor seeds), at every
+/// point of the tramway trajectory on one thread. `per_point_us`, and `over_step`: the same over
+/// one step's share of the simulation, which an adjoint at ≤ 1 simulation needs well below 1.
+void BM_TramwayStepDerivatives(benchmark::State& state) {
+  const TramwayProblem& t = tramway();
+  TrajectoryDerivatives derivatives(t.problem, t.functionals, t.x);
+  std::vector<TrajectoryDerivatives::PointDerivatives> block;
+  const Eigen::Index last = derivatives.timePoints() - 1;  // points 1 … last, one per step
+  double total = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    for (Eigen::Index first = 1; first <= last; first += TrajectoryDerivatives::kPointsPerBlock)
+      derivatives.points(first, std::min(last, first + TrajectoryDerivatives::kPointsPerBlock - 1), 1, block);
+    benchmark::DoNotOptimize(block.data());
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+    total += elapsed.count();
+    state.SetIterationTime(elapsed.count());
+  }
+  const double per_point = total / static_cast<double>(state.iterations()) / static_cast<double>(last);
+  state.counters["per_point_us"] = per_point * 1e6;
+  state.counters["over_step"] = per_point / (t.simulation_seconds / static_cast<double>(last));
+}
+BENCHMARK(BM_TramwayStepDerivatives)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 void BM_TramwayGradientCentralDifferences(benchmark::State& state) {
   timeGradient(state, [](const TramwayProblem& t) {
