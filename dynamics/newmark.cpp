@@ -233,14 +233,14 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   // factorization serve the next step's Newton iterations too: the tangent part γh C_T + βh² K_T
   // stays out of J until Newton's contraction asks for it. Otherwise J keeps it from the first step.
   J_.resize(0, 0);
-  tangents_in_use_ = !refactorsMassEveryStep();
+  tangents_in_use_ = !closesLoopsAtPositionLevel();
   v_unprojected_ = v_;
   a_unprojected_ = a_;
   measureClosure();
   energy_watch_.start(model_, ws_, q_, v_, t_, settings_.energy_tolerance);
 }
 
-bool NewmarkIntegrator::refactorsMassEveryStep() const {
+bool NewmarkIntegrator::closesLoopsAtPositionLevel() const {
   return settings_.closure == ClosureLevel::Position && model_.constraintCount() > 0;
 }
 
@@ -253,7 +253,7 @@ double NewmarkIntegrator::incrementRoundoffFloor(double beta_h2) const {
   // The gain is taken as at most 1: near a singular configuration a small σ_r must not let an
   // increment that is still converging pass for noise (the stagnation test, which needs the
   // increments to have stopped shrinking, handles what it amplifies).
-  if (model_.constraintCount() == 0 || settings_.closure != ClosureLevel::Position) return 0.0;
+  if (!closesLoopsAtPositionLevel()) return 0.0;
   double coordinates = 1.0;
   for (int i : free_) coordinates = std::max(coordinates, std::abs(q_[i]));
   const double floor = std::numeric_limits<double>::epsilon() * coordinates / beta_h2;
@@ -426,7 +426,7 @@ void NewmarkIntegrator::step() {
   ++newton_history_;
   v_unprojected_ = v_;
   a_unprojected_ = a_;
-  if (refactorsMassEveryStep()) {
+  if (closesLoopsAtPositionLevel()) {
     // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
     updateConstraintPartition();
     updateMassMatrix();

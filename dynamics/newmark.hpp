@@ -172,8 +172,9 @@ class NewmarkIntegrator {
   void checkInitialClosure() const;
   void evaluateResidual();    ///< f_ and its free rows r_free_ at the current state
   void applyNewmarkUpdate();  ///< q, q̇ of the free coordinates from q̈ and the predictors (32)
-  /// Position-level closure: every step factors M(qₙ₊₁) for its projections.
-  bool refactorsMassEveryStep() const;
+  /// Cut joints closed at position level: every step then factors M(qₙ₊₁) for its projections,
+  /// and the closure rows are positions (with a round-off floor, incrementRoundoffFloor).
+  bool closesLoopsAtPositionLevel() const;
   /// The size of a Newton increment of q̈ that round-off in the closure rows alone can cause.
   double incrementRoundoffFloor(double beta_h2) const;
   void measureClosure();

@@ -119,7 +119,7 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
                                              tr.time[k], step_inputs_, ad_parameter_indices_);
   geometryAt(k, scratch_);
   StepDerivatives out{scratch_.mass, {}, {}, {}};
-  const Eigen::Index velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
+  const Eigen::Index velocities = firstVelocityInput();
   copyRows(d, free, 0, velocities, nf, out.damping);
   copyRows(d, free, 0, 0, nf, out.stiffness);
   copyParameterRows(d, free, 0, nf, ad_parameter_, out.parameters);
@@ -137,7 +137,7 @@ Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
 void TrajectoryDerivatives::sensorDerivatives(Scratch& s, const VectorX<AdScalar>& q, const VectorX<AdScalar>& v,
                                               const VectorX<AdScalar>& a, Eigen::Index first, Eigen::Index count) const {
   // The pass's inputs are sensed_step_inputs_: free q [0, nf), parameters, free q̇, free q̈ (last nf).
-  const Eigen::Index nf = freeCount(), velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
+  const Eigen::Index nf = freeCount(), velocities = firstVelocityInput();
   for (std::size_t i = 0; i < s.sensors.size(); ++i) {
     const AdScalar y = sensorValue(*s.sensors[i], s.ws, q, v, a);
     ResponseJacobian& J = s.sensor_jacobians[i];
@@ -194,7 +194,7 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   // M(q)Δ + B(q)ᵀμ does not depend on q̇ (its rows get zero derivatives). With sensors to
   // differentiate, free q̈ is seeded last, and each sensor is evaluated at the projected state.
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
-  const Eigen::Index velocities = nf + static_cast<Eigen::Index>(ad_parameter_indices_.size());
+  const Eigen::Index velocities = firstVelocityInput();
   Eigen::MatrixXd& d = s.pass_jacobian;
   d.resize(rows, static_cast<Eigen::Index>(inputs.size()));
   VectorX<AdScalar>& g = s.ws.seeded_f;

@@ -106,6 +106,11 @@ class TrajectoryDerivatives {
   std::vector<AdInput> step_inputs_;
   /// The same followed by free q̈: the inputs of a time point whose sensors are differentiated too.
   std::vector<AdInput> sensed_step_inputs_;
+  /// The position of free q̇ in those lists (after free q and the AD parameters): the AD Jacobians'
+  /// first column of C_T.
+  Eigen::Index firstVelocityInput() const {
+    return freeCount() + static_cast<Eigen::Index>(ad_parameter_indices_.size());
+  }
 
   /// The mutable state of the evaluations at a time point: workspaces, and M(q_k), B(q_k) from one
   /// kinematics pass, kept for the time point last asked (a step and its closure share them). One
