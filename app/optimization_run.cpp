@@ -121,6 +121,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const DesignResponse final = nlp.simulation(run.result.x);
   run.simulation_s = nlp.simulationSeconds();  // the fastest: interference only ever slows a run down
   run.simulation_equivalents = nlp.evaluationSeconds() / run.simulation_s;
+  run.simulations_ahead = nlp.simulationsAhead();
+  run.simulations_ahead_used = nlp.simulationsAheadUsed();
   run.responses = responses(nlp, final);
   run.limit_excess = limitExcess(nlp, final);
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
@@ -162,6 +164,8 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"gradient_evaluations", r.gradient_evaluations},
           {"simulation_equivalents", run.simulation_equivalents},
           {"simulation_s", run.simulation_s},
+          {"simulations_ahead", run.simulations_ahead},
+          {"simulations_ahead_used", run.simulations_ahead_used},
           {"wall_time_s", r.wall_time_s},
           {"history", history}};
 }

@@ -51,6 +51,10 @@ struct OptimizationRun {
   /// The optimizer's evaluations (simulations and gradients) in simulations: their wall time over
   /// simulation_s (DESIGN.md §5).
   double simulation_equivalents = 0.0;
+  /// Simulations run ahead on a spare core for a point the optimizer might ask next (SDCC's trial
+  /// after a rejection, DesignNlp::anticipate), and how many of them it did ask for (those are
+  /// among result.value_evaluations; the others only kept an idle core busy).
+  long simulations_ahead = 0, simulations_ahead_used = 0;
   /// The cost's sensor over time (SI) at the start and at the final design (the paper's figure 8).
   Eigen::VectorXd time, initial_history, final_history;
 };

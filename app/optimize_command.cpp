@@ -60,6 +60,10 @@ void optimize(const OptimizeOptions& options) {
               "(%.0f simulations' time in all), %.3g s\n",
               r.cost, run.initial_cost, r.max_violation, r.iterations, r.value_evaluations, r.gradient_evaluations,
               run.simulation_equivalents, r.wall_time_s);
+  if (run.simulations_ahead > 0)
+    std::printf("%ld of the simulations ran ahead on a spare core, while another point was evaluated (%ld more ran "
+                "ahead for a point not asked for after all)\n",
+                run.simulations_ahead_used, run.simulations_ahead - run.simulations_ahead_used);
   for (std::size_t i = 0; i < run.design.size(); ++i)
     std::printf("  %s = %.8g\n", problem.design.variables[i].parameter.c_str(), run.design[i]);
   for (const auto& [name, value] : run.responses.items()) std::printf("  %s = %.6g\n", name.c_str(), value.get<double>());
@@ -117,7 +121,8 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_option("--jobs", options->choice.gradient_jobs,
                       "Threads for each gradient (default: this machine's hardware threads): the simulations of "
                       "finite differences, the step derivatives of adjoint and direct (their sweep itself is "
-                      "sequential; continuous-adjoint runs on one). The results do not depend on it; "
+                      "sequential; continuous-adjoint runs on one); with 2 or more, SDCC's next trial point is "
+                      "simulated on a spare core while the current one is. The results do not depend on it; "
                       "simulation_equivalents (wall time) do")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -125,7 +130,9 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
                       "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "
                       "gradient_evaluations, simulation_equivalents (the evaluations' wall time over one "
-                      "simulation's, simulation_s), wall_time_s, history[{iteration, cost, max_violation, step, "
+                      "simulation's, simulation_s), simulations_ahead (run on a spare core for the point SDCC "
+                      "would try after a rejection) and simulations_ahead_used (those among the simulations), "
+                      "wall_time_s, history[{iteration, cost, max_violation, step, "
                       "simulations, gradient_evaluations, design (SI, null where the optimizer does not say)}]");
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "

@@ -40,6 +40,12 @@ const NlpEvaluation& EvaluationCache::at(const Eigen::VectorXd& x, bool gradient
   return entries_.front().values;
 }
 
+void EvaluationCache::anticipate(const Eigen::VectorXd& x) {
+  const bool known = (has_best_ && best_.x == x) ||
+                     std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.x == x; });
+  if (!known) problem_.anticipate(x);
+}
+
 void EvaluationCache::consider(const Entry& entry) {
   const double tolerance = options_.feasibility_tolerance;
   const bool feasible = entry.violation <= tolerance, best_feasible = has_best_ && best_.violation <= tolerance;

@@ -23,6 +23,8 @@ class EvaluationCache {
 
   /// The values at x (with gradients when asked), from the cache when x was evaluated before.
   const NlpEvaluation& at(const Eigen::VectorXd& x, bool gradients);
+  /// Passes the hint on to the problem (NlpProblem::anticipate) unless x's values are known.
+  void anticipate(const Eigen::VectorXd& x);
 
   /// Appends an iteration at x to `result.history` and reports it, unless x is the last one recorded.
   void recordIteration(const Eigen::VectorXd& x, OptimizerResult& result);

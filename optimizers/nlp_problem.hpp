@@ -38,6 +38,12 @@ class NlpProblem {
   /// The values at x, and the gradients too when `gradients` is set. May throw; the optimizers
   /// turn an exception into a failed result that says why.
   virtual void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) = 0;
+
+  /// A hint: the optimizer may ask next for the values at x (SDCC: the trial it would take should the
+  /// one it is about to evaluate be rejected). A problem with a spare core may start evaluating them
+  /// in the background, so that evaluate(x) then finds them ready. It never changes what evaluate()
+  /// returns; the default ignores it.
+  virtual void anticipate(const Eigen::VectorXd& /*x*/) {}
 };
 
 /// max(0, max g, max |h|, bound violations): how far x is from feasible.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -196,6 +197,7 @@ class SdccRun {
 
  private:
   void accept(const Eigen::VectorXd& x, const NlpEvaluation& values) {
+    rejected_here_ = false;
     x_ = x;
     values_ = values;
     constraints_ = linearize(problem_, x_, values_);
@@ -203,31 +205,73 @@ class SdccRun {
     cache_.recordIteration(x_, result_);
   }
 
+  /// A trial: x + δb clipped to the bounds, and the merit change the linearization (8)-(9) predicts
+  /// for it with the penalty ρ.
+  struct Trial {
+    Eigen::VectorXd point;
+    double predicted = 0.0;
+  };
+  Trial plannedTrial(const SdccStep& step, double penalty) const {
+    Trial t;
+    t.point = (x_ + step.step).cwiseMax(problem_.lowerBounds()).cwiseMin(problem_.upperBounds());
+    const Eigen::VectorXd taken = t.point - x_;
+    t.predicted = values_.cost_gradient.dot(taken) +                             // (8)
+                  penalty * (predictedViolation(constraints_, taken) - violation_);  // (9)
+    return t;
+  }
+  static double raisedPenalty(double penalty, const SdccStep& step, const SdccSettings& settings) {
+    return std::max(penalty, settings.penalty_factor * step.multipliers.lpNorm<1>());
+  }
+
+  /// The point the next trials would evaluate should `rejected` be rejected: ξ shrunk, and shrunk
+  /// again past the steps that predict no decrease or lead to the rejected point again (the bounds
+  /// clip both alike; they evaluate nothing), with the penalty as it would grow. Computed as tryStep
+  /// computes them, so it is the very point when it comes to that; none when ξ would first fall
+  /// below its minimum.
+  std::optional<Eigen::VectorXd> pointAfterRejection(const Eigen::VectorXd& rejected) const {
+    double penalty = penalty_;
+    for (double bound = step_bound_ * settings_.shrink_factor; bound >= settings_.min_step_bound;
+         bound *= settings_.shrink_factor) {
+      const SdccStep step = sdccStep(values_.cost_gradient, constraints_, weights_, settings_.active_set_epsilon, bound);
+      penalty = raisedPenalty(penalty, step, settings_);
+      Trial next = plannedTrial(step, penalty);
+      if (next.predicted < 0.0 && next.point != rejected) return std::move(next.point);
+    }
+    return std::nullopt;
+  }
+
   /// Evaluates x + δb (clipped to the bounds) and accepts it when the merit f + ρ·violation falls
-  /// by at least `acceptance_ratio` of what the linearization (8)-(9) predicts; adapts ξ.
+  /// by at least `acceptance_ratio` of what the linearization (8)-(9) predicts; adapts ξ. Once a
+  /// trial from the current point has been rejected, the next ones are likely to be too (ξ halves
+  /// until the linearization holds), so from then on the problem is told first which point a
+  /// rejection would lead to (NlpProblem::anticipate); not before, where it would mostly simulate
+  /// in vain beside an accepted trial.
   void tryStep(const SdccStep& step) {
-    penalty_ = std::max(penalty_, settings_.penalty_factor * step.multipliers.lpNorm<1>());
-    const Eigen::VectorXd trial = (x_ + step.step).cwiseMax(problem_.lowerBounds()).cwiseMin(problem_.upperBounds());
-    const Eigen::VectorXd taken = trial - x_;
-    const double predicted = values_.cost_gradient.dot(taken) +  // (8)
-                             penalty_ * (predictedViolation(constraints_, taken) - violation_);  // (9)
-    if (!(predicted < 0.0)) return shrink();  // nothing to gain at this ξ (e.g. the bounds clip the step away)
+    penalty_ = raisedPenalty(penalty_, step, settings_);
+    const Trial trial = plannedTrial(step, penalty_);
+    if (!(trial.predicted < 0.0)) return shrink();  // nothing to gain at this ξ (e.g. the bounds clip the step away)
+    if (rejected_here_)
+      if (const std::optional<Eigen::VectorXd> next = pointAfterRejection(trial.point)) cache_.anticipate(*next);
     try {
       // Values first: a rejected trial needs no gradient (the accepted one's reuses its simulation).
-      const NlpEvaluation& values = cache_.at(trial, false);
-      const double achieved = values.cost + penalty_ * maxViolation(problem_, trial, values) -
+      const NlpEvaluation& values = cache_.at(trial.point, false);
+      const double achieved = values.cost + penalty_ * maxViolation(problem_, trial.point, values) -
                               (values_.cost + penalty_ * violation_);
-      const double ratio = achieved / predicted;
-      if (!(ratio >= settings_.acceptance_ratio)) return shrink();  // NaN is rejected too
-      accept(trial, cache_.at(trial, true));
+      const double ratio = achieved / trial.predicted;
+      if (!(ratio >= settings_.acceptance_ratio)) return reject();  // NaN is rejected too
+      accept(trial.point, cache_.at(trial.point, true));
       if (ratio >= settings_.growth_ratio) step_bound_ *= settings_.growth_factor;
     } catch (const std::exception& e) {
       last_failure_ = e.what();
-      shrink();
+      reject();
     }
   }
 
   void shrink() { step_bound_ *= settings_.shrink_factor; }
+  void reject() {
+    rejected_here_ = true;
+    shrink();
+  }
 
   void stop(OptimizerStatus status, const std::string& why) {
     result_.status = status;
@@ -248,6 +292,7 @@ class SdccRun {
   NlpEvaluation values_;
   ConstraintLinearization constraints_;
   double violation_ = 0.0;
+  bool rejected_here_ = false;  ///< a trial from x_ was evaluated and rejected
   std::string last_failure_;
 };
 

@@ -34,12 +34,7 @@ const DesignResponse* DesignNlp::keptSimulation(const Eigen::VectorXd& x) const 
   return nullptr;
 }
 
-const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
-  if (const DesignResponse* kept = keptSimulation(x)) return *kept;
-  const auto start_time = std::chrono::steady_clock::now();
-  DesignResponse response = evaluateDesign(problem_, functionals_, x);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  fastest_simulation_s_ = fastest_simulation_s_ > 0.0 ? std::min(fastest_simulation_s_, seconds) : seconds;
+const DesignResponse& DesignNlp::keep(const Eigen::VectorXd& x, DesignResponse response) {
   if (!first_) {
     first_.emplace(x, std::move(response));
     return first_->second;
@@ -47,6 +42,47 @@ const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
   recent_.emplace_front(x, std::move(response));
   if (recent_.size() > kKeptSimulations) recent_.pop_back();
   return recent_.front().second;
+}
+
+const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
+  if (const DesignResponse* kept = keptSimulation(x)) return *kept;
+  const auto ahead = std::find_if(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return a.x == x; });
+  if (ahead != ahead_.end()) {
+    startWaiting(gradient_jobs_);  // this thread only waits: its core is free meanwhile
+    std::future<DesignResponse> response = std::move(ahead->response);
+    ahead_.erase(ahead);
+    ++simulations_ahead_used_;
+    return keep(x, response.get());  // what evaluateDesign threw, it throws here
+  }
+  startWaiting(gradient_jobs_ - 1);
+  const auto start_time = std::chrono::steady_clock::now();
+  DesignResponse response = evaluateDesign(problem_, functionals_, x);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  fastest_simulation_s_ = fastest_simulation_s_ > 0.0 ? std::min(fastest_simulation_s_, seconds) : seconds;
+  return keep(x, std::move(response));
+}
+
+void DesignNlp::anticipate(const Eigen::VectorXd& x) {
+  if (gradient_jobs_ < 2 || keptSimulation(x)) return;
+  if (std::any_of(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return a.x == x; })) return;
+  waiting_ = x;
+  startWaiting(gradient_jobs_ - 1);
+}
+
+void DesignNlp::startWaiting(int threads) {
+  const auto finished = [](const Ahead& a) {
+    return a.response.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  };
+  while (ahead_.size() > kKeptSimulations && finished(ahead_.back())) ahead_.pop_back();
+  if (!waiting_) return;
+  const auto running = std::count_if(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return !finished(a); });
+  if (running >= threads) return;
+  // The problem and the functionals are only read, by evaluateDesign as by this thread.
+  ahead_.push_front({*waiting_, std::async(std::launch::async, [this, x = *waiting_] {
+                       return evaluateDesign(problem_, functionals_, x);
+                     })});
+  waiting_.reset();
+  ++simulations_ahead_;
 }
 
 void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <deque>
+#include <future>
 #include <optional>
 #include <string>
 #include <utility>
@@ -29,6 +30,12 @@ class DesignNlp : public NlpProblem {
   Eigen::VectorXd start() const override { return initialPoint(problem_); }
   std::string constraintName(Eigen::Index i) const override { return functionals_[static_cast<std::size_t>(i)].name; }
   void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override;
+  /// With gradient_jobs ≥ 2, simulates x on another thread while this one goes on (its own
+  /// simulation, or a gradient), at most gradient_jobs − 1 such simulations at once, or gradient_jobs
+  /// while this thread only waits for one of them; a point that finds no free core waits for the next
+  /// evaluation that does. simulation(x) then takes the result: the same to the bit, as evaluateDesign
+  /// depends only on the problem and x. With one job it does nothing.
+  void anticipate(const Eigen::VectorXd& x) override;
 
   const DesignProblem& problem() const { return problem_; }
   /// Wall time spent in evaluate() so far: simulations and gradients [s].
@@ -43,6 +50,10 @@ class DesignNlp : public NlpProblem {
   /// kKeptSimulations more points are simulated.
   const DesignResponse& simulation(const Eigen::VectorXd& x);
   static constexpr std::size_t kKeptSimulations = 4;
+  /// The simulations anticipate() started, and how many of them simulation() then used (the others
+  /// ran on a core that was idle, for a point the optimizer did not ask for after all).
+  long simulationsAhead() const { return simulations_ahead_; }
+  long simulationsAheadUsed() const { return simulations_ahead_used_; }
   const std::vector<ConstraintFunctional>& functionals() const { return functionals_; }
 
  private:
@@ -60,6 +71,21 @@ class DesignNlp : public NlpProblem {
   /// gradients of a point whose values were asked for first reuse its simulation.
   std::optional<std::pair<Eigen::VectorXd, DesignResponse>> first_;
   std::deque<std::pair<Eigen::VectorXd, DesignResponse>> recent_;
+  /// Keeps a new simulation as the first or the most recent one.
+  const DesignResponse& keep(const Eigen::VectorXd& x, DesignResponse response);
+
+  /// Simulations started by anticipate(), newest first; the point anticipated last when no core was
+  /// free for it. Last among the members: destroyed first, each waiting for its thread.
+  long simulations_ahead_ = 0, simulations_ahead_used_ = 0;
+  std::optional<Eigen::VectorXd> waiting_;
+  struct Ahead {
+    Eigen::VectorXd x;
+    std::future<DesignResponse> response;
+  };
+  std::deque<Ahead> ahead_;
+  /// Starts the waiting point when fewer than `threads` simulations run ahead, and forgets the
+  /// oldest finished ones beyond kKeptSimulations.
+  void startWaiting(int threads);
 };
 
 }  // namespace mbsopt

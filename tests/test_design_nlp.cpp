@@ -4,6 +4,8 @@
 // of a fresh evaluation (the simulation is deterministic).
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "problems/scene_file.hpp"
 #include "problems/design_nlp.hpp"
 #include "sensitivity/gradient_method.hpp"
@@ -71,6 +73,65 @@ TEST(DesignNlp, KeepsTheFirstPointAndTheMostRecentOnes) {
   EXPECT_EQ(nlp.keptSimulation(points[1]), nullptr);  // pushed out by the newer ones
   for (std::size_t k = 2; k < points.size(); ++k) EXPECT_NE(nlp.keptSimulation(points[k]), nullptr) << k;
   EXPECT_GT(nlp.simulationSeconds(), 0.0);
+}
+
+// A point anticipated with two jobs is simulated on another thread while this one evaluates
+// another point; its evaluation then uses that simulation, and what it returns is the same to the
+// bit as a plain evaluation's (the simulation depends only on the problem and the point).
+TEST(DesignNlp, APointSimulatedAheadGivesTheSameValuesAndGradientsToTheBit) {
+  DesignNlp ahead(chain(), "adjoint", 1e-6, 2), plain(chain(), "adjoint", 1e-6, 2);
+  const Eigen::VectorXd x = ahead.start(), y = 1.01 * x;
+  NlpEvaluation at_x, from_ahead, reference;
+  ahead.anticipate(y);
+  ahead.evaluate(x, false, at_x);  // on this thread, while y's simulation runs on another
+  ahead.evaluate(y, true, from_ahead);
+  plain.evaluate(y, true, reference);
+  EXPECT_EQ(ahead.simulationsAhead(), 1);
+  EXPECT_EQ(ahead.simulationsAheadUsed(), 1);
+  EXPECT_EQ(from_ahead.cost, reference.cost);
+  EXPECT_EQ(from_ahead.constraints, reference.constraints);
+  EXPECT_EQ(from_ahead.cost_gradient, reference.cost_gradient);
+  EXPECT_EQ(from_ahead.constraint_jacobian, reference.constraint_jacobian);
+  EXPECT_EQ(plain.simulationsAhead(), 0);
+}
+
+// Nothing runs ahead with one job (no spare core), nor for a point already simulated.
+TEST(DesignNlp, AnticipatesNothingWithOneJobOrForAKeptPoint) {
+  DesignNlp one_job(chain(), "adjoint"), two_jobs(chain(), "adjoint", 1e-6, 2);
+  const Eigen::VectorXd x = one_job.start();
+  NlpEvaluation out;
+  one_job.anticipate(x);
+  one_job.evaluate(x, false, out);
+  EXPECT_EQ(one_job.simulationsAhead(), 0);
+  two_jobs.evaluate(x, false, out);
+  two_jobs.anticipate(x);
+  EXPECT_EQ(two_jobs.simulationsAhead(), 0);
+}
+
+// A simulation that fails ahead of time fails its evaluation as a plain one would, with the same
+// error; one never asked for is dropped silently.
+TEST(DesignNlp, ASimulationThatFailsAheadFailsItsEvaluationTheSameWay) {
+  DesignNlp ahead(chain(), "adjoint", 1e-6, 2), plain(chain(), "adjoint", 1e-6, 2);
+  Eigen::VectorXd broken = ahead.start();
+  broken[2] = 0.0;  // a massless lower link: nothing resists the elbow's motion
+  std::string plain_error, ahead_error;
+  NlpEvaluation out;
+  try {
+    plain.evaluate(broken, false, out);
+  } catch (const std::exception& e) {
+    plain_error = e.what();
+  }
+  ASSERT_FALSE(plain_error.empty());
+  ahead.anticipate(broken);
+  try {
+    ahead.evaluate(broken, false, out);
+  } catch (const std::exception& e) {
+    ahead_error = e.what();
+  }
+  EXPECT_EQ(ahead_error, plain_error);
+  EXPECT_EQ(ahead.simulationsAheadUsed(), 1);
+  DesignNlp unused(chain(), "adjoint", 1e-6, 2);
+  unused.anticipate(broken);  // destroyed with its failed simulation never asked for
 }
 
 TEST(DesignNlp, AnUnknownGradientMethodIsAnErrorThatListsTheKnownOnes) {

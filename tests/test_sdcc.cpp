@@ -150,6 +150,55 @@ TEST(Sdcc, CompensatesAViolatedLinearConstraintInOneStep) {
   EXPECT_NEAR(r.x[1], 0.0, 1e-6);
 }
 
+/// Rosenbrock's problem in the disc, recording every evaluation and every anticipated point.
+class RecordingRosenbrock : public test::RosenbrockInDisc {
+ public:
+  struct Call {
+    Eigen::VectorXd x;
+    bool gradients;
+    Eigen::VectorXd anticipated;  ///< the last point anticipated before this evaluation (empty if none)
+  };
+  std::vector<Call> calls;
+  Eigen::VectorXd last_anticipated;
+  int anticipations = 0;
+
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    calls.push_back({x, gradients, last_anticipated});
+    RosenbrockInDisc::evaluate(x, gradients, out);
+  }
+  void anticipate(const Eigen::VectorXd& x) override {
+    last_anticipated = x;
+    ++anticipations;
+  }
+};
+
+// The hint SDCC gives before it evaluates a trial (NlpProblem::anticipate), once a trial from the
+// same point has been rejected, must name the very point it evaluates next if this one is rejected
+// too, to the bit: a problem that simulated the hint ahead of time would otherwise have simulated
+// for nothing. A trial was rejected when its values are followed by another point's values rather
+// than by its own gradients. ξ₀ = 4 on Rosenbrock's valley makes the first trials overshoot, so
+// runs of rejections happen (checked).
+TEST(Sdcc, AfterARejectionItEvaluatesThePointItAnticipated) {
+  RecordingRosenbrock problem;
+  SdccSettings settings;
+  settings.initial_step_bound = 4.0;
+  OptimizerOptions options;
+  options.max_iterations = 200;
+  minimizeWithSdcc(problem, options, settings);
+  int second_rejections = 0;  // rejected trials that follow a rejected trial from the same point
+  for (std::size_t i = 2; i + 1 < problem.calls.size(); ++i) {
+    const auto& before = problem.calls[i - 1];
+    const auto& trial = problem.calls[i];
+    const auto& next = problem.calls[i + 1];
+    if (before.gradients || trial.gradients || next.gradients) continue;
+    ++second_rejections;
+    ASSERT_EQ(trial.anticipated.size(), next.x.size()) << "trial " << i;
+    EXPECT_EQ(trial.anticipated, next.x) << "trial " << i;
+  }
+  EXPECT_GE(second_rejections, 2);
+  EXPECT_GE(problem.anticipations, second_rejections);
+}
+
 TEST(Sdcc, RefusesWeightsThatAreNotOnePositiveNumberPerVariable) {
   test::BoundedQuadratic problem;
   SdccSettings settings;
