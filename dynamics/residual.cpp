@@ -21,22 +21,27 @@ Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInpu
 /// them are skipped (exact zeros there).
 enum class FrameMotion { Moving, AtRest };
 
-/// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)). Each body's
-/// centre of mass and inertia tensor in ground axes are computed once per geometry (see Workspace).
+/// Each body's centre of mass and inertia tensor in ground axes, once per geometry (see Workspace).
+template <class Scalar>
+void updateBodyAxes(const Model& model, Workspace<Scalar>& ws) {
+  if (ws.body_axes_current) return;
+  const auto& bodies = model.bodies();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
+    const Matrix3<Scalar>& R = ws.rotation[static_cast<std::size_t>(body.frame)];
+    ws.body_centre[i] = R * parameter(model, ws, body.centre_of_mass);
+    Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
+    body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
+    ws.body_inertia[i] = R * body_inertia * R.transpose();
+  }
+  ws.body_axes_current = true;
+}
+
+/// Inertia and gravity g of each body as a required wrench on its frame (the ΔE, ΔM of (22)-(23)).
 template <class Scalar>
 void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
   const auto& bodies = model.bodies();
-  if (!ws.body_axes_current) {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const Body& body = bodies[i];
-      const Matrix3<Scalar>& R = ws.rotation[static_cast<std::size_t>(body.frame)];
-      ws.body_centre[i] = R * parameter(model, ws, body.centre_of_mass);
-      Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
-      body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
-      ws.body_inertia[i] = R * body_inertia * R.transpose();
-    }
-    ws.body_axes_current = true;
-  }
+  updateBodyAxes(model, ws);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const auto k = static_cast<std::size_t>(body.frame);
@@ -187,6 +192,42 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
   f.setZero(model.coordinateCount());
   if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);
+}
+
+namespace {
+
+template <class Scalar>
+void setConstant(const Scalar& from, AdScalar& to) {
+  to.value() = from;
+  to.derivatives().setZero();
+}
+template <int Rows, int Cols>
+void setConstant(const Eigen::Matrix<double, Rows, Cols>& from, Eigen::Matrix<AdScalar, Rows, Cols>& to) {
+  for (Eigen::Index i = 0; i < from.size(); ++i) setConstant(from(i), to(i));
+}
+template <class From, class To>
+void setConstant(const std::vector<From>& from, std::vector<To>& to) {
+  for (std::size_t i = 0; i < from.size(); ++i) setConstant(from[i], to[i]);
+}
+
+}  // namespace
+
+void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdScalar>& to) {
+  updateBodyAxes(model, from);
+  setConstant(from.rotation, to.rotation);
+  setConstant(from.position, to.position);
+  setConstant(from.motion_angular, to.motion_angular);
+  setConstant(from.motion_linear, to.motion_linear);
+  setConstant(from.bias_angular, to.bias_angular);
+  setConstant(from.bias_linear, to.bias_linear);
+  setConstant(from.body_centre, to.body_centre);
+  setConstant(from.body_inertia, to.body_inertia);
+  to.body_axes_current = true;
+  for (std::size_t k = 0; k < from.slider_track.size(); ++k) {
+    setConstant(from.slider_track[k].cos_heading, to.slider_track[k].cos_heading);
+    setConstant(from.slider_track[k].sin_heading, to.slider_track[k].sin_heading);
+    setConstant(from.slider_track[k].curvature, to.slider_track[k].curvature);
+  }
 }
 
 namespace {

@@ -39,6 +39,13 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
 template <class Scalar>
 void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda,
                                          VectorX<Scalar>& f);
+/// The geometry stage's results at q held by `from` (frameGeometry, or forwardKinematics at Velocity
+/// level or beyond), with the bodies' axes R c and R I Rᵀ (computed in `from` if stale), as constants
+/// of an AD pass in `to`: its rotations, positions, joint axes and biases, curve sliders' tracks and
+/// body axes, with zero derivatives. For a pass that seeds neither q nor a model parameter, this
+/// stands in for the geometry stage, whose AD arithmetic would only carry zeros; frameRates then
+/// computes the rates on it.
+void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdScalar>& to);
 /// Whether the parameter p is the stiffness or the damping of a joint spring-damper, a point
 /// spring-damper or a track guidance: f is then linear in it, through that element alone.
 bool isLinearForceParameter(const Model& model, ParameterIndex p);

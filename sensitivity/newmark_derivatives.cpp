@@ -200,7 +200,12 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   VectorX<AdScalar>& g = s.ws.seeded_f;
   const auto evaluate = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
     g.resize(rows);
-    forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
+    if (first < velocities) {
+      forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
+    } else {  // q and the parameters are constants of this pass: q_k's geometry from geometryAt, in double
+      constantGeometry(model_, s.plain_ws, s.ws);
+      frameRates(model_, s.ws, state.v, state.a, KinematicsLevel::Acceleration);
+    }
     residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);
     g.head(n) = s.f;
     if (m == 0) {  // no projections: the state Newton converged to is the trajectory's
