@@ -61,7 +61,7 @@ RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Sca
                      m.rotation = Re;
                      return;
                    }
-                   m.rotation = turnedAbout(Re, Eigen::Vector3d::UnitZ(), heading);
+                   m.rotation = turnedAbout(Re, Eigen::Vector3d::UnitZ(), cos_heading, sin_heading);
                    m.angular_axis = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
                    if (rates)  // α = (κ s̈ + κ' ṡ²) z
                      m.angular_bias = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative));

@@ -28,17 +28,13 @@ using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;
 inline double valueOf(double x) { return x; }
 inline double valueOf(const AdScalar& x) { return x.value(); }
 
-/// R_e R(axis, angle): the frame R_e turned by `angle` about the unit vector `axis` given in its own
-/// axes. About a coordinate axis e_k only the other two columns turn, c_i' = cos·c_i + sin·c_j and
-/// c_j' = −sin·c_i + cos·c_j for (i, j, k) cyclic: 12 products instead of Rodrigues' matrix and a
-/// 3 × 3 product. The constant matrices stay in double: with AD scalars each product then costs a
-/// scaling of the derivatives, not a product rule.
+/// R_e R(axis, θ): the frame R_e turned by the angle θ, given by c = cos θ and s = sin θ, about the
+/// unit vector `axis` given in its own axes. About a coordinate axis e_k only the other two columns
+/// turn, c_i' = cos·c_i + sin·c_j and c_j' = −sin·c_i + cos·c_j for (i, j, k) cyclic: 12 products
+/// instead of Rodrigues' matrix and a 3 × 3 product. The constant matrices stay in double: with AD
+/// scalars each product then costs a scaling of the derivatives, not a product rule.
 template <class Scalar>
-Matrix3<Scalar> turnedAbout(const Matrix3<Scalar>& Re, const Eigen::Vector3d& axis, const Scalar& angle) {
-  using std::cos;
-  using std::sin;
-  const Scalar c = cos(angle);
-  const Scalar s = sin(angle);
+Matrix3<Scalar> turnedAbout(const Matrix3<Scalar>& Re, const Eigen::Vector3d& axis, const Scalar& c, const Scalar& s) {
   for (int k = 0; k < 3; ++k) {
     if (axis[k] != 1.0 || axis[(k + 1) % 3] != 0.0 || axis[(k + 2) % 3] != 0.0) continue;
     const int i = (k + 1) % 3, j = (k + 2) % 3;
@@ -53,6 +49,14 @@ Matrix3<Scalar> turnedAbout(const Matrix3<Scalar>& Re, const Eigen::Vector3d& ax
   skew << 0.0, -axis.z(), axis.y(), axis.z(), 0.0, -axis.x(), -axis.y(), axis.x(), 0.0;
   const Eigen::Matrix3d outer = axis * axis.transpose();
   return Re * Matrix3<Scalar>(c * Eigen::Matrix3d::Identity() + one_minus_c * outer + s * skew);
+}
+
+/// The same for the angle itself.
+template <class Scalar>
+Matrix3<Scalar> turnedAbout(const Matrix3<Scalar>& Re, const Eigen::Vector3d& axis, const Scalar& angle) {
+  using std::cos;
+  using std::sin;
+  return turnedAbout(Re, axis, Scalar(cos(angle)), Scalar(sin(angle)));
 }
 
 /// Two unit vectors e, f that complete the unit vector `axis` to a right-handed orthonormal basis
