@@ -156,14 +156,6 @@ void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scal
   geometry(model, ws, q, true);
 }
 
-void pathFromGround(const Model& model, FrameIndex frame, std::vector<char>& on_path) {
-  on_path.assign(model.elements().size(), 0);
-  for (int k = model.frames()[static_cast<std::size_t>(frame)].element; k >= 0;) {
-    on_path[static_cast<std::size_t>(k)] = 1;
-    k = model.frames()[static_cast<std::size_t>(model.elements()[static_cast<std::size_t>(k)].entry)].element;
-  }
-}
-
 void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, FrameIndex frame, bool moved) {
   const auto f = static_cast<std::size_t>(frame);
   if (!moved) {

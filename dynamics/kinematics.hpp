@@ -32,9 +32,6 @@ void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>
 /// frameRates(model, ws, 0, a, Acceleration), to the bit, at about a third of its products.
 template <class Scalar>
 void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a);
-/// on_path[k] = 1 for the elements on the path from the ground to `frame` (the joints that move it),
-/// 0 for the others.
-void pathFromGround(const Model& model, FrameIndex frame, std::vector<char>& on_path);
 /// Column `coordinate` of the velocity Jacobian of `frame`, into ws.angular_velocity[frame] and
 /// ws.velocity[frame]: its rates when that coordinate alone moves, at unit rate. Every other element
 /// is then rigid, so a frame the joint moves (`moved`: the joint is on its path from the ground)

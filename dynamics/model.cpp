@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -136,7 +137,21 @@ FrameIndex Model::addElement(const std::string& name, FrameIndex parent, Element
   }
   elements_.push_back({name, parent, exit, coordinate, std::move(kind)});
   frames_.push_back({name, element});
+  for (CutFramePath& path : cut_frame_paths_) path.on_path.push_back(0);  // a new element moves no older frame
   return exit;
+}
+
+void Model::addCut(CutJoint cut, int rows) {
+  for (const FrameIndex frame : std::visit([](const auto& c) { return std::array{c.frame_a, c.frame_b}; }, cut.kind)) {
+    CutFramePath path{frame, std::vector<char>(elements_.size(), 0)};
+    for (int k = frames_[static_cast<std::size_t>(frame)].element; k >= 0;) {
+      path.on_path[static_cast<std::size_t>(k)] = 1;
+      k = frames_[static_cast<std::size_t>(elements_[static_cast<std::size_t>(k)].entry)].element;
+    }
+    cut_frame_paths_.push_back(std::move(path));
+  }
+  cuts_.push_back(std::move(cut));
+  constraint_count_ += rows;
 }
 
 FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,
@@ -248,8 +263,7 @@ void Model::addSphericalCut(const std::string& name, FrameIndex frame_a, FrameIn
   checkFrame(frame_b, name);
   if (frame_a == frame_b) throw std::invalid_argument(name + ": a cut joint needs two different frames");
   names_.push_back(name);
-  cuts_.push_back({name, SphericalCut{frame_a, frame_b}});
-  constraint_count_ += 3;
+  addCut({name, SphericalCut{frame_a, frame_b}}, 3);
 }
 
 void Model::addRevoluteCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b,
@@ -259,8 +273,7 @@ void Model::addRevoluteCut(const std::string& name, FrameIndex frame_a, FrameInd
   checkFrame(frame_b, name);
   if (frame_a == frame_b) throw std::invalid_argument(name + ": a cut joint needs two different frames");
   names_.push_back(name);
-  cuts_.push_back({name, RevoluteCut{frame_a, frame_b, unitAxis(axis_in_a, name), unitAxis(axis_in_b, name)}});
-  constraint_count_ += 5;
+  addCut({name, RevoluteCut{frame_a, frame_b, unitAxis(axis_in_a, name), unitAxis(axis_in_b, name)}}, 5);
 }
 
 void Model::addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex frame_b) {
@@ -269,8 +282,7 @@ void Model::addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex f
   checkFrame(frame_b, name);
   if (frame_a == frame_b) throw std::invalid_argument(name + ": a cut joint needs two different frames");
   names_.push_back(name);
-  cuts_.push_back({name, WeldCut{frame_a, frame_b}});
-  constraint_count_ += 6;
+  addCut({name, WeldCut{frame_a, frame_b}}, 6);
 }
 
 void Model::addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,

@@ -243,6 +243,15 @@ class Model {
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<ForceElement>& forces() const { return forces_; }
   const std::vector<CutJoint>& cuts() const { return cuts_; }
+  /// A frame a cut joint joins, with the elements on its path from the ground (those that move it):
+  /// on_path[k] = 1 for element k on it, 0 for every other element.
+  struct CutFramePath {
+    FrameIndex frame;
+    std::vector<char> on_path;
+  };
+  /// Those of frame_a then frame_b of each cut, in the order of cuts(); kept from when the cut was
+  /// added, as a frame's path never changes.
+  const std::vector<CutFramePath>& cutFramePaths() const { return cut_frame_paths_; }
   const std::vector<Sensor>& sensors() const { return sensors_; }
   const std::vector<Coordinate>& coordinates() const { return coordinates_; }
   const std::vector<int>& freeCoordinates() const { return free_; }
@@ -280,6 +289,8 @@ class Model {
   FrameIndex addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active);
   void checkFrame(FrameIndex frame, const std::string& who) const;
   void checkNewName(const std::string& name) const;
+  /// Records a new cut joint, its constraint rows and its frames' paths.
+  void addCut(CutJoint cut, int rows);
   ParameterIndex addParameter(std::string name, double value);
   ParameterVector3 addParameters(const std::string& prefix, const char* const (&suffixes)[3], const Eigen::Vector3d& values);
   TimeInput timeInput(const std::string& name, TimeFunction function);
@@ -289,6 +300,7 @@ class Model {
   std::vector<Body> bodies_;
   std::vector<ForceElement> forces_;
   std::vector<CutJoint> cuts_;
+  std::vector<CutFramePath> cut_frame_paths_;
   std::vector<Sensor> sensors_;
   std::vector<Coordinate> coordinates_;
   std::vector<int> free_, driven_;

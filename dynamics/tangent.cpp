@@ -42,20 +42,13 @@ void constraintJacobian(const Model& model, Workspace<double>& ws, const Eigen::
                         const std::vector<int>& columns, Eigen::VectorXd& b, Eigen::MatrixXd& B) {
   B.resize(model.constraintCount(), static_cast<Eigen::Index>(columns.size()));
   thread_local Eigen::VectorXd column;
-  thread_local std::vector<FrameIndex> cut_frames;
-  thread_local std::vector<std::vector<char>> paths;  // of each cut frame, the elements that move it
   frameGeometry(model, ws, q);  // rotations, positions, joint axes
   closureEquations(model, ws, Derivative::Position, b);
   // ḃ reads the rates of the frames the cuts join, and no other: per column, their unit-rate twists.
-  cut_frames.clear();
-  for (const CutJoint& cut : model.cuts())
-    std::visit([&](const auto& c) { cut_frames.insert(cut_frames.end(), {c.frame_a, c.frame_b}); }, cut.kind);
-  paths.resize(cut_frames.size());
-  for (std::size_t i = 0; i < cut_frames.size(); ++i) pathFromGround(model, cut_frames[i], paths[i]);
+  const std::vector<Model::CutFramePath>& paths = model.cutFramePaths();
   for (std::size_t c = 0; c < columns.size(); ++c) {
     const auto element = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(columns[c])].element);
-    for (std::size_t i = 0; i < cut_frames.size(); ++i)
-      unitRateTwist(model, ws, columns[c], cut_frames[i], paths[i][element] != 0);
+    for (const Model::CutFramePath& path : paths) unitRateTwist(model, ws, columns[c], path.frame, path.on_path[element] != 0);
     closureEquations(model, ws, Derivative::Velocity, column);
     B.col(static_cast<Eigen::Index>(c)) = column;
   }

@@ -286,6 +286,42 @@ TEST_F(TangentMatricesTest, ConstraintJacobianMatchesFiniteDifferencesOfTheClosu
   expectMatchesFiniteDifference(jacobianAt(q_), fd, "B = ∂b/∂q");
 }
 
+// A model may get joints after a cut joint (the cut frames' paths from the ground are recorded with
+// the cut, Model::cutFramePaths): B's columns of the later joints, one on the path of neither cut
+// frame and one beyond a cut frame's branch, must still be the closure's derivatives.
+TEST(ConstraintJacobian, JointsAddedAfterACutHaveTheirColumns) {
+  Random rng(20261125u);
+  Model model;
+  FrameIndex a = Model::ground, b = Model::ground;
+  for (int k = 0; k < 3; ++k) {
+    a = model.addRevolute("left" + std::to_string(k), model.addOffset("left_arm" + std::to_string(k), a, rng.vector(-0.4, 0.4), rng.rotation()), rng.obliqueAxis());
+    b = model.addRevolute("right" + std::to_string(k), model.addOffset("right_arm" + std::to_string(k), b, rng.vector(-0.4, 0.4), rng.rotation()), rng.obliqueAxis());
+  }
+  model.addSphericalCut("loop", a, b);
+  const FrameIndex side = model.addRevolute("side", Model::ground, rng.obliqueAxis());  // moves no cut frame
+  model.addBody("side_body", side, 1.0, rng.vector(-0.2, 0.2), rng.inertia(1.0));
+  const FrameIndex beyond = model.addPrismatic("beyond", b, rng.obliqueAxis());  // after b: moves no cut frame either
+  model.addBody("beyond_body", beyond, 1.0, rng.vector(-0.2, 0.2), rng.inertia(1.0));
+  for (const Model::CutFramePath& path : model.cutFramePaths())
+    EXPECT_EQ(path.on_path.size(), model.elements().size());
+  Workspace<double> ws(model);
+  const Eigen::VectorXd q = rng.vector(model.coordinateCount(), -1.0, 1.0);
+  Eigen::VectorXd b0;
+  Eigen::MatrixXd B;
+  constraintJacobian(model, ws, q, b0, B);
+  const FiniteDifference fd = centralDifferenceJacobian(
+      [&](const Eigen::VectorXd& x) {
+        forwardKinematics(model, ws, x, x, x, KinematicsLevel::Position);
+        Eigen::VectorXd closure;
+        closureEquations(model, ws, Derivative::Position, closure);
+        return closure;
+      },
+      q);
+  expectMatchesFiniteDifference(B, fd, "B with joints added after the cut");
+  EXPECT_EQ(B.col(model.coordinate("side")).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(B.col(model.coordinate("beyond")).cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST_F(TangentMatricesTest, VelocityClosureIsJacobianTimesVelocity) {
   // No driven coordinate, so ∂b/∂t = 0 and ḃ = B q̇ exactly.
   const Eigen::VectorXd expected = jacobianAt(q_) * v_;
