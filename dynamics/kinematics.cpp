@@ -83,7 +83,9 @@ void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
     ws.rotation[s] = rel.rotation;
     ws.position[s] = ws.position[e] + rel.translation;
     if (std::holds_alternative<CurveSliderJoint>(element.kind)) ws.slider_track[k] = rel.track;
-    if (!axes) continue;
+    // An element without a coordinate (an offset) keeps the zero axes and biases the workspace
+    // starts with; nothing reads them.
+    if (!axes || element.coordinate < 0) continue;
     ws.motion_angular[k] = rel.angular_axis;
     ws.motion_linear[k] = rel.linear_axis;
     ws.bias_angular[k] = rel.angular_bias;
@@ -102,18 +104,25 @@ void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>
     const KinematicElement& element = elements[k];
     const auto e = static_cast<std::size_t>(element.entry);
     const auto s = static_cast<std::size_t>(element.exit);
-    const bool active = element.coordinate >= 0;
-    const Scalar vi = active ? v[element.coordinate] : Scalar(0);
     const Vector3<Scalar> r = ws.position[s] - ws.position[e];  // r_s/e in ground axes
+    const Vector3<Scalar>& we = ws.angular_velocity[e];
+    if (element.coordinate < 0) {  // (20)-(21) of a rigid offset: no relative rate, no term in it
+      ws.angular_velocity[s] = we;
+      ws.velocity[s] = ws.velocity[e] + we.cross(r);
+      if (!accelerations) continue;
+      ws.angular_acceleration[s] = ws.angular_acceleration[e];
+      ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r));
+      continue;
+    }
+    const Scalar& vi = v[element.coordinate];
     const Vector3<Scalar>& Sw = ws.motion_angular[k];
     const Vector3<Scalar>& Sv = ws.motion_linear[k];
     const Vector3<Scalar> w_rel = Sw * vi;
     const Vector3<Scalar> v_rel = Sv * vi;
-    const Vector3<Scalar>& we = ws.angular_velocity[e];
     ws.angular_velocity[s] = we + w_rel;                    // (21)
     ws.velocity[s] = ws.velocity[e] + we.cross(r) + v_rel;  // (20)
     if (!accelerations) continue;
-    const Scalar ai = active ? a[element.coordinate] : Scalar(0);
+    const Scalar& ai = a[element.coordinate];
     const Scalar vi2 = vi * vi;
     ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
     ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
