@@ -7,67 +7,59 @@ namespace mbsopt {
 
 namespace {
 
-/// Motion of the exit frame relative to the entry frame, already turned into ground axes by the
-/// entry rotation R_e. Terms an element does not have stay zero and cost no product.
+/// The exit frame of element k from its entry frame (rotation R_e, position p_e) at coordinate q,
+/// into ws: its rotation and position, a curve slider's track at s, and with `axes` its joint axes
+/// and biases in ground axes (∂ω_rel/∂q̇, ∂v_rel/∂q̇ and (α_rel − ∂ω_rel/∂q̇ q̈)/q̇², (a_rel −
+/// ∂v_rel/∂q̇ q̈)/q̇²). Only what an element kind can make non-zero is written: the rest stays the
+/// zeros the workspace starts with (an element keeps its kind), and costs no product.
 template <class Scalar>
-struct RelativeMotion {
-  Matrix3<Scalar> rotation;                                ///< absolute rotation of the exit frame, R_e R_rel
-  Vector3<Scalar> translation = Vector3<Scalar>::Zero();   ///< r_s/e
-  Vector3<Scalar> angular_axis = Vector3<Scalar>::Zero();  ///< ∂ω_rel/∂q̇
-  Vector3<Scalar> linear_axis = Vector3<Scalar>::Zero();   ///< ∂v_rel/∂q̇
-  Vector3<Scalar> angular_bias = Vector3<Scalar>::Zero();  ///< (α_rel − angular_axis·q̈)/q̇²
-  Vector3<Scalar> linear_bias = Vector3<Scalar>::Zero();   ///< (a_rel − linear_axis·q̈)/q̇²
-  SliderTrack<Scalar> track;                               ///< a curve slider's track at s
-};
-
-template <class Scalar>
-RelativeMotion<Scalar> relativeMotion(const ElementKind& kind, const Matrix3<Scalar>& Re, const Scalar& q,
-                                      bool rates) {
-  RelativeMotion<Scalar> m;
+void placeExit(const ElementKind& kind, std::size_t k, std::size_t e, std::size_t s, const Scalar& q, bool axes,
+               Workspace<Scalar>& ws) {
+  const Matrix3<Scalar>& Re = ws.rotation[e];
   std::visit(Overloaded{
-                 [&](const Offset& e) {
-                   m.rotation = e.rotates ? Matrix3<Scalar>(Re * e.rotation) : Re;
-                   m.translation = Re * e.translation;
+                 [&](const Offset& o) {
+                   const Vector3<Scalar> translation = Re * o.translation;
+                   ws.rotation[s] = o.rotates ? Matrix3<Scalar>(Re * o.rotation) : Re;
+                   ws.position[s] = ws.position[e] + translation;
                  },
-                 [&](const RevoluteJoint& e) {
-                   m.rotation = turnedAbout(Re, e.axis, q);
-                   m.angular_axis = Re * e.axis;
+                 [&](const RevoluteJoint& j) {
+                   ws.rotation[s] = turnedAbout(Re, j.axis, q);
+                   ws.position[s] = ws.position[e];
+                   if (axes) ws.motion_angular[k] = Re * j.axis;
                  },
-                 [&](const PrismaticJoint& e) {
-                   m.rotation = Re;
-                   m.translation = Re * (e.axis * q);
-                   m.linear_axis = Re * e.axis;
+                 [&](const PrismaticJoint& j) {
+                   const Vector3<Scalar> translation = Re * (j.axis * q);
+                   ws.rotation[s] = Re;
+                   ws.position[s] = ws.position[e] + translation;
+                   if (axes) ws.motion_linear[k] = Re * j.axis;
                  },
-                 [&](const CurveSliderJoint& e) {
+                 [&](const CurveSliderJoint& j) {
                    // dr/ds = t to first order, as the heading and curvature (trackStateAt).
                    using std::cos;
                    using std::sin;
-                   const TrackState<Scalar> track = trackStateAt(*e.track, q);
+                   const TrackState<Scalar> track = trackStateAt(*j.track, q);
                    const TrackPoint& point = track.point;
                    const Scalar& ds = track.offset;
                    const Scalar& heading = track.heading;
                    const Scalar& curvature = track.curvature;
                    const Scalar cos_heading = cos(heading), sin_heading = sin(heading);
-                   m.track = {cos_heading, sin_heading, curvature};
-                   const Vector3<Scalar> tangent(cos_heading, sin_heading, Scalar(0));
+                   ws.slider_track[k] = {cos_heading, sin_heading, curvature};
                    const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
-                   m.translation = Re * (point.position + tangent_at_s * ds);
-                   m.linear_axis = Re * tangent;
-                   if (rates) {  // a = t s̈ + κ ṡ² n
-                     const Vector3<Scalar> normal(-sin_heading, cos_heading, Scalar(0));
-                     m.linear_bias = Re * (curvature * normal);
+                   const Vector3<Scalar> translation = Re * (point.position + tangent_at_s * ds);
+                   ws.position[s] = ws.position[e] + translation;
+                   const bool turns = j.orientation != SliderOrientation::Translate;
+                   if (axes) {
+                     ws.motion_linear[k] = Re * Vector3<Scalar>(cos_heading, sin_heading, Scalar(0));
+                     ws.bias_linear[k] = Re * (curvature * Vector3<Scalar>(-sin_heading, cos_heading, Scalar(0)));  // a = t s̈ + κ ṡ² n
+                     if (turns) {
+                       ws.motion_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
+                       // α = (κ s̈ + κ' ṡ²) z
+                       ws.bias_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative));
+                     }
                    }
-                   if (e.orientation == SliderOrientation::Translate) {
-                     m.rotation = Re;
-                     return;
-                   }
-                   m.rotation = turnedAbout(Re, Eigen::Vector3d::UnitZ(), cos_heading, sin_heading);
-                   m.angular_axis = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
-                   if (rates)  // α = (κ s̈ + κ' ṡ²) z
-                     m.angular_bias = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative));
+                   ws.rotation[s] = turns ? turnedAbout(Re, Eigen::Vector3d::UnitZ(), cos_heading, sin_heading) : Re;
                  }},
              kind);
-  return m;
 }
 
 template <class Scalar>
@@ -76,20 +68,9 @@ void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
-    const auto e = static_cast<std::size_t>(element.entry);
-    const auto s = static_cast<std::size_t>(element.exit);
     const Scalar qi = element.coordinate >= 0 ? q[element.coordinate] : Scalar(0);
-    const RelativeMotion<Scalar> rel = relativeMotion(element.kind, ws.rotation[e], qi, axes);
-    ws.rotation[s] = rel.rotation;
-    ws.position[s] = ws.position[e] + rel.translation;
-    if (std::holds_alternative<CurveSliderJoint>(element.kind)) ws.slider_track[k] = rel.track;
-    // An element without a coordinate (an offset) keeps the zero axes and biases the workspace
-    // starts with; nothing reads them.
-    if (!axes || element.coordinate < 0) continue;
-    ws.motion_angular[k] = rel.angular_axis;
-    ws.motion_linear[k] = rel.linear_axis;
-    ws.bias_angular[k] = rel.angular_bias;
-    ws.bias_linear[k] = rel.linear_bias;
+    placeExit(element.kind, k, static_cast<std::size_t>(element.entry), static_cast<std::size_t>(element.exit), qi, axes,
+              ws);
   }
 }
 
