@@ -46,8 +46,8 @@ class DesignNlp : public NlpProblem {
   /// The simulation at x when it is one of those kept (the first point evaluated and the
   /// kKeptSimulations most recent), else nullptr.
   const DesignResponse* keptSimulation(const Eigen::VectorXd& x) const;
-  /// The simulation at x: a kept one, or a new one (timed, then kept). The reference holds until
-  /// kKeptSimulations more points are simulated.
+  /// The simulation at x: a kept one, one simulated ahead (anticipate(), waited for), or a new one
+  /// (timed, then kept). The reference holds until kKeptSimulations more points are simulated.
   const DesignResponse& simulation(const Eigen::VectorXd& x);
   static constexpr std::size_t kKeptSimulations = 4;
   /// The simulations anticipate() started, and how many of them simulation() then used (the others
