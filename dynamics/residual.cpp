@@ -196,14 +196,18 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
 
 namespace {
 
-template <class Scalar>
-void setConstant(const Scalar& from, AdScalar& to) {
+void setConstant(double from, AdScalar& to) {
   to.value() = from;
   to.derivatives().setZero();
 }
 template <int Rows, int Cols>
 void setConstant(const Eigen::Matrix<double, Rows, Cols>& from, Eigen::Matrix<AdScalar, Rows, Cols>& to) {
   for (Eigen::Index i = 0; i < from.size(); ++i) setConstant(from(i), to(i));
+}
+void setConstant(const SliderTrack<double>& from, SliderTrack<AdScalar>& to) {
+  setConstant(from.cos_heading, to.cos_heading);
+  setConstant(from.sin_heading, to.sin_heading);
+  setConstant(from.curvature, to.curvature);
 }
 template <class From, class To>
 void setConstant(const std::vector<From>& from, std::vector<To>& to) {
@@ -222,12 +226,8 @@ void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdS
   setConstant(from.bias_linear, to.bias_linear);
   setConstant(from.body_centre, to.body_centre);
   setConstant(from.body_inertia, to.body_inertia);
+  setConstant(from.slider_track, to.slider_track);
   to.body_axes_current = true;
-  for (std::size_t k = 0; k < from.slider_track.size(); ++k) {
-    setConstant(from.slider_track[k].cos_heading, to.slider_track[k].cos_heading);
-    setConstant(from.slider_track[k].sin_heading, to.slider_track[k].sin_heading);
-    setConstant(from.slider_track[k].curvature, to.slider_track[k].curvature);
-  }
 }
 
 namespace {

@@ -46,8 +46,7 @@ const DesignResponse& DesignNlp::keep(const Eigen::VectorXd& x, DesignResponse r
 
 const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
   if (const DesignResponse* kept = keptSimulation(x)) return *kept;
-  const auto ahead = std::find_if(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return a.x == x; });
-  if (ahead != ahead_.end()) {
+  if (const auto ahead = aheadOf(x); ahead != ahead_.end()) {
     startWaiting(gradient_jobs_);  // this thread only waits: its core is free meanwhile
     std::future<DesignResponse> response = std::move(ahead->response);
     ahead_.erase(ahead);
@@ -63,10 +62,13 @@ const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
 }
 
 void DesignNlp::anticipate(const Eigen::VectorXd& x) {
-  if (gradient_jobs_ < 2 || keptSimulation(x)) return;
-  if (std::any_of(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return a.x == x; })) return;
+  if (gradient_jobs_ < 2 || keptSimulation(x) || aheadOf(x) != ahead_.end()) return;
   waiting_ = x;
   startWaiting(gradient_jobs_ - 1);
+}
+
+std::deque<DesignNlp::Ahead>::iterator DesignNlp::aheadOf(const Eigen::VectorXd& x) {
+  return std::find_if(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return a.x == x; });
 }
 
 void DesignNlp::startWaiting(int threads) {

@@ -83,6 +83,8 @@ class DesignNlp : public NlpProblem {
     std::future<DesignResponse> response;
   };
   std::deque<Ahead> ahead_;
+  /// The simulation started for x, or ahead_.end().
+  std::deque<Ahead>::iterator aheadOf(const Eigen::VectorXd& x);
   /// Starts the waiting point when fewer than `threads` simulations run ahead, and forgets the
   /// oldest finished ones beyond kKeptSimulations.
   void startWaiting(int threads);
