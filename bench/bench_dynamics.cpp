@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -176,6 +177,20 @@ void BM_ClosedChainNewmarkStep(benchmark::State& bench) {
   bench.SetComplexityN(links);
 }
 BENCHMARK(BM_ClosedChainNewmarkStep)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Complexity()->Unit(benchmark::kMicrosecond);
+
+/// The same step with M factored one way for every size (NewmarkSettings::articulated_mass_from):
+/// 0, CRBA and the LU of V₂ᵀMV₂ (O(n³)); 1, the articulated-body recursion and the range-space
+/// solves (O(n)). The crossover sets the default.
+void BM_ClosedChainMassFactorization(benchmark::State& bench) {
+  const int links = static_cast<int>(bench.range(0));
+  Scene scene = closedPlanarChainScene(links);
+  scene.settings.articulated_mass_from = bench.range(1) == 1 ? 0 : std::numeric_limits<int>::max();
+  timeNewmarkSteps(bench, scene);
+}
+BENCHMARK(BM_ClosedChainMassFactorization)
+    ->ArgNames({"links", "recursive"})
+    ->ArgsProduct({{8, 12, 16, 24, 32, 64}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace mbsopt

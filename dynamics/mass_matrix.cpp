@@ -1,16 +1,10 @@
 #include "dynamics/mass_matrix.hpp"
 
+#include "dynamics/rigid_inertia.hpp"
+
 namespace mbsopt {
 
 namespace {
-
-/// Mass, first moment and rotational inertia of a set of bodies about a frame's origin, in ground
-/// axes: for a point mass m at r from the origin, first_moment = m r and rotational = m (|r|² 1 − r rᵀ).
-struct CompositeInertia {
-  double mass = 0.0;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d rotational = Eigen::Matrix3d::Zero();
-};
 
 /// Force and moment about `point`, all in ground axes.
 struct Wrench {
@@ -19,29 +13,6 @@ struct Wrench {
   Eigen::Vector3d point;
 };
 
-/// Adds `beyond`, taken about a point at offset d from the origin of `composite`, to `composite`.
-/// Parallel-axis theorem (every r becomes r + d): h += m d, and with u = h + m d / 2,
-/// I += 2 (u·d) 1 − u dᵀ − d uᵀ (= 2 (h·d) 1 − h dᵀ − d hᵀ + m (|d|² 1 − d dᵀ)).
-void addShifted(const CompositeInertia& beyond, const Eigen::Vector3d& d, CompositeInertia& composite) {
-  composite.mass += beyond.mass;
-  composite.first_moment += beyond.first_moment;
-  composite.rotational += beyond.rotational;
-  if (d.isZero(0.0)) return;  // same origin: a revolute joint, a body centred on its frame
-  const Eigen::Vector3d u = beyond.first_moment + 0.5 * beyond.mass * d;
-  const Eigen::Matrix3d u_d = u * d.transpose();
-  composite.first_moment += beyond.mass * d;
-  composite.rotational -= u_d + u_d.transpose();
-  composite.rotational.diagonal().array() += 2.0 * u.dot(d);
-}
-
-/// Adds a body to the composite inertia of its frame (rotation R): its own inertia, in ground axes
-/// about its centre of mass, shifted to the frame's origin.
-void addBody(const Model& model, const Body& body, const Eigen::Matrix3d& R, CompositeInertia& composite) {
-  const CompositeInertia about_centre{model.value(body.mass), Eigen::Vector3d::Zero(),
-                                     R * model.inertia(body) * R.transpose()};
-  addShifted(about_centre, R * model.centreOfMass(body), composite);
-}
-
 /// The composite inertia of every frame: the bodies on it and on every frame beyond it, about its
 /// origin. One backward sweep: the elements are in topological order, so all the elements leaving
 /// a frame come after the one entering it.
@@ -49,7 +20,7 @@ void compositeInertias(const Model& model, const Workspace<double>& ws, std::vec
   composites.assign(static_cast<std::size_t>(model.frameCount()), CompositeInertia{});
   for (const Body& body : model.bodies()) {
     const auto f = static_cast<std::size_t>(body.frame);
-    addBody(model, body, ws.rotation[f], composites[f]);
+    addBody(model, body, ws.rotation[f], Eigen::Vector3d::Zero(), composites[f]);
   }
   const auto& elements = model.elements();
   for (std::size_t k = elements.size(); k-- > 0;) {

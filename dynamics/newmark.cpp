@@ -129,6 +129,20 @@ void NewmarkIntegrator::factor(const Eigen::MatrixXd& matrix, const char* name) 
   ++stats_.factorizations;
 }
 
+void NewmarkIntegrator::factorMass(const char* name) {
+  if (mass_by_recursion_) {
+    if (partition_.setIterationMatrix(articulated_mass_)) {
+      ++stats_.factorizations;
+      return;
+    }
+    // A singular Schur complement: the dense path decides, and names the coordinate if it is singular too.
+    mass_by_recursion_ = false;
+    massMatrix(model_, ws_, free_, mass_);
+    J_ = mass_;
+  }
+  factor(mass_, name);
+}
+
 void NewmarkIntegrator::setDriven(double t) {
   for (int i : model_.drivenCoordinates()) {
     const TimeFunction& motion = model_.coordinates()[static_cast<std::size_t>(i)].motion;
@@ -163,17 +177,25 @@ void NewmarkIntegrator::updateIterationMatrix() {
       tangent_part_(r, c) = settings_.gamma * h * tangents_.damping(i, j) + settings_.beta * h * h * tangents_.stiffness(i, j);
     }
   J_ = mass_ + tangent_part_;  // (33)
+  mass_by_recursion_ = false;
   ++stats_.jacobian_updates;
   reduced_dirty_ = true;
 }
 
 void NewmarkIntegrator::updateMassMatrix() {
   // Needs ws_ to hold the rotations, positions and joint axes at q_; leaves them in place.
+  ++stats_.mass_updates;
+  reduced_dirty_ = true;
+  // The range-space solves take one solve with M per independent constraint row (and the Schur
+  // complement of that size): with the rank above half the free coordinates the partition's
+  // reduced matrix is the smaller (the N = 40 four-bar of the hard cases: rank 80 of 81).
+  const auto free = static_cast<int>(free_.size());
+  mass_by_recursion_ = !tangents_in_use_ && free >= settings_.articulated_mass_from && 2 * partition_.rank() <= free &&
+                       articulated_mass_.factor(model_, ws_, free_);
+  if (mass_by_recursion_) return;
   massMatrix(model_, ws_, free_, mass_);
   if (tangents_in_use_) J_ = mass_ + tangent_part_;
   else J_ = mass_;
-  ++stats_.mass_updates;
-  reduced_dirty_ = true;
 }
 
 void NewmarkIntegrator::checkInitialClosure() const {
@@ -310,7 +332,8 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     }
     refresh = Refresh::None;
     if (reduced_dirty_) {
-      factor(J_, "the iteration matrix");
+      if (mass_by_recursion_) factorMass("the iteration matrix");
+      else factor(J_, "the iteration matrix");
       reduced_dirty_ = false;
     }
     partition_.solve(r_free_, closure_, da_, dlambda_);
@@ -430,7 +453,7 @@ void NewmarkIntegrator::step() {
     // B and M at qₙ₊₁: exact projections, and a fresh B and M for the next step's iteration matrix.
     updateConstraintPartition();
     updateMassMatrix();
-    factor(mass_, "the mass matrix");
+    factorMass("the mass matrix");
     reduced_dirty_ = tangents_in_use_;  // J = M: this factorization is the next step's too
     projectOntoConstraints();
     if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);

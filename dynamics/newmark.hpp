@@ -73,6 +73,15 @@ struct NewmarkSettings {
   /// scale (kinetic energy at the start, spring energy at the start and the work of gravity over the
   /// model's reach); the Newmark family may only dissipate it.
   double energy_tolerance = 0.1;
+  /// From this many free coordinates on, M(q) for the projections and for Newton with J = M is
+  /// factored by the articulated-body recursion and the augmented system solved through the range
+  /// of Bᵀ (O(n) per factorization and solve for a few constraint rows; svd_partition.hpp), not
+  /// formed by the CRBA and LU-factored on the free directions (O(n³)). The solutions are the same
+  /// to round-off; below this size the dense path is the faster (bench_dynamics:
+  /// BM_ClosedChainMassFactorization). The dense path is kept when the constraints' rank exceeds half
+  /// the free coordinates, when J has its tangent part, and when M is nearly singular (a coordinate
+  /// that moves almost no inertia of its own, articulated_body.hpp).
+  int articulated_mass_from = 24;
 };
 
 /// Thrown when a step cannot be completed; says when, where and by how much.
@@ -188,6 +197,9 @@ class NewmarkIntegrator {
   [[noreturn]] void failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const;
   /// Factors V₂ᵀ matrix V₂ in the partition; a singular one ends the run naming `name`.
   void factor(const Eigen::MatrixXd& matrix, const char* name);
+  /// Factors M as updateMassMatrix left it: its articulated-body factorization in the partition,
+  /// or, when that one is not taken or its Schur complement is singular, factor(mass_, name).
+  void factorMass(const char* name);
 
   const Model& model_;
   NewmarkSettings settings_;
@@ -202,6 +214,8 @@ class NewmarkIntegrator {
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale
   Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
   bool tangents_in_use_ = false;  ///< J has its tangent part (else J = M, see initialize())
+  ArticulatedBodyFactorization articulated_mass_;
+  bool mass_by_recursion_ = false;  ///< J = M(q), held by articulated_mass_ (J_ and mass_ are stale)
 
   std::vector<int> free_;
   double t_ = 0.0;
@@ -216,7 +230,7 @@ class NewmarkIntegrator {
   Eigen::VectorXd f_, closure_, r_free_, da_, dlambda_, correction_;
   Eigen::VectorXd position_closure_;  ///< b(q) at the last accepted q (or at q₀)
   Eigen::MatrixXd B_free_;
-  bool reduced_dirty_ = true;  ///< V₂ᵀJV₂ must be refactored (J or B changed)
+  bool reduced_dirty_ = true;  ///< the partition must factor J again (J or B changed)
   double t0_ = 0.0;
   double closure_error_ = 0.0;
   int last_iterations_ = 0;

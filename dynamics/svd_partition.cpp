@@ -15,6 +15,7 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
     u1_.resize(0, 0);
     v1_.resize(n, 0);
     v2_ = Eigen::MatrixXd::Identity(n, n);
+    v2_stale_ = false;
     inverse_s1_.resize(0);
     x_r_.resize(0);
     return;
@@ -32,8 +33,16 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   inverse_s1_ = singular_values_.head(rank_).cwiseInverse();
   v1_ = jacobi_.orthogonalColumns().leftCols(rank_) * inverse_s1_.asDiagonal();
   complement_.compute(v1_);
-  complement_.complement(v2_);
+  v2_stale_ = true;  // formed when a dense factorization or a caller asks for it: the range-space solves do without
   x_r_.resize(rank_);
+}
+
+const Eigen::MatrixXd& SvdPartition::freeDirections() const {
+  if (v2_stale_) {
+    complement_.complement(v2_);
+    v2_stale_ = false;
+  }
+  return v2_;
 }
 
 namespace {
@@ -77,7 +86,9 @@ void multiplyTransposed(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eige
 }  // namespace
 
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
+  inverse_ = nullptr;
   J_ = J;
+  freeDirections();
   const Eigen::Index n = J.rows(), free = v2_.cols(), k = rank_;
   if (free == 0) return true;
   if (k == 0) {
@@ -104,12 +115,55 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   return reciprocal_condition > kSingular && std::isfinite(reciprocal_condition);
 }
 
+bool SvdPartition::setIterationMatrix(const ArticulatedBodyFactorization& inverse) {
+  inverse_ = &inverse;
+  const Eigen::Index n = v1_.rows();
+  inverse_v1_.resize(n, rank_);
+  column_.resize(n);
+  for (Eigen::Index j = 0; j < rank_; ++j) {
+    column_ = v1_.col(j);
+    inverse.solve(column_, work_);
+    inverse_v1_.col(j) = work_;
+  }
+  reduced_matrix_.resize(rank_, rank_);
+  multiplyTransposed(v1_.data(), inverse_v1_.data(), reduced_matrix_.data(), rank_, n, rank_);
+  if (rank_ == 0) return true;
+  schur_.compute(reduced_matrix_);
+  if (schur_.info() != Eigen::Success) return false;
+  // The squared pivots of the Cholesky factor bound the spread of the eigenvalues from within.
+  const auto pivots = schur_.matrixLLT().diagonal().cwiseAbs2();
+  return pivots.minCoeff() > kSingular * pivots.maxCoeff() && std::isfinite(pivots.maxCoeff());
+}
+
+void SvdPartition::rangeSpaceIncrement(const Eigen::VectorXd* r, Eigen::VectorXd& dx) const {
+  // x_r is in place. ν = −(V₁ᵀM⁻¹V₁)⁻¹ (x_r + V₁ᵀ M⁻¹ r), Δx = −(M⁻¹ r + M⁻¹V₁ ν).
+  const Eigen::Index n = v1_.rows();
+  nu_ = x_r_;
+  if (r) {
+    inverse_->solve(*r, dx);
+    multiplyTransposed(v1_.data(), dx.data(), work_.data(), rank_, n, 1);
+    nu_ += work_.head(rank_);
+  } else {
+    dx.setZero(n);
+  }
+  if (rank_ > 0) {
+    schur_.solveInPlace(nu_);
+    nu_ = -nu_;
+    multiply(inverse_v1_, nu_, dx, true);
+  }
+  dx = -dx;
+}
+
 void SvdPartition::increment(const Eigen::VectorXd* r, const Eigen::VectorXd& g, Eigen::VectorXd& dx) const {
   const Eigen::Index n = v1_.rows();
   dx.resize(n);
   work_.resize(n);
   multiplyTransposed(u1_, g, x_r_);  // x_r = −S₁⁻¹ U₁ᵀ g
   for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= -inverse_s1_[i];
+  if (inverse_) {
+    rangeSpaceIncrement(r, dx);
+    return;
+  }
   multiply(v1_, x_r_, dx, false);  // V₁ x_r (zero without constraints: V₁ is n × 0)
   if (v2_.cols() == 0) return;
   if (r) {
@@ -129,6 +183,11 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
                          Eigen::VectorXd& dmu) const {
   increment(&r, g, dx);
   dmu.resize(u1_.rows());
+  if (inverse_) {  // Δμ = U₁ S₁⁻¹ ν
+    for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] = nu_[i] * inverse_s1_[i];
+    multiply(u1_, x_r_, dmu, false);
+    return;
+  }
   work_ = r;
   multiply(J_, dx, work_, true);  // r + J Δx
   multiplyTransposed(v1_, work_, x_r_);

@@ -9,10 +9,18 @@
 //     Δμ = −U₁ S₁⁻¹ V₁ᵀ (r + J Δx)               (first row; minimum-norm multipliers)
 // The SVD is the one-sided Jacobi SVD of Bᵀ (one_sided_jacobi.hpp), V₂ the complement of V₁ from
 // V₁'s Householder reflectors (householder_basis.hpp).
+//
+// When J = M is given by its articulated-body factorization (articulated_body.hpp), the same system
+// is solved through the range of Bᵀ instead, with no O(n³) term: BᵀΔμ = V₁ν, and
+//     Δx = −M⁻¹ (r + V₁ ν),   (V₁ᵀ M⁻¹ V₁) ν = −(x_r + V₁ᵀ M⁻¹ r),   Δμ = U₁ S₁⁻¹ ν,
+// which satisfy the three rows of (48) as the partition's solution does (V₁ᵀΔx = x_r, and the first
+// row of (41) projected on V₁ and V₂): the same Δx and the same minimum-norm Δμ, to round-off.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include "dynamics/articulated_body.hpp"
 #include "dynamics/condition_estimate.hpp"
 #include "dynamics/householder_basis.hpp"
 #include "dynamics/one_sided_jacobi.hpp"
@@ -31,6 +39,11 @@ class SvdPartition {
   /// reciprocal condition already lies above twice that (reciprocalConditionLowerBound): the answer is
   /// the same. Needs setConstraintJacobian first.
   bool setIterationMatrix(const Eigen::MatrixXd& J);
+  /// J = M by its articulated-body factorization: the range-space solves above, O(n r) per solve
+  /// after r solves with M here. Returns false when the Schur complement V₁ᵀM⁻¹V₁ (r × r) is not
+  /// positive definite, or its Cholesky pivots spread by more than 1/kSingular (singular). `inverse`
+  /// is used by reference until the next setIterationMatrix: it must stay alive and unchanged.
+  bool setIterationMatrix(const ArticulatedBodyFactorization& inverse);
 
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
   /// Δx of the system with r = 0 (a projection onto the constraints), without the multipliers.
@@ -42,7 +55,7 @@ class SvdPartition {
   int constraintRows() const { return static_cast<int>(u1_.rows()); }
   const Eigen::VectorXd& singularValues() const { return singular_values_; }
   /// V₂: an orthonormal basis of the directions the constraints leave free (the degrees of freedom).
-  const Eigen::MatrixXd& freeDirections() const { return v2_; }
+  const Eigen::MatrixXd& freeDirections() const;
 
  private:
   /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat
@@ -62,17 +75,25 @@ class SvdPartition {
   OneSidedJacobiSvd jacobi_;                   ///< Bᵀ = V Σ Uᵀ
   HouseholderBasis complement_;                ///< V₁ = Q [R; 0]: V₂ is the rest of Q
   Eigen::VectorXd singular_values_;
-  Eigen::MatrixXd u1_, v1_, v2_;
+  Eigen::MatrixXd u1_, v1_;
+  mutable Eigen::MatrixXd v2_;    ///< formed on first use after setConstraintJacobian (freeDirections)
+  mutable bool v2_stale_ = false;
   Eigen::VectorXd inverse_s1_;
   Eigen::MatrixXd J_;
   Eigen::MatrixXd j_v2_, rotated_, reduced_matrix_;  ///< J V₂; Qᵀ J Q; V₂ᵀ J V₂
   LuFactors reduced_;
+  const ArticulatedBodyFactorization* inverse_ = nullptr;  ///< set: the range-space solves
+  Eigen::MatrixXd inverse_v1_;                             ///< M⁻¹ V₁
+  Eigen::LLT<Eigen::MatrixXd> schur_;                      ///< V₁ᵀ M⁻¹ V₁
   ConditionEstimator condition_;
   Eigen::VectorXd bound_scratch_;
   mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of the solves: no allocation
+  mutable Eigen::VectorXd column_, nu_;                        // buffers of the range-space solves
 
   /// Δx of (48) into dx, r = 0 when null.
   void increment(const Eigen::VectorXd* r, const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
+  /// The same through the range of Bᵀ, leaving ν in nu_.
+  void rangeSpaceIncrement(const Eigen::VectorXd* r, Eigen::VectorXd& dx) const;
 };
 
 }  // namespace mbsopt

@@ -5,9 +5,16 @@
 // must those of the projection, the system with r = 0 solved without its multipliers.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <limits>
 #include <random>
 
+#include "dynamics/articulated_body.hpp"
+#include "dynamics/kinematics.hpp"
+#include "dynamics/mass_matrix.hpp"
 #include "dynamics/svd_partition.hpp"
+#include "dynamics/tangent.hpp"
+#include "problems/chain_scenes.hpp"
 
 namespace mbsopt {
 namespace {
@@ -71,6 +78,51 @@ TEST(SvdPartition, SolvesTheAugmentedSystemWithManyCoordinates) {
     expectSolves(randomSystem(40, 3, false, seed), 3);
     expectSolves(randomSystem(40, 6, true, seed), 5);
     expectSolves(randomSystem(64, 12, false, seed), 12);
+  }
+}
+
+// J = M given by its articulated-body factorization: the range-space solves, on the closed chains
+// (3 closure rows of rank 2) at their starting geometry. Their residuals in the augmented system
+// vanish to round-off as the partition's do, and they agree with the partition's solution from the
+// CRBA M to within what two backward-stable solutions of one system may differ by, κ(M)·ε times a
+// margin of 100.
+TEST(SvdPartition, RangeSpaceSolveWithTheArticulatedMassEqualsThePartitions) {
+  for (const int links : {6, 24, 64}) {
+    const Scene scene = closedPlanarChainScene(links);
+    const Model& model = scene.model;
+    Workspace<double> ws(model);
+    Eigen::VectorXd b;
+    Eigen::MatrixXd B, M;
+    constraintJacobian(model, ws, scene.q0, b, B);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.coordinateCount());
+    forwardKinematics(model, ws, scene.q0, zero, zero, KinematicsLevel::Velocity);
+    massMatrix(model, ws, M);
+    ArticulatedBodyFactorization articulated;
+    ASSERT_TRUE(articulated.factor(model, ws, allCoordinates(model)));
+    SvdPartition dense(1e-8), range(1e-8);
+    dense.setConstraintJacobian(B);
+    range.setConstraintJacobian(B);
+    ASSERT_EQ(range.rank(), 2);
+    ASSERT_TRUE(dense.setIterationMatrix(M));
+    ASSERT_TRUE(range.setIterationMatrix(articulated));
+    const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues();
+    const double tolerance = 100.0 * eigenvalues.maxCoeff() / eigenvalues.minCoeff() * std::numeric_limits<double>::epsilon();
+    std::mt19937 generator(static_cast<unsigned>(links));
+    std::uniform_real_distribution<double> entry(-1.0, 1.0);
+    const auto random = [&](Eigen::Index n) { return Eigen::VectorXd::NullaryExpr(n, [&] { return entry(generator); }).eval(); };
+    const Eigen::VectorXd r = random(M.rows()), g = B * random(M.rows());
+    Eigen::VectorXd dx, dmu, dx_dense, dmu_dense;
+    range.solve(r, g, dx, dmu);
+    dense.solve(r, g, dx_dense, dmu_dense);
+    const double scale = M.norm() * dx.norm() + B.norm() * dmu.norm() + r.norm();
+    EXPECT_LT((M * dx + B.transpose() * dmu + r).norm(), 1e-12 * scale) << links << " links";
+    EXPECT_LT((B * dx + g).norm(), 1e-12 * (B.norm() * dx.norm() + g.norm())) << links << " links";
+    EXPECT_LT((dx - dx_dense).norm(), tolerance * dx_dense.norm()) << links << " links, κ(M) ε ×100 = " << tolerance;
+    EXPECT_LT((dmu - dmu_dense).norm(), tolerance * dmu_dense.norm()) << links << " links";
+    Eigen::VectorXd projection, projection_dense;
+    range.project(g, projection);
+    dense.project(g, projection_dense);
+    EXPECT_LT((projection - projection_dense).norm(), tolerance * projection_dense.norm()) << links << " links";
   }
 }
 
