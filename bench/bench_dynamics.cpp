@@ -176,7 +176,7 @@ void BM_ClosedChainNewmarkStep(benchmark::State& bench) {
   timeNewmarkSteps(bench, closedPlanarChainScene(links));
   bench.SetComplexityN(links);
 }
-BENCHMARK(BM_ClosedChainNewmarkStep)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Complexity()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ClosedChainNewmarkStep)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Complexity()->Unit(benchmark::kMicrosecond);
 
 /// The same step with M factored one way for every size (NewmarkSettings::articulated_mass_from):
 /// 0, CRBA and the LU of V₂ᵀMV₂ (O(n³)); 1, the articulated-body recursion and the range-space

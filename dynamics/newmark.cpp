@@ -316,7 +316,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     if (k == 0) roundoff_floor = incrementRoundoffFloor(beta_h2);
     if (position_closure || model_.constraintCount() == 0) {
       // Not before the first iteration matrix exists: the next steps reuse its tangent part.
-      if (last_relative_residual_ <= NewtonRoundoff::kFactor && J_.size() > 0) {
+      if (last_relative_residual_ <= roundoff_.factor() && J_.size() > 0) {
         last_iterations_ = k;
         return true;
       }

@@ -42,7 +42,8 @@ NewtonRoundoff::NewtonRoundoff(const Model& model)
     : reach_(static_cast<std::size_t>(model.frameCount()), 0.0),
       depth_(reach_.size(), 0.0),
       force_(reach_.size(), 0.0),
-      moment_(reach_.size(), 0.0) {
+      moment_(reach_.size(), 0.0),
+      factor_(std::max(kFactor, static_cast<double>(model.frameCount()))) {
   for (const Body& body : model.bodies())
     bodies_.push_back({model.value(body.mass), model.centreOfMass(body).norm(), model.inertia(body).cwiseAbs().sum()});
 }

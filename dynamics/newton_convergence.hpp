@@ -38,7 +38,7 @@ double closureRowScale(const CutJoint& cut, int row, const std::vector<double>& 
 /// Round-off levels of the rows of the Newton equations at one state.
 class NewtonRoundoff {
  public:
-  /// Safety factor c on ε·scale: each row is a sum of a few dozen rounded terms.
+  /// Safety factor c on ε·scale for a row that sums a few dozen rounded terms.
   static constexpr double kFactor = 64.0;
 
   /// Reads the bodies' parameters once: `model` must stay unchanged while this is used with it.
@@ -47,7 +47,7 @@ class NewtonRoundoff {
   /// The largest ratio |row| / (ε · its scale) over the free rows r of the residual and the closure
   /// rows `closure` (positions and orthogonalities, not divided by βh²), with λ the multipliers.
   /// ws must hold the kinematics at Acceleration level of the state r was evaluated at. A value
-  /// below kFactor means every row is at round-off. `closure` may be empty (closure rows not tested).
+  /// below factor() means every row is at round-off. `closure` may be empty (closure rows not tested).
   double relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
                           const std::vector<int>& free, const Eigen::VectorXd& lambda,
                           const Eigen::VectorXd& closure);
@@ -57,6 +57,13 @@ class NewtonRoundoff {
   /// βh² and by B's smallest retained singular value (when above 1), it is how far that round-off
   /// moves a Newton increment of q̈ (the floor below which increments carry no information).
   double closureRoundoff(const Model& model) const;
+
+  /// The factor c of this model: kFactor, or its number of frames when that is larger. A row sums up
+  /// to one term per frame (a joint's row the wrenches of every frame beyond it, a closure row the
+  /// translations of a path), and a sum of d rounded terms may carry (d − 1)·ε/2 times the sum of
+  /// their magnitudes (Higham, "Accuracy and Stability of Numerical Algorithms", 2nd ed., §4.2). On a
+  /// closed chain of 128 links (257 frames) Newton's residual stalls at 70-90 ε·S, above 64.
+  double factor() const { return factor_; }
 
  private:
   void setWrenchMagnitudes(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda);
@@ -68,6 +75,7 @@ class NewtonRoundoff {
     double mass, centre_of_mass, inertia;
   };
   std::vector<BodyMagnitudes> bodies_;
+  double factor_;
 };
 
 }  // namespace mbsopt
