@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "dynamics/rigid_inertia.hpp"
-
 namespace mbsopt {
 
 namespace {
@@ -48,53 +46,50 @@ void addShifted(const Matrix6& A, const Eigen::Vector3d& d, Matrix6& target) {
 bool ArticulatedBodyFactorization::factor(const Model& model, const Workspace<double>& ws, const std::vector<int>& free) {
   const auto& elements = model.elements();
   // The nodes and the node that carries each frame, in the elements' topological order.
-  thread_local std::vector<int> slot_of_element;
-  slot_of_element.assign(elements.size(), -1);
+  slot_of_element_.assign(elements.size(), -1);
   for (std::size_t c = 0; c < free.size(); ++c)
-    slot_of_element[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(free[c])].element)] = static_cast<int>(c);
+    slot_of_element_[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(free[c])].element)] = static_cast<int>(c);
   frame_node_.assign(static_cast<std::size_t>(model.frameCount()), -1);
   nodes_.clear();
-  thread_local std::vector<int> node_exit;
-  node_exit.clear();
+  node_exit_.clear();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const int carrier = frame_node_[static_cast<std::size_t>(elements[k].entry)];
     const auto exit = static_cast<std::size_t>(elements[k].exit);
-    if (slot_of_element[k] < 0) {
+    if (slot_of_element_[k] < 0) {
       frame_node_[exit] = carrier;
       continue;
     }
     const Eigen::Vector3d parent_origin =
-        carrier < 0 ? Eigen::Vector3d::Zero() : ws.position[static_cast<std::size_t>(node_exit[static_cast<std::size_t>(carrier)])];
+        carrier < 0 ? Eigen::Vector3d::Zero() : ws.position[static_cast<std::size_t>(node_exit_[static_cast<std::size_t>(carrier)])];
     Node node;
-    node.slot = slot_of_element[k];
+    node.slot = slot_of_element_[k];
     node.parent = carrier;
     node.shift = ws.position[exit] - parent_origin;
     node.axis << ws.motion_angular[k], ws.motion_linear[k];
     frame_node_[exit] = static_cast<int>(nodes_.size());
     nodes_.push_back(node);
-    node_exit.push_back(static_cast<int>(exit));
+    node_exit_.push_back(static_cast<int>(exit));
   }
 
   // The rigid composites: the bodies each node carries, then (backward) everything beyond it.
-  thread_local std::vector<CompositeInertia> composites;
-  composites.assign(nodes_.size(), CompositeInertia{});
+  composites_.assign(nodes_.size(), CompositeInertia{});
   for (const Body& body : model.bodies()) {
     const auto f = static_cast<std::size_t>(body.frame);
     const int i = frame_node_[f];
     if (i < 0) continue;  // carried by the ground
-    addBody(model, body, ws.rotation[f], ws.position[f] - ws.position[static_cast<std::size_t>(node_exit[static_cast<std::size_t>(i)])],
-            composites[static_cast<std::size_t>(i)]);
+    addBody(model, body, ws.rotation[f], ws.position[f] - ws.position[static_cast<std::size_t>(node_exit_[static_cast<std::size_t>(i)])],
+            composites_[static_cast<std::size_t>(i)]);
   }
   articulated_.resize(nodes_.size());
-  for (std::size_t i = 0; i < nodes_.size(); ++i) articulated_[i] = spatial(composites[i]);
+  for (std::size_t i = 0; i < nodes_.size(); ++i) articulated_[i] = spatial(composites_[i]);
 
   bool definite = true;
   for (std::size_t i = nodes_.size(); i-- > 0;) {
     Node& node = nodes_[i];
-    if (node.parent >= 0) addShifted(composites[i], node.shift, composites[static_cast<std::size_t>(node.parent)]);
+    if (node.parent >= 0) addShifted(composites_[i], node.shift, composites_[static_cast<std::size_t>(node.parent)]);
     node.U = articulated_[i] * node.axis;                                   // (7.37)
     const double pivot = node.axis.dot(node.U);                             // D (7.38)
-    const double locked = quadraticForm(composites[i], node.axis.head<3>(), node.axis.tail<3>());
+    const double locked = quadraticForm(composites_[i], node.axis.head<3>(), node.axis.tail<3>());
     if (!(pivot > kPivotRatio * locked && std::isfinite(pivot))) definite = false;
     node.inverse_pivot = 1.0 / pivot;
     if (node.parent < 0) continue;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "dynamics/model.hpp"
+#include "dynamics/rigid_inertia.hpp"
 #include "dynamics/workspace.hpp"
 
 namespace mbsopt {
@@ -53,9 +54,13 @@ class ArticulatedBodyFactorization {
     Vector6 U;              ///< I^A S
     double inverse_pivot;   ///< 1 / D
   };
-  std::vector<Node> nodes_;       ///< in topological order
-  std::vector<int> frame_node_;   ///< per frame: the node that carries it rigidly, -1 for the ground's
-  std::vector<Matrix6> articulated_;
+  std::vector<Node> nodes_;  ///< in topological order
+  // Buffers of factor(), kept so that it allocates nothing once sized.
+  std::vector<int> slot_of_element_;  ///< per element: its coordinate's slot in `free`, or -1
+  std::vector<int> frame_node_;       ///< per frame: the node that carries it rigidly, -1 for the ground's
+  std::vector<int> node_exit_;        ///< per node: its exit frame
+  std::vector<CompositeInertia> composites_;  ///< per node: I^C, every body beyond its joint, rigid
+  std::vector<Matrix6> articulated_;          ///< per node: I^A
   mutable std::vector<Vector6> node_vectors_;  ///< per node: bias wrenches, then accelerations
   mutable Eigen::VectorXd u_;                  ///< per node: τ − Sᵀ p^A (7.40)
 };
