@@ -106,20 +106,18 @@ void BM_TramwayGradientDirect(benchmark::State& state) {
 BENCHMARK(BM_TramwayGradientDirect)->Apply(exactGradientRuns);
 
 /// What the exact methods compute at each time point before their sweep (TrajectoryDerivatives::
-/// points: M, C_T, K_T, ∂f/∂b, the closure and projection derivatives, the sensor seeds), at every
-/// point of the tramway trajectory on one thread. `per_point_us`, and `over_step`: the same over
-/// one step's share of the simulation, which an adjoint at ≤ 1 simulation needs well below 1.
+/// PointStream: M, C_T, K_T, ∂f/∂b, the closure and projection derivatives, the sensor seeds), at
+/// every point of the tramway trajectory on one thread. `per_point_us`, and `over_step`: the same
+/// over one step's share of the simulation, which an adjoint at ≤ 1 simulation needs well below 1.
 void BM_TramwayStepDerivatives(benchmark::State& state) {
   const TramwayProblem& t = tramway();
   TrajectoryDerivatives derivatives(t.problem, t.functionals, t.x);
-  std::vector<TrajectoryDerivatives::PointDerivatives> block;
   const Eigen::Index last = derivatives.timePoints() - 1;  // points 1 … last, one per step
   double total = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    for (Eigen::Index first = 1; first <= last; first += TrajectoryDerivatives::kPointsPerBlock)
-      derivatives.points(first, std::min(last, first + TrajectoryDerivatives::kPointsPerBlock - 1), 1, block);
-    benchmark::DoNotOptimize(block.data());
+    TrajectoryDerivatives::PointStream points(derivatives, 1, last, 1);
+    for (Eigen::Index k = 1; k <= last; ++k) benchmark::DoNotOptimize(&points.next());
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
     total += elapsed.count();
     state.SetIterationTime(elapsed.count());

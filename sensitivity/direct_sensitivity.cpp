@@ -27,16 +27,11 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
                                       Eigen::MatrixXd::Zero(m, p), settings.svd_threshold);
   accumulate(d.seeds(0), Sq, Sv, Sa);
   AugmentedSolver solver(settings.svd_threshold);
-  // The step derivatives and seeds, which do not depend on the recursion, in blocks computed on
-  // `jobs` threads.
-  std::vector<TrajectoryDerivatives::PointDerivatives> block;
-  Eigen::Index block_first = 0;
+  // The step derivatives and seeds, which do not depend on the recursion, computed ahead on `jobs`
+  // threads while the recursion goes forward.
+  TrajectoryDerivatives::PointStream points(d, 1, d.timePoints() - 1, jobs);
   for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
-    if (block.empty() || k >= block_first + static_cast<Eigen::Index>(block.size())) {
-      block_first = k;
-      d.points(k, std::min(k + TrajectoryDerivatives::kPointsPerBlock, d.timePoints()) - 1, jobs, block);
-    }
-    const TrajectoryDerivatives::PointDerivatives& point = block[static_cast<std::size_t>(k - block_first)];
+    const TrajectoryDerivatives::PointDerivatives& point = points.next();
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
     // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],
     // A = M + γh C_T + βh² K_T.

@@ -111,31 +111,35 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   AugmentedSolver solver(settings.svd_threshold);
   BackwardStep back;
   std::vector<Eigen::Index> rows;
-  // The step derivatives and seeds, which do not depend on the sweep, in blocks of points computed
-  // on `jobs` threads, from the first step with a non-zero adjoint down.
-  std::vector<TrajectoryDerivatives::PointDerivatives> block;
-  Eigen::Index block_first = 0;
-  for (Eigen::Index k = N; k >= 1; --k) {
-    nonZeroRows(bar, rows);
-    if (rows.empty()) {  // nothing flows back yet: no derivative of this step is needed
-      bar = d.seeds(k - 1);
-      continue;
-    }
-    if (block.empty() || k < block_first) {
-      block_first = std::max<Eigen::Index>(1, k - TrajectoryDerivatives::kPointsPerBlock + 1);
-      d.points(block_first, k, jobs, block);
-    }
-    copyRows(bar, rows, active);
-    backThroughStep(d, block[static_cast<std::size_t>(k - block_first)], active, solver, back);
-    // Back through the predictor (32) to step k − 1, added to its own seeds.
-    if (k - 1 >= block_first) bar = block[static_cast<std::size_t>(k - 1 - block_first)].seeds;
-    else bar = d.seeds(k - 1);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const Eigen::Index j = rows[i], r = static_cast<Eigen::Index>(i);
-      dpsi_db.row(j) += back.dpsi_db.row(r);
-      bar.position.row(j) += back.q_pred.row(r);
-      bar.velocity.row(j) += h * back.q_pred.row(r) + back.v_pred.row(r);
-      bar.acceleration.row(j) += (0.5 - beta) * h * h * back.q_pred.row(r) + (1.0 - gamma) * h * back.v_pred.row(r);
+  // Nothing flows back before the first step with a non-zero adjoint: no derivative is needed there.
+  Eigen::Index k = N;
+  for (nonZeroRows(bar, rows); k >= 1 && rows.empty(); nonZeroRows(bar, rows)) bar = d.seeds(--k);
+  if (k >= 1) {
+    // From there down, the step derivatives and seeds, which do not depend on the sweep, computed
+    // ahead on `jobs` threads while the sweep goes back through the steps.
+    TrajectoryDerivatives::PointStream points(d, k, 1, jobs);
+    const TrajectoryDerivatives::PointDerivatives* point = &points.next();  // its seeds are bar's
+    for (;; --k) {
+      if (!rows.empty()) {
+        copyRows(bar, rows, active);
+        backThroughStep(d, *point, active, solver, back);
+      }
+      // Back through the predictor (32) to step k − 1, added to its own seeds.
+      if (k > 1) {
+        point = &points.next();
+        bar = point->seeds;
+      } else {
+        bar = d.seeds(0);
+      }
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Eigen::Index j = rows[i], r = static_cast<Eigen::Index>(i);
+        dpsi_db.row(j) += back.dpsi_db.row(r);
+        bar.position.row(j) += back.q_pred.row(r);
+        bar.velocity.row(j) += h * back.q_pred.row(r) + back.v_pred.row(r);
+        bar.acceleration.row(j) += (0.5 - beta) * h * h * back.q_pred.row(r) + (1.0 - gamma) * h * back.v_pred.row(r);
+      }
+      if (k == 1) break;
+      nonZeroRows(bar, rows);
     }
   }
   // t₀: q₀, q̇₀ do not depend on b; q̈₀ = L(−∂f/∂b, 0) with J = M.

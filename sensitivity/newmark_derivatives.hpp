@@ -6,7 +6,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "dynamics/one_sided_jacobi.hpp"
@@ -75,13 +79,7 @@ class TrajectoryDerivatives {
     ClosureDerivatives closure;
     ResponseSeeds seeds;
   };
-  /// Those of the time points first … last, in order, into `out` (resized to last − first + 1; the
-  /// matrices of a block kept from one call to the next are refilled without allocating), on `jobs`
-  /// threads, each with workspaces of its own: the same to the bit whatever the number of threads.
-  void points(Eigen::Index first, Eigen::Index last, int jobs, std::vector<PointDerivatives>& out);
-  /// How many points the sweeps ask of points() at once: enough work to share between threads,
-  /// little memory (a few kB a point).
-  static constexpr Eigen::Index kPointsPerBlock = 256;
+  class PointStream;
 
   /// The gradients in the scaled variables from dΨ/db (functionals × design variables, SI): the
   /// variables' scales, the cost b_{k+1}, and the exact column of the artificial variable; with
@@ -135,7 +133,7 @@ class TrajectoryDerivatives {
     std::vector<ResponseJacobian> sensor_jacobians;
   };
   Scratch scratch_;                     ///< of the calls on this object's thread
-  std::vector<Scratch> thread_scratch_;  ///< of the threads of points()
+  std::vector<Scratch> thread_scratch_;  ///< of a PointStream's helper threads
 
   void geometryAt(Eigen::Index k, Scratch& s);
   /// The columns of ∂f/∂b (free rows) of the design variables f is linear in, at (q_k, v) with
@@ -156,6 +154,50 @@ class TrajectoryDerivatives {
   /// the kinematics of (q, v, a): each selected sensor's value and its derivatives in those inputs.
   void sensorDerivatives(Scratch& s, const VectorX<AdScalar>& q, const VectorX<AdScalar>& v, const VectorX<AdScalar>& a,
                          Eigen::Index first, Eigen::Index count) const;
+};
+
+/// The points of a sweep, from time point `from` to `to` (in either direction, both included), one
+/// at a time in that order: jobs − 1 helper threads compute them ahead while the sweep uses them,
+/// and when the next one is not ready the sweep's own thread computes the next one nobody has
+/// taken, so no thread waits while points remain (the sweep's own work, a few solves a point,
+/// overlaps the helpers'). At most kAhead points are held. Each thread has workspaces of its own, so
+/// the points are the same to the bit whatever the number of threads; a point whose evaluation threw
+/// rethrows when the sweep reaches it, as a serial sweep would.
+class TrajectoryDerivatives::PointStream {
+ public:
+  /// Points held at once: enough for the helpers to run ahead, little memory (a few kB a point).
+  static constexpr long kAhead = 512;
+  /// Points the sweep's thread evaluates in a run when it has caught up with the helpers.
+  static constexpr long kRun = 64;
+
+  PointStream(TrajectoryDerivatives& derivatives, Eigen::Index from, Eigen::Index to, int jobs);
+  ~PointStream();
+  PointStream(const PointStream&) = delete;
+  PointStream& operator=(const PointStream&) = delete;
+
+  /// The next point in order; valid until the following call.
+  const PointDerivatives& next();
+
+ private:
+  /// The next point nobody has taken, when it fits in the buffer; −1 otherwise. Needs the lock.
+  long take();
+  /// Evaluates point number `n` of the stream into its slot (outside the lock).
+  void evaluate(long n, Scratch& scratch);
+  void help(Scratch& scratch);
+  std::size_t slot(long n) const { return static_cast<std::size_t>(n % kAhead); }
+
+  TrajectoryDerivatives& d_;
+  Eigen::Index from_, direction_;
+  long count_;
+  std::vector<PointDerivatives> slots_;
+  std::vector<std::exception_ptr> failures_;
+  std::vector<char> ready_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  long taken_ = 0;   ///< points 0 … taken_ − 1 are taken (being evaluated or ready)
+  long handed_ = 0;  ///< points 0 … handed_ − 1 were handed to the sweep; the last may be in use
+  bool stopping_ = false;
+  std::vector<std::jthread> helpers_;  ///< last: joined first, while the rest is alive
 };
 
 }  // namespace mbsopt

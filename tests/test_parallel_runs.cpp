@@ -92,22 +92,55 @@ TEST(ParallelRuns, FiniteDifferencesOnTwoThreadsEqualThoseOnOne) {
     }
 }
 
-// The step derivatives of adjoint and direct on two threads, over several blocks of points and a
-// closed loop: the same gradients to the bit as on one thread.
-TEST(ParallelRuns, ExactGradientsOnTwoThreadsEqualThoseOnOne) {
+/// The four-bar problem over 0.6 s: more time points than a PointStream holds, so its buffer wraps.
+DesignProblem fourBarOverSixTenths() {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
   source.text += test::kFourBarDesign;
   DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.6}});
   problem.design.artificial.initial = 0.01;  // below max |joint_c_y|: the cost's constraints are active
-  ASSERT_GT(problem.scene.settings.end_time / problem.scene.settings.step,
-            2.0 * static_cast<double>(TrajectoryDerivatives::kPointsPerBlock));  // three blocks or more
+  EXPECT_GT(problem.scene.settings.end_time / problem.scene.settings.step,
+            static_cast<double>(TrajectoryDerivatives::PointStream::kAhead));
+  return problem;
+}
+
+// The points of a sweep computed ahead by helper threads (TrajectoryDerivatives::PointStream), in
+// both directions, past the buffer's wrap: the same points in the same order, to the bit, whatever
+// the number of threads.
+TEST(ParallelRuns, PointStreamsHandOutTheSamePointsWhateverTheNumberOfThreads) {
+  const DesignProblem problem = fourBarOverSixTenths();
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  TrajectoryDerivatives serial(problem, functionals, x), parallel(problem, functionals, x);
+  const Eigen::Index last = serial.timePoints() - 1;
+  for (const int jobs : {2, 3})
+    for (const bool forward : {true, false}) {
+      TrajectoryDerivatives::PointStream one(serial, forward ? 1 : last, forward ? last : 1, 1);
+      TrajectoryDerivatives::PointStream many(parallel, forward ? 1 : last, forward ? last : 1, jobs);
+      for (Eigen::Index n = 0; n < last; ++n) {
+        const TrajectoryDerivatives::PointDerivatives& a = one.next();
+        const TrajectoryDerivatives::PointDerivatives& b = many.next();
+        ASSERT_TRUE(a.step.mass == b.step.mass && a.step.stiffness == b.step.stiffness &&
+                    a.step.damping == b.step.damping && a.step.parameters == b.step.parameters &&
+                    a.closure.jacobian == b.closure.jacobian && a.seeds.position == b.seeds.position &&
+                    a.seeds.acceleration == b.seeds.acceleration)
+            << "point " << n << " of the " << (forward ? "forward" : "backward") << " stream, " << jobs << " jobs";
+      }
+    }
+}
+
+// The step derivatives of adjoint and direct on two and three threads, on a closed loop: the same
+// gradients to the bit as on one thread.
+TEST(ParallelRuns, ExactGradientsOnTwoThreadsEqualThoseOnOne) {
+  const DesignProblem problem = fourBarOverSixTenths();
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
   const Eigen::VectorXd x = initialPoint(problem);
   for (const std::string method : {"adjoint", "direct"}) {
     const DesignGradient one = designGradient(method, problem, functionals, x, 1e-6, nullptr, 1);
-    const DesignGradient two = designGradient(method, problem, functionals, x, 1e-6, nullptr, 2);
-    EXPECT_EQ(one.constraints, two.constraints) << method;
     EXPECT_GT(one.constraints.leftCols(x.size() - 1).cwiseAbs().maxCoeff(), 0.0) << method;  // not zeros
+    for (const int jobs : {2, 3}) {
+      const DesignGradient many = designGradient(method, problem, functionals, x, 1e-6, nullptr, jobs);
+      EXPECT_EQ(one.constraints, many.constraints) << method << ", " << jobs << " jobs";
+    }
   }
 }
 
