@@ -51,7 +51,6 @@ bool ArticulatedBodyFactorization::factor(const Model& model, const Workspace<do
     slot_of_element_[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(free[c])].element)] = static_cast<int>(c);
   frame_node_.assign(static_cast<std::size_t>(model.frameCount()), -1);
   nodes_.clear();
-  node_exit_.clear();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const int carrier = frame_node_[static_cast<std::size_t>(elements[k].entry)];
     const auto exit = static_cast<std::size_t>(elements[k].exit);
@@ -60,15 +59,15 @@ bool ArticulatedBodyFactorization::factor(const Model& model, const Workspace<do
       continue;
     }
     const Eigen::Vector3d parent_origin =
-        carrier < 0 ? Eigen::Vector3d::Zero() : ws.position[static_cast<std::size_t>(node_exit_[static_cast<std::size_t>(carrier)])];
+        carrier < 0 ? Eigen::Vector3d::Zero() : ws.position[static_cast<std::size_t>(nodes_[static_cast<std::size_t>(carrier)].exit)];
     Node node;
     node.slot = slot_of_element_[k];
     node.parent = carrier;
+    node.exit = static_cast<int>(exit);
     node.shift = ws.position[exit] - parent_origin;
     node.axis << ws.motion_angular[k], ws.motion_linear[k];
     frame_node_[exit] = static_cast<int>(nodes_.size());
     nodes_.push_back(node);
-    node_exit_.push_back(static_cast<int>(exit));
   }
 
   // The rigid composites: the bodies each node carries, then (backward) everything beyond it.
@@ -77,7 +76,7 @@ bool ArticulatedBodyFactorization::factor(const Model& model, const Workspace<do
     const auto f = static_cast<std::size_t>(body.frame);
     const int i = frame_node_[f];
     if (i < 0) continue;  // carried by the ground
-    addBody(model, body, ws.rotation[f], ws.position[f] - ws.position[static_cast<std::size_t>(node_exit_[static_cast<std::size_t>(i)])],
+    addBody(model, body, ws.rotation[f], ws.position[f] - ws.position[static_cast<std::size_t>(nodes_[static_cast<std::size_t>(i)].exit)],
             composites_[static_cast<std::size_t>(i)]);
   }
   articulated_.resize(nodes_.size());

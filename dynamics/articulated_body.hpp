@@ -49,6 +49,7 @@ class ArticulatedBodyFactorization {
   struct Node {
     int slot;               ///< position of its coordinate in `free`
     int parent;             ///< the parent node, or -1 when it hangs from the ground
+    int exit;               ///< its exit frame
     Eigen::Vector3d shift;  ///< its exit origin − its parent's (or the ground's origin)
     Vector6 axis;           ///< S at the exit origin
     Vector6 U;              ///< I^A S
@@ -58,7 +59,6 @@ class ArticulatedBodyFactorization {
   // Buffers of factor(), kept so that it allocates nothing once sized.
   std::vector<int> slot_of_element_;  ///< per element: its coordinate's slot in `free`, or -1
   std::vector<int> frame_node_;       ///< per frame: the node that carries it rigidly, -1 for the ground's
-  std::vector<int> node_exit_;        ///< per node: its exit frame
   std::vector<CompositeInertia> composites_;  ///< per node: I^C, every body beyond its joint, rigid
   std::vector<Matrix6> articulated_;          ///< per node: I^A
   mutable std::vector<Vector6> node_vectors_;  ///< per node: bias wrenches, then accelerations

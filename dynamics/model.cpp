@@ -3,7 +3,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -142,7 +141,7 @@ FrameIndex Model::addElement(const std::string& name, FrameIndex parent, Element
 }
 
 void Model::addCut(CutJoint cut, int rows) {
-  for (const FrameIndex frame : std::visit([](const auto& c) { return std::array{c.frame_a, c.frame_b}; }, cut.kind)) {
+  for (const FrameIndex frame : cutFrames(cut.kind)) {
     CutFramePath path{frame, std::vector<char>(elements_.size(), 0)};
     for (int k = frames_[static_cast<std::size_t>(frame)].element; k >= 0;) {
       path.on_path[static_cast<std::size_t>(k)] = 1;

@@ -133,6 +133,10 @@ struct CutJoint {
   std::string name;
   CutKind kind;
 };
+/// The two frames a cut joint joins: frame_a, frame_b.
+inline std::array<FrameIndex, 2> cutFrames(const CutKind& cut) {
+  return std::visit([](const auto& c) { return std::array{c.frame_a, c.frame_b}; }, cut);
+}
 
 // ---- sensors (outputs) ----
 enum class Derivative { Position, Velocity, Acceleration };

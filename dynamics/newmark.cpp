@@ -137,8 +137,7 @@ void NewmarkIntegrator::factorMass(const char* name) {
     }
     // A singular Schur complement: the dense path decides, and names the coordinate if it is singular too.
     mass_by_recursion_ = false;
-    massMatrix(model_, ws_, free_, mass_);
-    J_ = mass_;
+    formMassMatrix();
   }
   factor(mass_, name);
 }
@@ -192,7 +191,10 @@ void NewmarkIntegrator::updateMassMatrix() {
   const auto free = static_cast<int>(free_.size());
   mass_by_recursion_ = !tangents_in_use_ && free >= settings_.articulated_mass_from && 2 * partition_.rank() <= free &&
                        articulated_mass_.factor(model_, ws_, free_);
-  if (mass_by_recursion_) return;
+  if (!mass_by_recursion_) formMassMatrix();
+}
+
+void NewmarkIntegrator::formMassMatrix() {
   massMatrix(model_, ws_, free_, mass_);
   if (tangents_in_use_) J_ = mass_ + tangent_part_;
   else J_ = mass_;

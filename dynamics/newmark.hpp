@@ -175,6 +175,9 @@ class NewmarkIntegrator {
   bool newton(bool fresh_jacobian);
   void updateIterationMatrix();
   void updateMassMatrix();
+  /// M(q_) by the CRBA into mass_, and J_ from it (with its tangent part when in use). Needs ws_ as
+  /// updateMassMatrix does.
+  void formMassMatrix();
   void updateConstraintPartition();
   void setDriven(double t);
   void projectOntoConstraints();

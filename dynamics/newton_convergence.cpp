@@ -3,15 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace mbsopt {
 
 namespace {
-
-std::pair<FrameIndex, FrameIndex> cutFrames(const CutKind& cut) {
-  return std::visit([](const auto& c) { return std::pair{c.frame_a, c.frame_b}; }, cut);
-}
 
 double ratio(double value, double scale) {
   if (value == 0.0) return 0.0;
