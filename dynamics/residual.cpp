@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
@@ -247,18 +248,25 @@ const ForceElement* linearForceOwner(const Model& model, ParameterIndex p) {
 
 bool isLinearForceParameter(const Model& model, ParameterIndex p) { return linearForceOwner(model, p) != nullptr; }
 
+bool linearForceParameterReadsKinematics(const Model& model, ParameterIndex p) {
+  const ForceElement* owner = linearForceOwner(model, p);
+  return owner && !std::holds_alternative<JointSpringDamper>(*owner);
+}
+
 bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v, double t, ParameterIndex p, Eigen::VectorXd& column) {
   const ForceElement* owner = linearForceOwner(model, p);
   if (!owner) return false;
+  column.setZero(model.coordinateCount());
+  if (const auto* spring = std::get_if<JointSpringDamper>(owner)) {  // a force on its own coordinate only
+    const auto i = static_cast<Eigen::Index>(spring->coordinate);
+    column[i] = p == spring->stiffness ? q[i] - model.value(spring->rest, t) : v[i] - spring->rest.function.rate(t);
+    return true;
+  }
   // The element's force is k·(a stiffness term) + c·(a damping term): ∂f/∂k is its force with k = 1,
   // c = 0, carried to the coordinates by the same backward recursion (22)-(24).
-  column.setZero(model.coordinateCount());
   clearWrenches(ws);
-  std::visit(Overloaded{[&](const JointSpringDamper& s) {
-                          const auto i = static_cast<Eigen::Index>(s.coordinate);
-                          column[i] = p == s.stiffness ? q[i] - model.value(s.rest, t) : v[i] - s.rest.function.rate(t);
-                        },
+  std::visit(Overloaded{[](const JointSpringDamper&) {},
                         [&](const PointSpringDamper& s) {
                           addPointSpringWrenches(model, s, ws, p == s.stiffness ? 1.0 : 0.0, p == s.damping ? 1.0 : 0.0);
                         },

@@ -51,12 +51,16 @@ void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdS
 bool isLinearForceParameter(const Model& model, ParameterIndex p);
 /// ∂f/∂p into `column` (coordinateCount() rows) when the parameter p enters f linearly through one
 /// force element, as the stiffness or the damping of a joint spring-damper, a point spring-damper
-/// or a track guidance; false (column untouched) for any other parameter. Needs ws to hold the
-/// geometry and the frame velocities of (q, q̇) (forwardKinematics at Velocity level or beyond, or
-/// frameRates on its geometry); overwrites its wrenches. The exact derivative at the cost of one
+/// or a track guidance; false (column untouched) for any other parameter. A joint spring-damper's
+/// column is its one coordinate's term; for the others ws must hold the geometry and the frame
+/// velocities of (q, q̇) (forwardKinematics at Velocity level or beyond, or frameRates on its
+/// geometry), and its wrenches are overwritten. The exact derivative at the cost of at most one
 /// backward pass in double, where a forward-AD pass would carry p as one more direction.
 bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v, double t, ParameterIndex p, Eigen::VectorXd& column);
+/// Whether linearForceParameterColumn reads ws for p: a linear force parameter that is not a joint
+/// spring-damper's.
+bool linearForceParameterReadsKinematics(const Model& model, ParameterIndex p);
 
 extern template void residual<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                       const VectorX<double>&, const VectorX<double>&, const VectorX<double>&,

@@ -62,6 +62,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
     const bool linear = isLinearForceParameter(model_, index);
     ad_parameter_.push_back(linear ? -1 : static_cast<int>(ad_parameter_indices_.size()));
     if (!linear) ad_parameter_indices_.push_back(index);
+    linear_columns_read_kinematics_ = linear_columns_read_kinematics_ || linearForceParameterReadsKinematics(model_, index);
   }
   const std::vector<int>& free = model_.freeCoordinates();
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
@@ -73,7 +74,8 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
                                                    Eigen::MatrixXd& parameters) {
   if (ad_parameter_indices_.size() == parameter_indices_.size()) return;  // every variable has an AD direction
-  frameRates(model_, s.plain_ws, v, v, KinematicsLevel::Velocity);  // (q̈ is not read at velocity level)
+  if (linear_columns_read_kinematics_)
+    frameRates(model_, s.plain_ws, v, v, KinematicsLevel::Velocity);  // (q̈ is not read at velocity level)
   for (std::size_t j = 0; j < ad_parameter_.size(); ++j) {
     if (ad_parameter_[j] >= 0) continue;
     linearForceParameterColumn(model_, s.plain_ws, s.q, v, time(k), parameter_indices_[j], s.column);

@@ -99,6 +99,8 @@ class TrajectoryDerivatives {
   /// double (linearForceParameterColumn), and M and B, so the projections, do not depend on it.
   std::vector<int> ad_parameter_;
   std::vector<ParameterIndex> ad_parameter_indices_;  ///< the model indices of the AD passes' parameters
+  /// Whether some linear variable's column reads the frame velocities (linearForceParameterReadsKinematics).
+  bool linear_columns_read_kinematics_ = false;
   /// The inputs of the AD passes, listed once: free q, the design parameters f is not linear in, free
   /// q̇ (last, so that a pass of velocities alone can skip what does not depend on them).
   std::vector<AdInput> step_inputs_;
