@@ -492,6 +492,15 @@ void NewmarkIntegrator::checkStep() {
 
 Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                        const std::function<void(double)>& progress) {
+  Trajectory out;
+  simulate(q0, v0, out, [&](long k) {
+    if (progress && k > 0) progress(out.time[k]);
+  });
+  return out;
+}
+
+void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, Trajectory& out,
+                                 const std::function<void(long)>& stored) {
   // Enough steps to cover [0, end_time]: the last time point is end_time, or the first grid point
   // after it when end_time is not a whole number of steps.
   if (const double bytes = trajectoryBytes(model_, settings_); !(bytes <= kMaxTrajectoryBytes))
@@ -500,7 +509,6 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
   const long steps = std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
   initialize(q0, v0, 0.0);
   const Eigen::Index n = model_.coordinateCount();
-  Trajectory out;
   out.time.resize(steps + 1);
   out.q.resize(n, steps + 1);
   out.v.resize(n, steps + 1);
@@ -522,15 +530,14 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
     out.closure_error[k] = closure_error_;
     out.newton_iterations[k] = iterations;
     if (out.sensors.cols() > 0) evaluateSensors(out.sensors.row(k));
+    if (stored) stored(k);
   };
   store(0, 0);
   for (long k = 1; k <= steps; ++k) {
     step();
     store(k, last_iterations_);
-    if (progress) progress(t_);
   }
   out.statistics = stats_;
-  return out;
 }
 
 }  // namespace mbsopt

@@ -158,6 +158,12 @@ class NewmarkIntegrator {
   /// `progress(t)` is called after each step.
   Trajectory simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                       const std::function<void(double)>& progress = {});
+  /// The same into `out`, sized once before time point 0 is stored; `stored(k)` is called on this
+  /// thread as soon as time point k is complete in out (its columns, its sensor row), k = 0, 1, …
+  /// Another thread may read what `stored` published while the next steps are written: nothing
+  /// already stored moves or changes.
+  void simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, Trajectory& out,
+                const std::function<void(long)>& stored);
 
   double time() const { return t_; }
   long stepCount() const { return step_count_; }

@@ -19,19 +19,25 @@ Eigen::VectorXd violation(const ConstraintFunctional& f, const Eigen::MatrixXd& 
 
 DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x) {
+  DesignResponse out;
+  evaluateDesign(problem, functionals, x, out, {});
+  return out;
+}
+
+void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                    const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored) {
   const Scene& scene = problem.scene;
   Model model = scene.model;
-  DesignResponse out;
   out.cost = applyDesign(problem, x, model);
-  out.trajectory = NewmarkIntegrator(model, scene.settings).simulate(scene.q0, scene.v0);
+  NewmarkIntegrator(model, scene.settings).simulate(scene.q0, scene.v0, out.trajectory, stored);
   out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
+  out.functionals.clear();
   for (std::size_t j = 0; j < functionals.size(); ++j) {
     const ConstraintFunctional& f = functionals[j];
     out.functionals.push_back(evaluateTimeFunctional(f.measure, out.trajectory.time, violation(f, out.trajectory.sensors, out.cost),
                                                      problem.design.transcription.rho));
     out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - f.tolerance;
   }
-  return out;
 }
 
 Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,11 @@ struct DesignResponse {
 /// Simulates the problem's scene at the scaled point x and measures every transcribed constraint.
 DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x);
+/// The same into `out`, its trajectory written in place: `stored(k)` is called as soon as time
+/// point k of out.trajectory is complete (NewmarkIntegrator::simulate), before the constraints are
+/// measured.
+void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                    const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored);
 
 /// The cost and the constraints at one point (DesignResponse without the histories).
 struct DesignValues {

@@ -10,7 +10,7 @@ namespace mbsopt {
 
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
-  TrajectoryDerivatives d(problem, functionals, x, simulated);
+  TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();

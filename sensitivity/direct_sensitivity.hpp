@@ -10,10 +10,12 @@
 namespace mbsopt {
 
 /// Gradients of the cost and of every transcribed constraint with respect to the scaled point x.
-/// Throws std::invalid_argument for a scene with cut joints.
+/// Throws std::invalid_argument for loops closed at acceleration level.
 /// `simulated`: the simulation at x when the caller has it (evaluateDesign's), so none is run again.
 /// `jobs`: threads for the step derivatives, which do not depend on the recursion (the recursion
-/// itself is sequential); the gradient is the same to the bit whatever the number.
+/// itself is sequential); without `simulated` and with jobs ≥ 2 they start during the simulation,
+/// each as soon as its step is done (TrajectoryDerivatives). The gradient is the same to the bit
+/// whatever the number.
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr, int jobs = 1);
 

@@ -100,7 +100,7 @@ void copyRows(const ResponseSeeds& bar, const std::vector<Eigen::Index>& rows, R
 
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
-  TrajectoryDerivatives d(problem, functionals, x, simulated);
+  TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index N = d.timePoints() - 1;

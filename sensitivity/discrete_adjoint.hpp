@@ -12,7 +12,9 @@ namespace mbsopt {
 /// Throws std::invalid_argument for loops closed at acceleration level.
 /// `simulated`: the simulation at x when the caller has it (evaluateDesign's), so none is run again.
 /// `jobs`: threads for the step derivatives, which do not depend on the sweep (the sweep itself is
-/// sequential); the gradient is the same to the bit whatever the number.
+/// sequential); without `simulated` and with jobs ≥ 2 they start during the simulation, each as
+/// soon as its step is done (TrajectoryDerivatives). The gradient is the same to the bit whatever
+/// the number.
 DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr, int jobs = 1);
 

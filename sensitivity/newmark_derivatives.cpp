@@ -2,6 +2,8 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 
 #include "dynamics/closure.hpp"
@@ -45,16 +47,69 @@ void copyParameterRows(const Eigen::MatrixXd& source, const std::vector<int>& ro
           direction[j] >= 0 ? source(row_offset + rows[r], first + direction[j]) : 0.0;
 }
 
+/// Calls f on each matrix of a point (its seeds excepted), in one fixed order.
+template <class Point, class F>
+void forEachMatrix(Point& point, F&& f) {
+  auto& s = point.step;
+  auto& c = point.closure;
+  for (auto* matrix : {&s.mass, &s.damping, &s.stiffness, &s.parameters, &c.jacobian, &c.velocity_q, &c.acceleration_q,
+                       &c.acceleration_v, &c.velocity_projection, &c.acceleration_projection,
+                       &c.velocity_projection_parameters, &c.acceleration_projection_parameters})
+    f(*matrix);
+}
+
+/// Writes the shape and the coefficients of `m` at `out` and moves past them; false when they do not
+/// fit before `end`.
+template <class Matrix>
+bool packMatrix(const Matrix& m, double*& out, const double* end) {
+  if (end - out < 2 + m.size()) return false;
+  *out++ = static_cast<double>(m.rows());
+  *out++ = static_cast<double>(m.cols());
+  out = std::copy(m.data(), m.data() + m.size(), out);
+  return true;
+}
+
+template <class Matrix>
+void unpackMatrix(const double*& in, Matrix& m) {
+  m.resize(static_cast<Eigen::Index>(in[0]), static_cast<Eigen::Index>(in[1]));
+  in += 2;
+  std::copy(in, in + m.size(), m.data());
+  in += m.size();
+}
+
 }  // namespace
+
+bool TrajectoryDerivatives::packPoint(const PointDerivatives& point, const std::vector<ResponseJacobian>& sensors,
+                                      double* out, const double* end) {
+  bool fits = true;
+  forEachMatrix(point, [&](const Eigen::MatrixXd& m) { fits = fits && packMatrix(m, out, end); });
+  for (const ResponseJacobian& J : sensors) {
+    if (!fits || out == end) return false;
+    *out++ = J.value;
+    fits = packMatrix(J.position, out, end) && packMatrix(J.velocity, out, end) && packMatrix(J.acceleration, out, end);
+  }
+  return fits;
+}
+
+void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const {
+  forEachMatrix(point, [&](Eigen::MatrixXd& m) { unpackMatrix(in, m); });
+  sensors.resize(functional_sensors_.size());
+  for (ResponseJacobian& J : sensors) {
+    J.value = *in++;
+    unpackMatrix(in, J.position);
+    unpackMatrix(in, J.velocity);
+    unpackMatrix(in, J.acceleration);
+  }
+}
 
 TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
                                              const std::vector<ConstraintFunctional>& functionals,
-                                             const Eigen::VectorXd& x, const DesignResponse* simulated)
+                                             const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs)
     : problem_(problem),
       functionals_(functionals),
       x_(x),
       model_(checkedModel(problem, x)),
-      response_(simulated ? *simulated : evaluateDesign(problem, functionals, x)),
+      response_(simulated ? *simulated : DesignResponse{}),
       scratch_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
   parameter_indices_ = parameterIndices(model_, parameters_);
@@ -69,6 +124,107 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
   step_inputs_ = adInputs({free_q, parameterInputs(ad_parameter_indices_.size()), free_v});
   sensed_step_inputs_ = adInputs({step_inputs_, adInputs(AdInput::Kind::Acceleration, free)});
+  functional_sensor_slot_.assign(model_.sensors().size(), -1);
+  for (const ConstraintFunctional& f : functionals_) {
+    const auto sensor = static_cast<std::size_t>(f.sensor);
+    if (functional_sensor_slot_[sensor] >= 0) continue;
+    functional_sensor_slot_[sensor] = static_cast<int>(functional_sensors_.size());
+    functional_sensors_.push_back(&model_.sensors()[sensor]);
+  }
+  if (simulated) return;
+  if (jobs >= 2) simulateWhileEvaluating(jobs);
+  else evaluateDesign(problem_, functionals_, x_, response_, {});
+}
+
+Eigen::Index TrajectoryDerivatives::packedPointSize() const {
+  // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q, ∂b̈/∂q̇ (m nf); per
+  // sensor its value and three rows of nf; and two numbers for each one's shape.
+  const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
+  const auto sensors = static_cast<Eigen::Index>(functional_sensors_.size());
+  return 5 * nf * nf + 3 * nf * p + 4 * m * nf + sensors * (1 + 3 * nf) + 2 * (12 + 3 * sensors);
+}
+
+void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
+  early_stride_ = packedPointSize();
+  const auto capacity = static_cast<long>(kEarlyBytes / (8.0 * static_cast<double>(early_stride_)));
+  const auto helpers = static_cast<std::size_t>(jobs - 2);  // beside this thread and the simulation's
+  if (thread_scratch_.size() < helpers) thread_scratch_.resize(helpers);
+  std::mutex mutex;
+  std::condition_variable changed;
+  long stored = -1;  // the last time point complete in the trajectory
+  long next = 1;     // the next point to evaluate
+  long last = 0;     // the last point to evaluate, once point 0 is stored
+  int waiting = 0;
+  bool stop = false;  // the simulation has ended
+  const auto help = [&](Scratch& s) {
+    s.sensors = functional_sensors_;  // every sensor a functional reads: the seeds are not known yet
+    s.sensor_slot = functional_sensor_slot_;
+    std::unique_lock lock(mutex);
+    for (;;) {
+      ++waiting;
+      changed.wait(lock, [&] { return stop || (next <= stored && next <= last) || (stored >= 0 && next > last); });
+      --waiting;
+      if (stop || next > last) return;
+      const long k = next++;
+      lock.unlock();
+      try {
+        stepAndClosureAt(k, s, s.point);
+        double* const begin = early_values_.data() + (k - 1) * early_stride_;
+        early_ready_[static_cast<std::size_t>(k - 1)] = packPoint(s.point, s.sensor_jacobians, begin, begin + early_stride_);
+      } catch (...) {  // evaluated again when a sweep reaches it, which then raises the error
+      }
+      lock.lock();
+    }
+  };
+  std::exception_ptr failure;
+  {
+    std::vector<std::jthread> threads;
+    // The simulation on a thread of its own: its workspaces come from that thread's heap arena,
+    // off the cache lines the evaluations read (thread_scratch_).
+    threads.emplace_back([&] {
+      try {
+        evaluateDesign(problem_, functionals_, x_, response_, [&](long k) {
+          std::unique_lock lock(mutex);
+          if (k == 0) {
+            last = std::min(capacity, static_cast<long>(response_.trajectory.time.size()) - 1);
+            early_values_.resize(static_cast<std::size_t>(std::max(last, 0L) * early_stride_));
+            early_ready_.assign(static_cast<std::size_t>(std::max(last, 0L)), 0);
+          }
+          stored = k;
+          const bool wake = waiting > 0;
+          lock.unlock();
+          if (wake) changed.notify_all();
+        });
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      {
+        const std::lock_guard lock(mutex);
+        stop = true;  // each evaluation finishes the point it is on
+      }
+      changed.notify_all();
+    });
+    for (std::size_t t = 0; t < helpers; ++t) threads.emplace_back([&, t] { help(helperScratch(t)); });
+    help(scratch_);
+  }  // joins
+  if (failure) std::rethrow_exception(failure);
+  early_ready_.resize(static_cast<std::size_t>(std::min(next, last + 1) - 1));  // the points taken
+  early_count_ = static_cast<Eigen::Index>(std::count(early_ready_.begin(), early_ready_.end(), 1));
+}
+
+TrajectoryDerivatives::Scratch& TrajectoryDerivatives::helperScratch(std::size_t t) {
+  std::unique_ptr<Scratch>& scratch = thread_scratch_[t].scratch;
+  if (!scratch) scratch = std::make_unique<Scratch>(model_);
+  return *scratch;
+}
+
+bool TrajectoryDerivatives::takeEarly(Eigen::Index k, PointDerivatives& out, std::vector<ResponseJacobian>& sensors) {
+  if (k < 1 || k > static_cast<Eigen::Index>(early_ready_.size()) || !early_ready_[static_cast<std::size_t>(k - 1)])
+    return false;
+  early_ready_[static_cast<std::size_t>(k - 1)] = 0;
+  unpackPoint(early_values_.data() + (k - 1) * early_stride_, out, sensors);
+  sensorSeeds(k, functional_sensor_slot_, sensors, out.seeds);
+  return true;
 }
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
@@ -153,12 +309,18 @@ void TrajectoryDerivatives::sensorDerivatives(Scratch& s, const VectorX<AdScalar
 }
 
 void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
+  selectSensors(k, s);
+  stepAndClosureAt(k, s, out);
+  sensorSeeds(k, s.sensor_slot, s.sensor_jacobians, out.seeds);
+}
+
+void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
   const Trajectory& tr = response_.trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount();
   geometryAt(k, s);
   // The sensors' derivatives come from the same passes (at the projected state, q̈ seeded too).
-  const bool sensed = selectSensors(k, s);
+  const bool sensed = !s.sensors.empty();
   const std::vector<AdInput>& inputs = sensed ? sensed_step_inputs_ : step_inputs_;
   s.sensor_jacobians.resize(s.sensors.size());
   for (ResponseJacobian& J : s.sensor_jacobians) {
@@ -240,7 +402,6 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
   };
   forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), inputs, ad_parameter_indices_,
                 evaluate);
-  sensorSeeds(k, s, out.seeds);
   // Columns: free q [0, nf), the AD passes' design parameters [nf, velocities), free q̇ from
   // velocities on; the parameters f is linear in (force elements' stiffness and damping) in double, and with zero
   // columns in the projections (M and B do not depend on them).
@@ -273,13 +434,22 @@ TrajectoryDerivatives::PointStream::PointStream(TrajectoryDerivatives& derivativ
     : d_(derivatives),
       from_(from),
       direction_(to >= from ? 1 : -1),
-      count_(static_cast<long>(std::abs(to - from) + 1)),
-      slots_(static_cast<std::size_t>(std::min(count_, kAhead))),
-      failures_(slots_.size()),
-      ready_(slots_.size(), 0) {
-  const auto helpers = static_cast<std::size_t>(std::clamp<long>(jobs - 1, 0, count_ - 1));
-  while (d_.thread_scratch_.size() < helpers) d_.thread_scratch_.emplace_back(d_.model_);
-  for (std::size_t t = 0; t < helpers; ++t) helpers_.emplace_back([this, t] { help(d_.thread_scratch_[t]); });
+      total_(static_cast<long>(std::abs(to - from) + 1)) {
+  // The points evaluated during the simulation, 1 … E, lie at one end of the stream: the start of a
+  // forward one, the end of a backward one. The ring holds the others.
+  const auto early = static_cast<long>(d_.early_ready_.size());
+  if (direction_ > 0) {
+    begin_ = std::clamp<long>(early - static_cast<long>(from) + 1, 0, total_);
+    count_ = total_ - begin_;
+  } else {
+    count_ = std::clamp<long>(static_cast<long>(from) - early, 0, total_);
+  }
+  slots_.resize(static_cast<std::size_t>(std::min(count_, kAhead)));
+  failures_.resize(slots_.size());
+  ready_.assign(slots_.size(), 0);
+  const auto helpers = static_cast<std::size_t>(std::clamp<long>(jobs - 1, 0, std::max(count_ - 1, 0L)));
+  if (d_.thread_scratch_.size() < helpers) d_.thread_scratch_.resize(helpers);
+  for (std::size_t t = 0; t < helpers; ++t) helpers_.emplace_back([this, t] { help(d_.helperScratch(t)); });
 }
 
 TrajectoryDerivatives::PointStream::~PointStream() {
@@ -290,17 +460,24 @@ TrajectoryDerivatives::PointStream::~PointStream() {
   changed_.notify_all();
 }
 
-long TrajectoryDerivatives::PointStream::take() {
+long TrajectoryDerivatives::PointStream::freeSlots() const {
   // A slot is free once the sweep has moved past its point: the one handed last may be in use.
-  const long free_until = std::max(handed_ - 1, 0L) + kAhead;
-  if (taken_ >= count_ || taken_ >= free_until) return -1;
+  return std::max(handed_ - 1, 0L) + kAhead - taken_;
+}
+
+bool TrajectoryDerivatives::PointStream::helpersMayResume() const {
+  return freeSlots() >= std::min(kRun, count_ - taken_);
+}
+
+long TrajectoryDerivatives::PointStream::take() {
+  if (taken_ >= count_ || freeSlots() <= 0) return -1;
   return taken_++;
 }
 
 void TrajectoryDerivatives::PointStream::evaluate(long n, Scratch& scratch) {
   const std::size_t i = slot(n);
   try {
-    d_.pointAt(from_ + direction_ * static_cast<Eigen::Index>(n), scratch, slots_[i]);
+    d_.pointAt(pointOf(begin_ + n), scratch, slots_[i]);
     failures_[i] = nullptr;
   } catch (...) {
     failures_[i] = std::current_exception();
@@ -311,8 +488,10 @@ void TrajectoryDerivatives::PointStream::help(Scratch& scratch) {
   std::unique_lock lock(mutex_);
   while (!stopping_ && taken_ < count_) {
     const long n = take();
-    if (n < 0) {  // the buffer is full: wait for the sweep
-      changed_.wait(lock);
+    if (n < 0) {  // the buffer is full: wait for the sweep to free a run of slots
+      ++waiting_helpers_;
+      changed_.wait(lock, [this] { return stopping_ || helpersMayResume(); });
+      --waiting_helpers_;
       continue;
     }
     lock.unlock();
@@ -324,10 +503,17 @@ void TrajectoryDerivatives::PointStream::help(Scratch& scratch) {
 }
 
 const TrajectoryDerivatives::PointDerivatives& TrajectoryDerivatives::PointStream::next() {
+  const long position = position_++;
+  if (position < begin_ || position >= begin_ + count_) {  // outside the ring: an early point, taken here
+    const Eigen::Index k = pointOf(position);
+    if (!d_.takeEarly(k, early_point_, early_sensors_)) d_.pointAt(k, d_.scratch_, early_point_);
+    return early_point_;
+  }
   std::unique_lock lock(mutex_);
   if (handed_ > 0) {  // the sweep is done with the point handed last: its slot is free
     ready_[slot(handed_ - 1)] = 0;
-    changed_.notify_all();
+    // Waking a helper costs a system call: once per run of free slots, not once per point.
+    if (waiting_helpers_ > 0 && helpersMayResume()) changed_.notify_all();
   }
   const long n = handed_++;
   while (!ready_[slot(n)]) {
@@ -381,7 +567,8 @@ bool TrajectoryDerivatives::selectSensors(Eigen::Index k, Scratch& scratch) cons
   return !sensors.empty();
 }
 
-void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const Scratch& scratch, ResponseSeeds& out) const {
+void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& slot,
+                                        const std::vector<ResponseJacobian>& jacobians, ResponseSeeds& out) const {
   const Eigen::Index m = functionalCount(), nf = freeCount();
   out.position.setZero(m, nf);
   out.velocity.setZero(m, nf);
@@ -390,7 +577,7 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const Scratch& scratch, 
     const double weight = seedWeight(j, k);
     if (weight == 0.0) continue;
     const auto sensor = static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor);
-    const ResponseJacobian& J = scratch.sensor_jacobians[static_cast<std::size_t>(scratch.sensor_slot[sensor])];
+    const ResponseJacobian& J = jacobians[static_cast<std::size_t>(slot[sensor])];
     out.position.row(j) = weight * J.position;
     out.velocity.row(j) = weight * J.velocity;
     out.acceleration.row(j) = weight * J.acceleration;
@@ -402,7 +589,7 @@ void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSe
   if (selectSensors(k, scratch))  // every selected sensor in one set of passes
     responseJacobians(model_, scratch.ws, scratch.sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k),
                       model_.freeCoordinates(), scratch.sensor_jacobians);
-  sensorSeeds(k, scratch, out);
+  sensorSeeds(k, scratch.sensor_slot, scratch.sensor_jacobians, out);
 }
 
 DesignGradient TrajectoryDerivatives::gradient(const Eigen::MatrixXd& dpsi_db) const {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <condition_variable>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -47,9 +48,18 @@ struct ResponseSeeds {
 class TrajectoryDerivatives {
  public:
   /// Simulates at x, unless `simulated` is that simulation (then copied); throws
-  /// std::invalid_argument for cut joints closed at acceleration level.
+  /// std::invalid_argument for cut joints closed at acceleration level. When it simulates with
+  /// jobs ≥ 2, the simulation runs on a thread of its own while jobs − 1 threads evaluate the time
+  /// points' derivatives, each as soon as its step is stored, from point 1 on (at most kEarlyBytes of
+  /// them); the point streams hand those out instead of evaluating them again, the same to the bit.
   TrajectoryDerivatives(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                        const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr);
+                        const Eigen::VectorXd& x, const DesignResponse* simulated = nullptr, int jobs = 1);
+
+  /// The memory the points evaluated during the simulation may take.
+  static constexpr double kEarlyBytes = 256.0 * (1 << 20);
+  /// How many time points the helpers evaluated during the simulation: points 1 … earlyPoints(),
+  /// less any whose evaluation threw (evaluated again, and the error raised, when a sweep asks).
+  Eigen::Index earlyPoints() const { return early_count_; }
 
   Eigen::Index timePoints() const { return response_.trajectory.time.size(); }
   double time(Eigen::Index k) const { return response_.trajectory.time[k]; }
@@ -133,9 +143,50 @@ class TrajectoryDerivatives {
     std::vector<int> sensor_slot;
     std::vector<const Sensor*> sensors;
     std::vector<ResponseJacobian> sensor_jacobians;
+    PointDerivatives point;  ///< an early point before it is packed
   };
-  Scratch scratch_;                     ///< of the calls on this object's thread
-  std::vector<Scratch> thread_scratch_;  ///< of a PointStream's helper threads
+  Scratch scratch_;  ///< of the calls on this object's thread
+  /// Of the helper threads (a PointStream's, the simulation's), each allocated by the thread that
+  /// uses it (helperScratch): from that thread's heap arena, so two threads never write to one cache
+  /// line. Allocated together by one thread, they made a simulation beside the evaluations run
+  /// 1.7-2× slower on a 2-core VM (false sharing), where two processes ran at full speed.
+  struct ThreadScratch {
+    std::unique_ptr<Scratch> scratch;
+    ThreadScratch() = default;
+    ThreadScratch(const ThreadScratch&) {}  // a copy's threads allocate their own
+    ThreadScratch& operator=(const ThreadScratch&) {
+      scratch.reset();
+      return *this;
+    }
+  };
+  std::vector<ThreadScratch> thread_scratch_;
+  /// Helper t's scratch, created on the calling thread the first time.
+  Scratch& helperScratch(std::size_t t);
+
+  /// The time points evaluated during the simulation, before the functionals and so the seeds are
+  /// known: every sensor a functional reads is differentiated (functional_sensors_, in that order),
+  /// and the seeds are formed when a stream hands the point out (takeEarly). Each point is packed in
+  /// a run of early_stride_ doubles (packPoint): one allocation for them all, none per point.
+  std::vector<double> early_values_;           ///< time point k from (k − 1) · early_stride_
+  std::vector<char> early_ready_;              ///< per point: evaluated without error, not yet handed out
+  Eigen::Index early_stride_ = 0;
+  Eigen::Index early_count_ = 0;               ///< how many were evaluated without error
+  std::vector<const Sensor*> functional_sensors_;  ///< the sensors the functionals read, each once
+  std::vector<int> functional_sensor_slot_;        ///< per model sensor, its place there, or −1
+
+  /// An upper bound of the doubles packPoint writes for a point of this problem.
+  Eigen::Index packedPointSize() const;
+  /// A point without its seeds and the Jacobians of the functional sensors, at out … end; false when
+  /// they do not fit.
+  static bool packPoint(const PointDerivatives& point, const std::vector<ResponseJacobian>& sensors, double* out,
+                        const double* end);
+  void unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const;
+  /// Simulates into response_ on a thread of its own while this thread and jobs − 2 more evaluate
+  /// the points already stored into the early store.
+  void simulateWhileEvaluating(int jobs);
+  /// Point k as evaluated during the simulation, its seeds formed, into `out` (`sensors`: a buffer
+  /// for the sensors' Jacobians); false when it was not, or was handed out already.
+  bool takeEarly(Eigen::Index k, PointDerivatives& out, std::vector<ResponseJacobian>& sensors);
 
   void geometryAt(Eigen::Index k, Scratch& s);
   /// The columns of ∂f/∂b (free rows) of the design variables f is linear in, at (q_k, v) with
@@ -144,14 +195,17 @@ class TrajectoryDerivatives {
   /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two
   /// shared; into `out`, reusing the storage of its matrices.
   void pointAt(Eigen::Index k, Scratch& s, PointDerivatives& out);
+  /// pointAt without the seeds, differentiating the sensors selected in s (selectSensors) too.
+  void stepAndClosureAt(Eigen::Index k, Scratch& s, PointDerivatives& out);
   void seedsAt(Eigen::Index k, Scratch& s, ResponseSeeds& out);
   /// ∂Ψ_j/∂φ_k ∂φ/∂y: the weight of constraint j's sensor at time point k.
   double seedWeight(Eigen::Index j, Eigen::Index k) const;
   /// The sensors some constraint is sensitive to at k, each once, into s.sensors and s.sensor_slot;
   /// false when there is none.
   bool selectSensors(Eigen::Index k, Scratch& s) const;
-  /// The seeds at k from the selected sensors' Jacobians in s.sensor_jacobians.
-  void sensorSeeds(Eigen::Index k, const Scratch& s, ResponseSeeds& out) const;
+  /// The seeds at k from sensor Jacobians: `slot` gives each model sensor's place in `jacobians`.
+  void sensorSeeds(Eigen::Index k, const std::vector<int>& slot, const std::vector<ResponseJacobian>& jacobians,
+                   ResponseSeeds& out) const;
   /// Inside a pass of pointAt over sensed_step_inputs_ (inputs first … first + count − 1), with ws at
   /// the kinematics of (q, v, a): each selected sensor's value and its derivatives in those inputs.
   void sensorDerivatives(Scratch& s, const VectorX<AdScalar>& q, const VectorX<AdScalar>& v, const VectorX<AdScalar>& a,
@@ -164,7 +218,9 @@ class TrajectoryDerivatives {
 /// taken, so no thread waits while points remain (the sweep's own work, a few solves a point,
 /// overlaps the helpers'). At most kAhead points are held. Each thread has workspaces of its own, so
 /// the points are the same to the bit whatever the number of threads; a point whose evaluation threw
-/// rethrows when the sweep reaches it, as a serial sweep would.
+/// rethrows when the sweep reaches it, as a serial sweep would. The points evaluated during the
+/// simulation (earlyPoints()) are handed out directly on the sweep's thread: passed through the
+/// helpers, each would cost a wake-up of a helper waiting for a free slot.
 class TrajectoryDerivatives::PointStream {
  public:
   /// Points held at once: enough for the helpers to run ahead, little memory (a few kB a point).
@@ -183,14 +239,25 @@ class TrajectoryDerivatives::PointStream {
  private:
   /// The next point nobody has taken, when it fits in the buffer; −1 otherwise. Needs the lock.
   long take();
+  long freeSlots() const;  ///< needs the lock
+  /// Whether a helper waiting for free slots has a run of them (or the last points) to take.
+  bool helpersMayResume() const;
   /// Evaluates point number `n` of the stream into its slot (outside the lock).
   void evaluate(long n, Scratch& scratch);
   void help(Scratch& scratch);
   std::size_t slot(long n) const { return static_cast<std::size_t>(n % kAhead); }
+  /// The time point at `position` in the stream.
+  Eigen::Index pointOf(long position) const { return from_ + direction_ * static_cast<Eigen::Index>(position); }
 
   TrajectoryDerivatives& d_;
   Eigen::Index from_, direction_;
-  long count_;
+  long total_;         ///< points in the stream
+  long position_ = 0;  ///< the position of the point next() hands out next
+  /// The ring: the positions begin_ … begin_ + count_ − 1, numbered from 0 in take(), slot() and
+  /// evaluate(); the rest are early points.
+  long begin_ = 0, count_ = 0;
+  PointDerivatives early_point_;  ///< the early point handed last
+  std::vector<ResponseJacobian> early_sensors_;
   std::vector<PointDerivatives> slots_;
   std::vector<std::exception_ptr> failures_;
   std::vector<char> ready_;
@@ -198,6 +265,7 @@ class TrajectoryDerivatives::PointStream {
   std::condition_variable changed_;
   long taken_ = 0;   ///< points 0 … taken_ − 1 are taken (being evaluated or ready)
   long handed_ = 0;  ///< points 0 … handed_ − 1 were handed to the sweep; the last may be in use
+  int waiting_helpers_ = 0;  ///< helpers waiting for free slots
   bool stopping_ = false;
   std::vector<std::jthread> helpers_;  ///< last: joined first, while the rest is alive
 };

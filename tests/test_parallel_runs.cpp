@@ -6,6 +6,8 @@
 
 #include <array>
 #include <atomic>
+#include <memory>
+#include <string>
 #include <stdexcept>
 
 #include "optimizers/optimizer.hpp"
@@ -126,6 +128,77 @@ TEST(ParallelRuns, PointStreamsHandOutTheSamePointsWhateverTheNumberOfThreads) {
             << "point " << n << " of the " << (forward ? "forward" : "backward") << " stream, " << jobs << " jobs";
       }
     }
+}
+
+// With jobs ≥ 2 the simulation runs on a thread of its own while the others evaluate the points
+// already stored (TrajectoryDerivatives::earlyPoints()); the streams hand those out. Every matrix of
+// every point, and the simulation's values, the same to the bit as when all is done after the
+// simulation on one thread, in both directions (a forward stream starts with the early points, a
+// backward one ends with them).
+TEST(ParallelRuns, PointsEvaluatedDuringTheSimulationEqualThoseEvaluatedAfterIt) {
+  const DesignProblem problem = fourBarOverSixTenths();
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  TrajectoryDerivatives serial(problem, functionals, x);
+  const Eigen::Index last = serial.timePoints() - 1;
+  const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(serial.functionalCount(), serial.variableCount());
+  for (const int jobs : {2, 3})
+    for (const bool forward : {true, false}) {
+      // How far the evaluations get before the simulation ends depends on the scheduler: on a busy
+      // machine a try may see none, so a few tries (a run with none falls back to the serial path).
+      std::unique_ptr<TrajectoryDerivatives> early;
+      for (int attempt = 0; attempt < 20 && (!early || early->earlyPoints() == 0); ++attempt)
+        early = std::make_unique<TrajectoryDerivatives>(problem, functionals, x, nullptr, jobs);
+      ASSERT_GT(early->earlyPoints(), 0) << jobs << " jobs";
+      const DesignGradient a = serial.gradient(none), b = early->gradient(none);
+      ASSERT_EQ(a.values->cost, b.values->cost);
+      ASSERT_EQ(a.values->constraints, b.values->constraints);
+      TrajectoryDerivatives::PointStream one(serial, forward ? 1 : last, forward ? last : 1, 1);
+      TrajectoryDerivatives::PointStream many(*early, forward ? 1 : last, forward ? last : 1, jobs);
+      for (Eigen::Index n = 0; n < last; ++n) {
+        const TrajectoryDerivatives::PointDerivatives& p = one.next();
+        const TrajectoryDerivatives::PointDerivatives& q = many.next();
+        const StepDerivatives &s = p.step, &t = q.step;
+        const ClosureDerivatives &c = p.closure, &d = q.closure;
+        ASSERT_TRUE(s.mass == t.mass && s.damping == t.damping && s.stiffness == t.stiffness &&
+                    s.parameters == t.parameters && c.jacobian == d.jacobian && c.velocity_q == d.velocity_q &&
+                    c.acceleration_q == d.acceleration_q && c.acceleration_v == d.acceleration_v &&
+                    c.velocity_projection == d.velocity_projection &&
+                    c.acceleration_projection == d.acceleration_projection &&
+                    c.velocity_projection_parameters == d.velocity_projection_parameters &&
+                    c.acceleration_projection_parameters == d.acceleration_projection_parameters &&
+                    p.seeds.position == q.seeds.position && p.seeds.velocity == q.seeds.velocity &&
+                    p.seeds.acceleration == q.seeds.acceleration)
+            << "point " << n << " of the " << (forward ? "forward" : "backward") << " stream, " << jobs << " jobs, "
+            << early->earlyPoints() << " early points";
+      }
+    }
+}
+
+// A simulation that fails part-way while points are being evaluated beside it: the exact methods
+// raise its error, as on one thread (no hang, no crash, no partial gradient).
+TEST(ParallelRuns, ASimulationThatFailsBesideTheEvaluationsRaisesItsError) {
+  DesignProblem problem = fourBarOverSixTenths();
+  problem.scene.settings.energy_tolerance = 1e-9;  // the energy drifts past this at t = 0.094 s
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  for (const std::string method : {"adjoint", "direct"}) {
+    std::string serial_error;
+    try {
+      designGradient(method, problem, functionals, x, 1e-6, nullptr, 1);
+    } catch (const SimulationError& error) {
+      serial_error = error.what();
+    }
+    ASSERT_NE(serial_error.find("energy"), std::string::npos) << method << ": " << serial_error;
+    for (const int jobs : {2, 3}) {
+      try {
+        designGradient(method, problem, functionals, x, 1e-6, nullptr, jobs);
+        ADD_FAILURE() << method << ", " << jobs << " jobs: no error";
+      } catch (const SimulationError& error) {
+        EXPECT_EQ(std::string(error.what()), serial_error) << method << ", " << jobs << " jobs";
+      }
+    }
+  }
 }
 
 // The step derivatives of adjoint and direct on two and three threads, on a closed loop: the same
