@@ -30,15 +30,15 @@ void AugmentedSolver::setTransposedMatrix(const Eigen::MatrixXd& J) {
 }
 
 Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::MatrixXd& bottom) const {
-  if (factored_ != Factored::Matrix) throw std::logic_error("AugmentedSolver::solve needs setMatrix");
-  Eigen::MatrixXd X(top.rows(), top.cols());
-  for (Eigen::Index c = 0; c < top.cols(); ++c) {
-    top_rhs_ = -top.col(c);
-    bottom_rhs_ = -bottom.col(c);
-    partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);  // it solves for −[r; g]
-    X.col(c) = dx_;
-  }
+  Eigen::MatrixXd X;
+  solve(top, bottom, X);
   return X;
+}
+
+void AugmentedSolver::solveColumn(Eigen::MatrixXd& X, Eigen::Index c) const {
+  if (factored_ != Factored::Matrix) throw std::logic_error("AugmentedSolver::solve needs setMatrix");
+  partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);  // it solves for −[r; g]
+  X.col(c) = dx_;
 }
 
 void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const {

@@ -8,6 +8,26 @@
 
 namespace mbsopt {
 
+namespace {
+
+/// The sensitivities S_q, S_v, S_a of one time point and the intermediate matrices of a step: kept
+/// from step to step, so that the recursion allocates nothing once their sizes are reached.
+struct ForwardStep {
+  Eigen::MatrixXd q, v, a;
+  Eigen::MatrixXd q_pred, v_pred, iteration, top, bottom, a_newton, seeded;
+};
+
+/// dΨ/db += ∂Ψ/∂q S_q + ∂Ψ/∂q̇ S_v + ∂Ψ/∂q̈ S_a; nothing at a point without seeds.
+void accumulate(const ResponseSeeds& seeds, ForwardStep& step, Eigen::MatrixXd& dpsi_db) {
+  if (seeds.position.isZero(0.0) && seeds.velocity.isZero(0.0) && seeds.acceleration.isZero(0.0)) return;
+  step.seeded.noalias() = seeds.position * step.q;
+  step.seeded.noalias() += seeds.velocity * step.v;
+  step.seeded.noalias() += seeds.acceleration * step.a;
+  dpsi_db += step.seeded;
+}
+
+}  // namespace
+
 DesignGradient directGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
   TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
@@ -15,17 +35,15 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), p);
-  const auto accumulate = [&](const ResponseSeeds& s, const Eigen::MatrixXd& Sq, const Eigen::MatrixXd& Sv,
-                              const Eigen::MatrixXd& Sa) {
-    dpsi_db += s.position * Sq + s.velocity * Sv + s.acceleration * Sa;
-  };
   // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀, λ₀; b) = 0 with b̈ = 0 gives
   // [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b; 0].
-  Eigen::MatrixXd Sq = Eigen::MatrixXd::Zero(nf, p), Sv = Eigen::MatrixXd::Zero(nf, p);
+  ForwardStep step;
+  step.q.setZero(nf, p);
+  step.v.setZero(nf, p);
   const StepDerivatives initial = d.step(0);
-  Eigen::MatrixXd Sa = solveAugmented(initial.mass, d.constraintJacobian(0), -initial.parameters,
-                                      Eigen::MatrixXd::Zero(m, p), settings.svd_threshold);
-  accumulate(d.seeds(0), Sq, Sv, Sa);
+  step.a = solveAugmented(initial.mass, d.constraintJacobian(0), -initial.parameters, Eigen::MatrixXd::Zero(m, p),
+                          settings.svd_threshold);
+  accumulate(d.seeds(0), step, dpsi_db);
   AugmentedSolver solver(settings.svd_threshold);
   // The step derivatives and seeds, which do not depend on the recursion, computed ahead on `jobs`
   // threads while the recursion goes forward.
@@ -35,28 +53,40 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
     // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],
     // A = M + γh C_T + βh² K_T.
-    const Eigen::MatrixXd Sq_pred = Sq + h * Sv + (0.5 - beta) * h * h * Sa;
-    const Eigen::MatrixXd Sv_pred = Sv + (1.0 - gamma) * h * Sa;
+    step.q_pred = step.q + h * step.v + (0.5 - beta) * h * h * step.a;
+    step.v_pred = step.v + (1.0 - gamma) * h * step.a;
     const StepDerivatives& s = point.step;
     const ClosureDerivatives& c = point.closure;
-    const Eigen::MatrixXd iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
+    step.iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
     solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
-    solver.setMatrix(iteration);
-    const Eigen::MatrixXd Sa_newton =
-        solver.solve(-(s.parameters + s.stiffness * Sq_pred + s.damping * Sv_pred), -c.jacobian * Sq_pred / (beta * h * h));
-    Sq = Sq_pred + beta * h * h * Sa_newton;
-    Sv = Sv_pred + gamma * h * Sa_newton;
-    Sa = Sa_newton;
+    solver.setMatrix(step.iteration);
+    step.top = s.parameters;
+    step.top.noalias() += s.stiffness * step.q_pred;
+    step.top.noalias() += s.damping * step.v_pred;
+    step.bottom.noalias() = c.jacobian * step.q_pred;
+    solver.solve(-step.top, -step.bottom / (beta * h * h), step.a_newton);
+    step.q = step.q_pred + beta * h * h * step.a_newton;
+    step.v = step.v_pred + gamma * h * step.a_newton;
     if (m > 0) {
       // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
       // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q], then the same for q̈ with
       // ∂b̈/∂(q, q̇).
       solver.setMatrix(s.mass);
-      Sv = solver.solve(s.mass * Sv - c.velocity_projection * Sq - c.velocity_projection_parameters, -c.velocity_q * Sq);
-      Sa = solver.solve(s.mass * Sa_newton - c.acceleration_projection * Sq - c.acceleration_projection_parameters,
-                        -(c.acceleration_q * Sq + c.acceleration_v * Sv));
+      step.top.noalias() = s.mass * step.v;
+      step.top.noalias() -= c.velocity_projection * step.q;
+      step.top -= c.velocity_projection_parameters;
+      step.bottom.noalias() = c.velocity_q * step.q;
+      solver.solve(step.top, -step.bottom, step.v);
+      step.top.noalias() = s.mass * step.a_newton;
+      step.top.noalias() -= c.acceleration_projection * step.q;
+      step.top -= c.acceleration_projection_parameters;
+      step.bottom.noalias() = c.acceleration_q * step.q;
+      step.bottom.noalias() += c.acceleration_v * step.v;
+      solver.solve(step.top, -step.bottom, step.a);
+    } else {
+      step.a.swap(step.a_newton);
     }
-    accumulate(point.seeds, Sq, Sv, Sa);
+    accumulate(point.seeds, step, dpsi_db);
   }
   return d.gradient(dpsi_db);
 }
