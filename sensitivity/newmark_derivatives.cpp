@@ -145,8 +145,8 @@ Eigen::Index TrajectoryDerivatives::packedPointSize() const {
 }
 
 void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
-  early_stride_ = packedPointSize();
-  const auto capacity = static_cast<long>(kEarlyBytes / (8.0 * static_cast<double>(early_stride_)));
+  early_.stride = packedPointSize();
+  const auto capacity = static_cast<long>(kEarlyBytes / (8.0 * static_cast<double>(early_.stride)));
   const auto helpers = static_cast<std::size_t>(jobs - 2);  // beside this thread and the simulation's
   if (thread_scratch_.size() < helpers) thread_scratch_.resize(helpers);
   std::mutex mutex;
@@ -169,8 +169,8 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
       lock.unlock();
       try {
         stepAndClosureAt(k, s, s.point);
-        double* const begin = early_values_.data() + (k - 1) * early_stride_;
-        early_ready_[static_cast<std::size_t>(k - 1)] = packPoint(s.point, s.sensor_jacobians, begin, begin + early_stride_);
+        double* const begin = early_.values.get() + (k - 1) * early_.stride;
+        early_.ready[static_cast<std::size_t>(k - 1)] = packPoint(s.point, s.sensor_jacobians, begin, begin + early_.stride);
       } catch (...) {  // evaluated again when a sweep reaches it, which then raises the error
       }
       lock.lock();
@@ -187,8 +187,8 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
           std::unique_lock lock(mutex);
           if (k == 0) {
             last = std::min(capacity, static_cast<long>(response_.trajectory.time.size()) - 1);
-            early_values_.resize(static_cast<std::size_t>(std::max(last, 0L) * early_stride_));
-            early_ready_.assign(static_cast<std::size_t>(std::max(last, 0L)), 0);
+            early_.values.reset(new double[static_cast<std::size_t>(std::max(last, 0L) * early_.stride)]);
+            early_.ready.assign(static_cast<std::size_t>(std::max(last, 0L)), 0);
           }
           stored = k;
           const bool wake = waiting > 0;
@@ -208,8 +208,8 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
     help(scratch_);
   }  // joins
   if (failure) std::rethrow_exception(failure);
-  early_ready_.resize(static_cast<std::size_t>(std::min(next, last + 1) - 1));  // the points taken
-  early_count_ = static_cast<Eigen::Index>(std::count(early_ready_.begin(), early_ready_.end(), 1));
+  early_.ready.resize(static_cast<std::size_t>(std::min(next, last + 1) - 1));  // the points taken
+  early_.count = static_cast<Eigen::Index>(std::count(early_.ready.begin(), early_.ready.end(), 1));
 }
 
 TrajectoryDerivatives::Scratch& TrajectoryDerivatives::helperScratch(std::size_t t) {
@@ -219,10 +219,10 @@ TrajectoryDerivatives::Scratch& TrajectoryDerivatives::helperScratch(std::size_t
 }
 
 bool TrajectoryDerivatives::takeEarly(Eigen::Index k, PointDerivatives& out, std::vector<ResponseJacobian>& sensors) {
-  if (k < 1 || k > static_cast<Eigen::Index>(early_ready_.size()) || !early_ready_[static_cast<std::size_t>(k - 1)])
+  if (k < 1 || k > static_cast<Eigen::Index>(early_.ready.size()) || !early_.ready[static_cast<std::size_t>(k - 1)])
     return false;
-  early_ready_[static_cast<std::size_t>(k - 1)] = 0;
-  unpackPoint(early_values_.data() + (k - 1) * early_stride_, out, sensors);
+  early_.ready[static_cast<std::size_t>(k - 1)] = 0;
+  unpackPoint(early_.values.get() + (k - 1) * early_.stride, out, sensors);
   sensorSeeds(k, functional_sensor_slot_, sensors, out.seeds);
   return true;
 }
@@ -437,7 +437,7 @@ TrajectoryDerivatives::PointStream::PointStream(TrajectoryDerivatives& derivativ
       total_(static_cast<long>(std::abs(to - from) + 1)) {
   // The points evaluated during the simulation, 1 … E, lie at one end of the stream: the start of a
   // forward one, the end of a backward one. The ring holds the others.
-  const auto early = static_cast<long>(d_.early_ready_.size());
+  const auto early = static_cast<long>(d_.early_.ready.size());
   if (direction_ > 0) {
     begin_ = std::clamp<long>(early - static_cast<long>(from) + 1, 0, total_);
     count_ = total_ - begin_;

@@ -59,7 +59,7 @@ class TrajectoryDerivatives {
   static constexpr double kEarlyBytes = 256.0 * (1 << 20);
   /// How many time points the helpers evaluated during the simulation: points 1 … earlyPoints(),
   /// less any whose evaluation threw (evaluated again, and the error raised, when a sweep asks).
-  Eigen::Index earlyPoints() const { return early_count_; }
+  Eigen::Index earlyPoints() const { return early_.count; }
 
   Eigen::Index timePoints() const { return response_.trajectory.time.size(); }
   double time(Eigen::Index k) const { return response_.trajectory.time[k]; }
@@ -166,11 +166,24 @@ class TrajectoryDerivatives {
   /// The time points evaluated during the simulation, before the functionals and so the seeds are
   /// known: every sensor a functional reads is differentiated (functional_sensors_, in that order),
   /// and the seeds are formed when a stream hands the point out (takeEarly). Each point is packed in
-  /// a run of early_stride_ doubles (packPoint): one allocation for them all, none per point.
-  std::vector<double> early_values_;           ///< time point k from (k − 1) · early_stride_
-  std::vector<char> early_ready_;              ///< per point: evaluated without error, not yet handed out
-  Eigen::Index early_stride_ = 0;
-  Eigen::Index early_count_ = 0;               ///< how many were evaluated without error
+  /// a run of `stride` doubles (packPoint): one allocation for them all, none per point, and not
+  /// zeroed (the simulation's thread would spend milliseconds writing tens of MB that the
+  /// evaluations overwrite). A copy starts without them: its streams evaluate every point.
+  struct EarlyPoints {
+    std::unique_ptr<double[]> values;  ///< time point k from (k − 1) · stride
+    std::vector<char> ready;           ///< per point: evaluated without error, not yet handed out
+    Eigen::Index stride = 0;
+    Eigen::Index count = 0;  ///< how many were evaluated without error
+    EarlyPoints() = default;
+    EarlyPoints(const EarlyPoints&) {}
+    EarlyPoints& operator=(const EarlyPoints&) {
+      *this = EarlyPoints();
+      return *this;
+    }
+    EarlyPoints(EarlyPoints&&) = default;
+    EarlyPoints& operator=(EarlyPoints&&) = default;
+  };
+  EarlyPoints early_;
   std::vector<const Sensor*> functional_sensors_;  ///< the sensors the functionals read, each once
   std::vector<int> functional_sensor_slot_;        ///< per model sensor, its place there, or −1
 
