@@ -156,14 +156,19 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
   long last = 0;     // the last point to evaluate, once point 0 is stored
   int waiting = 0;
   bool stop = false;  // the simulation has ended
+  // Evaluations that caught up with the simulation wait for a batch of new points: woken at every
+  // step, they would cost the simulation's thread a system call a step.
+  const auto batchStored = [&] { return stored >= std::min(next + kWakeBatch - 1, last); };
   const auto help = [&](Scratch& s) {
     s.sensors = functional_sensors_;  // every sensor a functional reads: the seeds are not known yet
     s.sensor_slot = functional_sensor_slot_;
     std::unique_lock lock(mutex);
     for (;;) {
-      ++waiting;
-      changed.wait(lock, [&] { return stop || (next <= stored && next <= last) || (stored >= 0 && next > last); });
-      --waiting;
+      if (!stop && !(next <= stored && next <= last) && !(stored >= 0 && next > last)) {  // caught up
+        ++waiting;
+        changed.wait(lock, [&] { return stop || (stored >= 0 && next > last) || batchStored(); });
+        --waiting;
+      }
       if (stop || next > last) return;
       const long k = next++;
       lock.unlock();
@@ -191,7 +196,7 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
             early_.ready.assign(static_cast<std::size_t>(std::max(last, 0L)), 0);
           }
           stored = k;
-          const bool wake = waiting > 0;
+          const bool wake = waiting > 0 && batchStored();
           lock.unlock();
           if (wake) changed.notify_all();
         });

@@ -57,6 +57,8 @@ class TrajectoryDerivatives {
 
   /// The memory the points evaluated during the simulation may take.
   static constexpr double kEarlyBytes = 256.0 * (1 << 20);
+  /// Evaluations that have caught up with the simulation resume when this many new steps are stored.
+  static constexpr long kWakeBatch = 16;
   /// How many time points the helpers evaluated during the simulation: points 1 … earlyPoints(),
   /// less any whose evaluation threw (evaluated again, and the error raised, when a sweep asks).
   Eigen::Index earlyPoints() const { return early_.count; }
