@@ -151,7 +151,7 @@ class TrajectoryDerivatives {
   /// Of the helper threads (a PointStream's, the simulation's), each allocated by the thread that
   /// uses it (helperScratch): from that thread's heap arena, so two threads never write to one cache
   /// line. Allocated together by one thread, they made a simulation beside the evaluations run
-  /// 1.7-2× slower on a 2-core VM (false sharing), where two processes ran at full speed.
+  /// 1.6-2.4× slower on a 2-core VM (false sharing), where two processes ran at full speed.
   struct ThreadScratch {
     std::unique_ptr<Scratch> scratch;
     ThreadScratch() = default;
