@@ -68,7 +68,8 @@ void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& poin
 
 Eigen::Index TrajectoryDerivatives::packedPointSize() const {
   // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q, ∂b̈/∂q̇ (m nf); per
-  // sensor its value and three rows of nf; and two numbers for each one's shape.
+  // sensor its value and three rows of nf; and two numbers for the shape of each of those matrices
+  // (forEachMatrix's 12, three per sensor). packPoint refuses a point that would not fit.
   const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
   const auto sensors = static_cast<Eigen::Index>(functional_sensors_.size());
   return 5 * nf * nf + 3 * nf * p + 4 * m * nf + sensors * (1 + 3 * nf) + 2 * (12 + 3 * sensors);
@@ -89,14 +90,16 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
   // Evaluations that caught up with the simulation wait for a batch of new points: woken at every
   // step, they would cost the simulation's thread a system call a step.
   const auto batchStored = [&] { return stored >= std::min(next + kWakeBatch - 1, last); };
+  const auto available = [&] { return next <= stored && next <= last; };
+  const auto finished = [&] { return stored >= 0 && next > last; };  // every point to evaluate is taken
   const auto help = [&](Scratch& s) {
     s.sensors = functional_sensors_;  // every sensor a functional reads: the seeds are not known yet
     s.sensor_slot = functional_sensor_slot_;
     std::unique_lock lock(mutex);
     for (;;) {
-      if (!stop && !(next <= stored && next <= last) && !(stored >= 0 && next > last)) {  // caught up
+      if (!stop && !finished() && !available()) {  // caught up with the simulation
         ++waiting;
-        changed.wait(lock, [&] { return stop || (stored >= 0 && next > last) || batchStored(); });
+        changed.wait(lock, [&] { return stop || finished() || batchStored(); });
         --waiting;
       }
       if (stop || next > last) return;

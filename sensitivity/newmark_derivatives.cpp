@@ -45,6 +45,21 @@ void copyParameterRows(const Eigen::MatrixXd& source, const std::vector<int>& ro
           direction[j] >= 0 ? source(row_offset + rows[r], first + direction[j]) : 0.0;
 }
 
+/// The sensors of the functionals j for which reads(j), each once (±y share one), into `sensors`,
+/// and per model sensor its place there, or −1, into `slot`.
+template <class Reads>
+void collectSensors(const Model& model, const std::vector<ConstraintFunctional>& functionals, Reads reads,
+                    std::vector<int>& slot, std::vector<const Sensor*>& sensors) {
+  slot.assign(model.sensors().size(), -1);
+  sensors.clear();
+  for (std::size_t j = 0; j < functionals.size(); ++j) {
+    const auto sensor = static_cast<std::size_t>(functionals[j].sensor);
+    if (slot[sensor] >= 0 || !reads(static_cast<Eigen::Index>(j))) continue;
+    slot[sensor] = static_cast<int>(sensors.size());
+    sensors.push_back(&model.sensors()[sensor]);
+  }
+}
+
 }  // namespace
 
 TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
@@ -69,13 +84,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
   step_inputs_ = adInputs({free_q, parameterInputs(ad_parameter_indices_.size()), free_v});
   sensed_step_inputs_ = adInputs({step_inputs_, adInputs(AdInput::Kind::Acceleration, free)});
-  functional_sensor_slot_.assign(model_.sensors().size(), -1);
-  for (const ConstraintFunctional& f : functionals_) {
-    const auto sensor = static_cast<std::size_t>(f.sensor);
-    if (functional_sensor_slot_[sensor] >= 0) continue;
-    functional_sensor_slot_[sensor] = static_cast<int>(functional_sensors_.size());
-    functional_sensors_.push_back(&model_.sensors()[sensor]);
-  }
+  collectSensors(model_, functionals_, [](Eigen::Index) { return true; }, functional_sensor_slot_, functional_sensors_);
   if (simulated) return;
   if (jobs >= 2) simulateWhileEvaluating(jobs);
   else evaluateDesign(problem_, functionals_, x_, response_, {});
@@ -295,18 +304,9 @@ double TrajectoryDerivatives::seedWeight(Eigen::Index j, Eigen::Index k) const {
 }
 
 bool TrajectoryDerivatives::selectSensors(Eigen::Index k, Scratch& scratch) const {
-  // The sensors some constraint is sensitive to at k, each once (±y share one).
-  std::vector<int>& slot = scratch.sensor_slot;
-  std::vector<const Sensor*>& sensors = scratch.sensors;
-  slot.assign(model_.sensors().size(), -1);
-  sensors.clear();
-  for (Eigen::Index j = 0; j < functionalCount(); ++j) {
-    const auto sensor = static_cast<std::size_t>(functionals_[static_cast<std::size_t>(j)].sensor);
-    if (seedWeight(j, k) == 0.0 || slot[sensor] >= 0) continue;
-    slot[sensor] = static_cast<int>(sensors.size());
-    sensors.push_back(&model_.sensors()[sensor]);
-  }
-  return !sensors.empty();
+  collectSensors(model_, functionals_, [&](Eigen::Index j) { return seedWeight(j, k) != 0.0; }, scratch.sensor_slot,
+                 scratch.sensors);
+  return !scratch.sensors.empty();
 }
 
 void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& slot,
