@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <sstream>
 
 #include "app/atomic_file.hpp"
@@ -143,11 +144,19 @@ void compare(const CompareOptions& options) {
       for (const std::string& optimizer : options.optimizers)
         choices.push_back({optimizer, gradient, formulation, options.tolerance, options.max_iterations, options.settings});
   // Each run on its own copy of the problem (its own model and workspaces): the runs are
-  // independent, and their results do not depend on --jobs. A line per run as it finishes.
+  // independent, and their results do not depend on --jobs. A thread with no run left to start lends
+  // itself to the gradients of those still going. The runs that take turns (Ipopt) start first:
+  // one after another, they are the longest chain. A line per run as it finishes.
+  for (RunChoice& choice : choices) choice.gradient_jobs = options.jobs;
+  std::vector<std::size_t> order(choices.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return runsOneAtATime(choices[i].optimizer); });
+  const auto idle_threads = std::make_shared<ThreadBudget>();
   std::vector<OptimizationRun> runs(choices.size());
   std::mutex output;
-  runInParallel(choices.size(), options.jobs, [&](std::size_t i) {
-    runs[i] = runOptimization(problem, choices[i], {});
+  runInParallel(order.size(), options.jobs, [&](std::size_t k) {
+    const std::size_t i = order[k];
+    runs[i] = runOptimization(problem, choices[i], {}, idle_threads);
     const OptimizerResult& r = runs[i].result;
     if (!options.out.empty())
       writeAtomically(options.out + "/" + runFileName(runs[i].choice),
@@ -156,7 +165,7 @@ void compare(const CompareOptions& options) {
     std::printf("%-40s %-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", runName(choices[i]).c_str(),
                 toString(r.status).c_str(), r.cost, r.max_violation, r.value_evaluations, r.wall_time_s);
     std::fflush(stdout);
-  });
+  }, idle_threads.get());
   const std::string& cost_key = runs.front().cost_response;
   const std::string table = markdownTable(runs, cost_key);
   std::printf("\n%s", table.c_str());
@@ -175,7 +184,8 @@ void registerCompareCommand(CLI::App& app) {
       "compare",
       "Run every combination of optimizers, gradient methods and formulations on one design problem from its start "
       "and tabulate them: status, final cost (the cost sensor's max |y|) and how much it fell, max violation, "
-      "iterations, simulations, gradients, the evaluations' wall time in simulations, wall time");
+      "iterations, simulations, gradients, the evaluations' thread time (each one's wall time times the threads it "
+      "held) in simulations, wall time");
   addSceneArgument(*command, options->problem, true);
   command->add_option("--optimizers", options->optimizers, "Optimizers to run")
       ->delimiter(',')
@@ -198,8 +208,10 @@ void registerCompareCommand(CLI::App& app) {
       ->capture_default_str();
   addSettingOption(*command, options->settings);
   command->add_option("--jobs", options->jobs,
-                      "Runs at once, each on its own thread (default: this machine's hardware threads). Ipopt runs "
-                      "one at a time (its linear solver MUMPS is not thread-safe); the results do not depend on it")
+                      "Threads (default: this machine's hardware threads): runs at once, each on its own thread, and "
+                      "when no run is left to start, the idle threads help the gradients of the runs still going. Ipopt "
+                      "runs one at a time (its linear solver MUMPS is not thread-safe) and starts first; the results "
+                      "do not depend on --jobs")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--out", options->out,

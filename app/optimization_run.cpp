@@ -80,7 +80,8 @@ const std::vector<std::string>& formulationNames() {
 }
 
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
-                                const std::function<void(const IterationRecord&)>& on_iteration) {
+                                const std::function<void(const IterationRecord&)>& on_iteration,
+                                std::shared_ptr<ThreadBudget> shared_threads) {
   OptimizationRun run;
   run.choice = choice;
   if (choice.formulation.empty()) {
@@ -91,7 +92,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
     problem.design.transcription.tolerance = choice.tolerance;
   }
   if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
-  DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs);
+  DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
   OptimizerOptions options;
   options.max_iterations = choice.max_iterations;
   options.on_iteration = on_iteration;
@@ -120,7 +121,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const DesignResponse initial = nlp.simulation(nlp.start());
   const DesignResponse final = nlp.simulation(run.result.x);
   run.simulation_s = nlp.simulationSeconds();  // the fastest: interference only ever slows a run down
-  run.simulation_equivalents = nlp.evaluationSeconds() / run.simulation_s;
+  run.simulation_equivalents = nlp.evaluationThreadSeconds() / run.simulation_s;
   run.simulations_ahead = nlp.simulationsAhead();
   run.simulations_ahead_used = nlp.simulationsAheadUsed();
   run.responses = responses(nlp, final);

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "app/gnuplot.hpp"
 #include "optimizers/optimizer.hpp"
 #include "sensitivity/design_problem.hpp"
+#include "sensitivity/thread_budget.hpp"
 
 namespace mbsopt {
 
@@ -24,7 +26,9 @@ struct RunChoice {
   double tolerance = 0.0;  ///< ε of the transcription, with a formulation
   int max_iterations = 100;
   std::vector<std::string> settings;  ///< the optimizer's own settings, "NAME=VALUE" each
-  int gradient_jobs = 1;  ///< threads for a gradient (designGradient's jobs; no effect on results)
+  /// The most threads a gradient takes (designGradient's jobs; no effect on results): its own, or
+  /// with runOptimization's shared_threads, those idle at the time.
+  int gradient_jobs = 1;
 };
 
 /// Adds --setting (repeatable NAME=VALUE, the optimizer's own settings) to a command.
@@ -48,8 +52,9 @@ struct OptimizationRun {
   double limit_excess = 0.0;
   double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
   double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
-  /// The optimizer's evaluations (simulations and gradients) in simulations: their wall time over
-  /// simulation_s (DESIGN.md §5).
+  /// The optimizer's evaluations (simulations and gradients) in simulations: their thread time
+  /// (DesignNlp::evaluationThreadSeconds: each one's wall time times the threads it held) over
+  /// simulation_s, so that runs with different numbers of threads compare.
   double simulation_equivalents = 0.0;
   /// Simulations run ahead on a spare core for a point the optimizer might ask next (SDCC's trial
   /// after a rejection, DesignNlp::anticipate), and how many of them it did ask for (those are
@@ -66,9 +71,12 @@ inline constexpr double kLimitTolerance = 1e-3;
 /// Whether every max-type limit holds on the time grid at the final design, to kLimitTolerance.
 inline bool limitsMet(const OptimizationRun& run) { return run.limit_excess <= kLimitTolerance; }
 
-/// Runs `choice` on `problem` (its transcription replaced by the choice's formulation).
+/// Runs `choice` on `problem` (its transcription replaced by the choice's formulation). With
+/// `shared_threads`, the threads its evaluations use beyond their own are borrowed from it while idle
+/// (runs at once lend theirs to one another; thread_budget.hpp).
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
-                                const std::function<void(const IterationRecord&)>& on_iteration);
+                                const std::function<void(const IterationRecord&)>& on_iteration,
+                                std::shared_ptr<ThreadBudget> shared_threads = nullptr);
 
 /// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);

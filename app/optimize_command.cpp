@@ -122,15 +122,16 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Threads for each gradient (default: this machine's hardware threads): the simulations of "
                       "finite differences, the step derivatives of adjoint and direct (their sweep itself is "
                       "sequential; continuous-adjoint runs on one); with 2 or more, SDCC's next trial point is "
-                      "simulated on a spare core while the current one is. The results do not depend on it; "
-                      "simulation_equivalents (wall time) do")
+                      "simulated on a spare core while the current one is. The results do not depend on it, and "
+                      "simulation_equivalents (thread time) only through the threads' overheads and the "
+                      "simulations run ahead for nothing")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
                       "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "
-                      "gradient_evaluations, simulation_equivalents (the evaluations' wall time over one "
-                      "simulation's, simulation_s), simulations_ahead (run on a spare core for the point SDCC "
+                      "gradient_evaluations, simulation_equivalents (the evaluations' thread time, each one's wall "
+                      "time times the threads it held, over one simulation's, simulation_s), simulations_ahead (run on a spare core for the point SDCC "
                       "would try after a rejection) and simulations_ahead_used (those among the simulations), "
                       "wall_time_s, history[{iteration, cost, max_violation, step, "
                       "simulations, gradient_evaluations, design (SI, null where the optimizer does not say)}]");

@@ -28,6 +28,8 @@ const std::vector<std::string>& optimizerNames() {
   return names;
 }
 
+bool runsOneAtATime(const std::string& optimizer) { return optimizer == "ipopt"; }
+
 namespace {
 
 OptimizerResult dispatch(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {

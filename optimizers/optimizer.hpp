@@ -61,6 +61,10 @@ struct OptimizerResult {
 /// The optimizers by name: "sdcc", "slsqp", "mma", "ccsaq", "ipopt".
 const std::vector<std::string>& optimizerNames();
 
+/// Whether the named optimizer's runs in one process take turns (Ipopt: its linear solver MUMPS is
+/// not thread-safe, so minimize() runs one Ipopt at a time).
+bool runsOneAtATime(const std::string& optimizer);
+
 /// Runs the named optimizer; throws std::invalid_argument for an unknown name.
 OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options);
 

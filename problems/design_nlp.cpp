@@ -2,18 +2,39 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 
-DesignNlp::DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step, int gradient_jobs)
+namespace {
+
+/// Adds the wall time from its construction to its destruction to `total`, however the scope ends.
+class ElapsedTimeInto {
+ public:
+  explicit ElapsedTimeInto(std::atomic<double>& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ElapsedTimeInto() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  ElapsedTimeInto(const ElapsedTimeInto&) = delete;
+  ElapsedTimeInto& operator=(const ElapsedTimeInto&) = delete;
+
+ private:
+  std::atomic<double>& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+DesignNlp::DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step, int gradient_jobs,
+                     std::shared_ptr<ThreadBudget> shared_threads)
     : problem_(std::move(problem)),
       functionals_(transcribe(problem_)),
       gradient_method_(std::move(gradient_method)),
       fd_step_(fd_step),
-      gradient_jobs_(gradient_jobs) {
+      gradient_jobs_(std::max(gradient_jobs, 1)),
+      simulate_ahead_(gradient_jobs_ >= 2 && !shared_threads),
+      spare_threads_(shared_threads ? std::move(shared_threads) : std::make_shared<ThreadBudget>(gradient_jobs_ - 1)) {
   requireGradientMethod(gradient_method_);
 }
 
@@ -45,42 +66,53 @@ const DesignResponse& DesignNlp::keep(const Eigen::VectorXd& x, DesignResponse r
 }
 
 const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
+  double thread_seconds = 0.0;
+  return simulation(x, thread_seconds);
+}
+
+const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x, double& thread_seconds) {
   if (const DesignResponse* kept = keptSimulation(x)) return *kept;
   if (const auto ahead = aheadOf(x); ahead != ahead_.end()) {
-    startWaiting(gradient_jobs_);  // this thread only waits: its core is free meanwhile
     std::future<DesignResponse> response = std::move(ahead->response);
     ahead_.erase(ahead);
     ++simulations_ahead_used_;
+    spare_threads_->giveBack(1);  // this thread only waits: it lends itself meanwhile
+    startWaiting();
+    response.wait();
+    spare_threads_->reclaim();
     return keep(x, response.get());  // what evaluateDesign threw, it throws here
   }
-  startWaiting(gradient_jobs_ - 1);
+  startWaiting();
   const auto start_time = std::chrono::steady_clock::now();
   DesignResponse response = evaluateDesign(problem_, functionals_, x);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   fastest_simulation_s_ = fastest_simulation_s_ > 0.0 ? std::min(fastest_simulation_s_, seconds) : seconds;
+  thread_seconds += seconds;
   return keep(x, std::move(response));
 }
 
 void DesignNlp::anticipate(const Eigen::VectorXd& x) {
-  if (gradient_jobs_ < 2 || keptSimulation(x) || aheadOf(x) != ahead_.end()) return;
+  if (!simulate_ahead_ || keptSimulation(x) || aheadOf(x) != ahead_.end()) return;
   waiting_ = x;
-  startWaiting(gradient_jobs_ - 1);
+  startWaiting();
 }
 
 std::deque<DesignNlp::Ahead>::iterator DesignNlp::aheadOf(const Eigen::VectorXd& x) {
   return std::find_if(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return a.x == x; });
 }
 
-void DesignNlp::startWaiting(int threads) {
+void DesignNlp::startWaiting() {
   const auto finished = [](const Ahead& a) {
     return a.response.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
   };
   while (ahead_.size() > kKeptSimulations && finished(ahead_.back())) ahead_.pop_back();
   if (!waiting_) return;
-  const auto running = std::count_if(ahead_.begin(), ahead_.end(), [&](const Ahead& a) { return !finished(a); });
-  if (running >= threads) return;
+  auto thread = std::make_unique<BorrowedThreads>(*spare_threads_, 1);
+  if (thread->count() == 0) return;
   // The problem and the functionals are only read, by evaluateDesign as by this thread.
-  ahead_.push_front({*waiting_, std::async(std::launch::async, [this, x = *waiting_] {
+  ahead_.push_front({*waiting_, std::async(std::launch::async, [this, thread = std::move(thread), x = *waiting_]() mutable {
+                       const std::unique_ptr<BorrowedThreads> held = std::move(thread);  // given back as it ends
+                       const ElapsedTimeInto timed(ahead_thread_seconds_);
                        return evaluateDesign(problem_, functionals_, x);
                      })});
   waiting_.reset();
@@ -88,16 +120,19 @@ void DesignNlp::startWaiting(int threads) {
 }
 
 void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) {
-  const auto start_time = std::chrono::steady_clock::now();
-  const DesignResponse& response = simulation(x);
+  const DesignResponse& response = simulation(x, evaluation_thread_seconds_);
   if (gradients) {  // on the simulation just run or kept: the values' simulation is not paid twice
-    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_, &response, gradient_jobs_);
+    const auto start_time = std::chrono::steady_clock::now();
+    const BorrowedThreads spare(*spare_threads_, gradient_jobs_ - 1);
+    const int threads = 1 + spare.count();
+    DesignGradient g = designGradient(gradient_method_, problem_, functionals_, x, fd_step_, &response, threads);
     out.cost_gradient = std::move(g.cost);
     out.constraint_jacobian = std::move(g.constraints);
+    evaluation_thread_seconds_ +=
+        threads * std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   }
   out.cost = response.cost;
   out.constraints = response.constraints;
-  evaluation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
 }
 
 }  // namespace mbsopt

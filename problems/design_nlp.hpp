@@ -5,8 +5,10 @@
 // sensitivity/ (simulations and gradients of a design problem).
 #pragma once
 
+#include <atomic>
 #include <deque>
 #include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,14 +16,18 @@
 
 #include "optimizers/nlp_problem.hpp"
 #include "sensitivity/design_evaluation.hpp"
+#include "sensitivity/thread_budget.hpp"
 
 namespace mbsopt {
 
 class DesignNlp : public NlpProblem {
  public:
   /// `gradient_method`: one of gradientMethodNames(); `fd_step` for the finite differences;
-  /// `gradient_jobs` threads for each gradient (designGradient; the values do not depend on it).
-  DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step = 1e-6, int gradient_jobs = 1);
+  /// `gradient_jobs`: the most threads a gradient takes (designGradient; the values do not depend on
+  /// it). The threads beyond the caller's own are this problem's, or, with `shared_threads`, borrowed
+  /// from it whenever they are idle (the runs of `mbsopt compare` lend theirs to one another).
+  DesignNlp(DesignProblem problem, std::string gradient_method, double fd_step = 1e-6, int gradient_jobs = 1,
+            std::shared_ptr<ThreadBudget> shared_threads = nullptr);
 
   Eigen::Index variableCount() const override { return optimisationSize(problem_); }
   Eigen::Index inequalityCount() const override { return static_cast<Eigen::Index>(functionals_.size()); }
@@ -30,16 +36,22 @@ class DesignNlp : public NlpProblem {
   Eigen::VectorXd start() const override { return initialPoint(problem_); }
   std::string constraintName(Eigen::Index i) const override { return functionals_[static_cast<std::size_t>(i)].name; }
   void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override;
-  /// With gradient_jobs ≥ 2, simulates x on another thread while this one goes on (its own
-  /// simulation, or a gradient), at most gradient_jobs − 1 such simulations at once, or gradient_jobs
-  /// while this thread only waits for one of them; a point that finds no free core waits for the next
-  /// evaluation that does. simulation(x) then takes the result: the same to the bit, as evaluateDesign
-  /// depends only on the problem and x. With one job it does nothing.
+  /// With gradient_jobs ≥ 2 and threads of its own (no shared_threads), simulates x on an idle one
+  /// (a spare thread, or this one's while it only waits for such a simulation) while this one goes
+  /// on (its own simulation, or a gradient); a point that finds no idle thread waits for the next
+  /// evaluation that does. simulation(x) then takes the result: the same to the bit, as
+  /// evaluateDesign depends only on the problem and x. Otherwise it does nothing: with shared
+  /// threads, a simulation that may be wasted would make a run's cost depend on what the others
+  /// left idle.
   void anticipate(const Eigen::VectorXd& x) override;
 
   const DesignProblem& problem() const { return problem_; }
-  /// Wall time spent in evaluate() so far: simulations and gradients [s].
-  double evaluationSeconds() const { return evaluation_seconds_; }
+  /// The thread time evaluate() has taken so far [s], whatever the number of threads: each of its
+  /// simulations' wall time, each gradient's times the threads it held, and the wall time of every
+  /// simulation run ahead on another thread (used or not; a wait for one counts nothing, the waiting
+  /// thread being lent meanwhile). The work of the evaluations, comparable between runs that had
+  /// different numbers of threads.
+  double evaluationThreadSeconds() const { return evaluation_thread_seconds_ + ahead_thread_seconds_.load(); }
   /// The fastest of the simulations evaluate() ran [s] (interference only ever slows one down);
   /// 0 before the first.
   double simulationSeconds() const { return fastest_simulation_s_; }
@@ -65,7 +77,10 @@ class DesignNlp : public NlpProblem {
   std::string gradient_method_;
   double fd_step_;
   int gradient_jobs_;
-  double evaluation_seconds_ = 0.0;
+  bool simulate_ahead_;                          ///< threads of its own, at least two
+  std::shared_ptr<ThreadBudget> spare_threads_;  ///< the threads beyond the caller's (thread_budget.hpp)
+  double evaluation_thread_seconds_ = 0.0;       ///< on the caller's thread
+  std::atomic<double> ahead_thread_seconds_ = 0.0;  ///< on the threads of the simulations ahead
   double fastest_simulation_s_ = 0.0;
   /// Simulations by point: the first one evaluated, then the most recent, newest first. The
   /// gradients of a point whose values were asked for first reuse its simulation.
@@ -73,6 +88,8 @@ class DesignNlp : public NlpProblem {
   std::deque<std::pair<Eigen::VectorXd, DesignResponse>> recent_;
   /// Keeps a new simulation as the first or the most recent one.
   const DesignResponse& keep(const Eigen::VectorXd& x, DesignResponse response);
+  /// simulation(x), adding to `thread_seconds` the wall time of a simulation run on this thread.
+  const DesignResponse& simulation(const Eigen::VectorXd& x, double& thread_seconds);
 
   /// Simulations started by anticipate(), newest first; the point anticipated last when no core was
   /// free for it. Last among the members: destroyed first, each waiting for its thread.
@@ -85,9 +102,9 @@ class DesignNlp : public NlpProblem {
   std::deque<Ahead> ahead_;
   /// The simulation started for x, or ahead_.end().
   std::deque<Ahead>::iterator aheadOf(const Eigen::VectorXd& x);
-  /// Starts the waiting point when fewer than `threads` simulations run ahead, and forgets the
-  /// oldest finished ones beyond kKeptSimulations.
-  void startWaiting(int threads);
+  /// Starts the waiting point on a spare thread when one is idle, and forgets the oldest finished
+  /// simulations ahead beyond kKeptSimulations.
+  void startWaiting();
 };
 
 }  // namespace mbsopt

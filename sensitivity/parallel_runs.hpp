@@ -10,14 +10,18 @@
 #include <thread>
 #include <vector>
 
+#include "sensitivity/thread_budget.hpp"
+
 namespace mbsopt {
 
 /// The machine's hardware threads (at least 1): the default of `--jobs`.
 inline int machineThreads() { return static_cast<int>(std::max(1U, std::thread::hardware_concurrency())); }
 
 /// Calls task(i) for i = 0 … count − 1 on min(jobs, count) threads (jobs ≤ 1: in order, on this one).
+/// With `idle_threads`, every thread of the jobs that has no item (left) to take is given to it, so
+/// the items still running can borrow it (thread_budget.hpp).
 template <class Task>
-void runInParallel(std::size_t count, int jobs, Task&& task) {
+void runInParallel(std::size_t count, int jobs, Task&& task, ThreadBudget* idle_threads = nullptr) {
   std::vector<std::exception_ptr> failures(count);
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
@@ -28,8 +32,10 @@ void runInParallel(std::size_t count, int jobs, Task&& task) {
         failures[i] = std::current_exception();
       }
     }
+    if (idle_threads) idle_threads->giveBack(1);
   };
   const std::size_t threads = std::min<std::size_t>(static_cast<std::size_t>(std::max(jobs, 1)), count);
+  if (idle_threads) idle_threads->giveBack(std::max(jobs, 1) - static_cast<int>(std::max<std::size_t>(threads, 1)));
   if (threads <= 1) {
     work();
   } else {

@@ -29,6 +29,34 @@ TEST(ParallelRuns, EveryItemRunsOnceWhateverTheNumberOfThreads) {
   }
 }
 
+// A budget lends what is idle and no more; runInParallel gives it the threads that have no item:
+// those beyond the items at the start, and each one as it runs out of items.
+TEST(ParallelRuns, IdleThreadsAreLentOnceAndGivenBack) {
+  ThreadBudget budget(2);
+  EXPECT_EQ(budget.borrow(3), 2);
+  EXPECT_EQ(budget.borrow(1), 0);
+  budget.giveBack(1);
+  {
+    const BorrowedThreads borrowed(budget, 4);
+    EXPECT_EQ(borrowed.count(), 1);
+    EXPECT_EQ(budget.idle(), 0);
+  }
+  EXPECT_EQ(budget.idle(), 1);
+  budget.reclaim();  // a thread that lent itself takes itself back while lent out
+  budget.reclaim();
+  EXPECT_EQ(budget.idle(), -1);
+  EXPECT_EQ(budget.borrow(1), 0);
+
+  ThreadBudget idle;
+  std::array<int, 2> idle_during{};
+  runInParallel(idle_during.size(), 5, [&](std::size_t i) { idle_during[i] = idle.idle(); }, &idle);
+  for (const int count : idle_during) EXPECT_GE(count, 3);  // five jobs, two items: three idle from the start
+  EXPECT_EQ(idle.idle(), 5);
+  ThreadBudget serial;
+  runInParallel(3, 1, [](std::size_t) {}, &serial);
+  EXPECT_EQ(serial.idle(), 1);
+}
+
 TEST(ParallelRuns, TheLowestFailingItemIsRethrownAfterAllHaveRun) {
   std::array<std::atomic<int>, 12> calls{};
   try {
@@ -218,19 +246,23 @@ TEST(ParallelRuns, ExactGradientsOnTwoThreadsEqualThoseOnOne) {
 }
 
 // Whole optimisations, two of them Ipopt's (one solve at a time inside the adapter), beside SDCC
-// and SLSQP: the same points, costs and evaluation counts as when run alone.
+// and SLSQP, as `mbsopt compare --jobs 2` runs them: two at a time, and the gradients and the
+// simulations ahead of the runs still going on the thread of a run that has ended. The same points,
+// costs and evaluation counts as when each runs alone on one thread; every thread lent is given back.
 TEST(ParallelRuns, ConcurrentOptimisationsEqualSerialOnes) {
   const DesignProblem problem = loadDesignProblem({"chain.yaml", test::kOpenChainProblem}, {{"settings.end_time", 0.3}});
   const std::array<std::string, 4> optimizers{"ipopt", "sdcc", "ipopt", "slsqp"};
   OptimizerOptions options;
   options.max_iterations = 15;
   std::array<OptimizerResult, 4> serial, parallel;
-  const auto run = [&](std::array<OptimizerResult, 4>& out, std::size_t i) {
-    DesignNlp nlp(problem, "adjoint");
+  const auto idle_threads = std::make_shared<ThreadBudget>();
+  const auto run = [&](std::array<OptimizerResult, 4>& out, std::size_t i, int jobs) {
+    DesignNlp nlp(problem, "adjoint", 1e-6, jobs, jobs > 1 ? idle_threads : nullptr);
     out[i] = minimize(optimizers[i], nlp, options);
   };
-  runInParallel(optimizers.size(), 1, [&](std::size_t i) { run(serial, i); });
-  runInParallel(optimizers.size(), 2, [&](std::size_t i) { run(parallel, i); });
+  runInParallel(optimizers.size(), 1, [&](std::size_t i) { run(serial, i, 1); });
+  runInParallel(optimizers.size(), 2, [&](std::size_t i) { run(parallel, i, 2); }, idle_threads.get());
+  EXPECT_EQ(idle_threads->idle(), 2);  // both threads idle again, none lent twice or kept
   for (std::size_t i = 0; i < optimizers.size(); ++i) {
     EXPECT_EQ(serial[i].x, parallel[i].x) << optimizers[i];
     EXPECT_EQ(serial[i].cost, parallel[i].cost) << optimizers[i];
@@ -244,7 +276,8 @@ TEST(ParallelRuns, ConcurrentOptimisationsEqualSerialOnes) {
 // SDCC with two jobs: after a rejected trial the next one is simulated on a second thread while
 // the current one is (DesignNlp::anticipate). The run visits the same points, to the bit, with the
 // same counts as with one job; some of those simulations did run ahead (on the four-bar with
-// ξ₀ = 4 the trials overshoot often, so runs of rejections happen).
+// ξ₀ = 4 the trials overshoot often, so runs of rejections happen). With a thread shared with other
+// runs (`mbsopt compare`), idle throughout, nothing runs ahead: only the gradients borrow it.
 TEST(ParallelRuns, SdccWithSimulationsAheadEqualsSdccWithout) {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
   source.text += test::kFourBarDesign;
@@ -263,6 +296,13 @@ TEST(ParallelRuns, SdccWithSimulationsAheadEqualsSdccWithout) {
   for (std::size_t k = 0; k < serial.history.size(); ++k) EXPECT_EQ(serial.history[k].x, ahead.history[k].x) << k;
   EXPECT_EQ(one_job.simulationsAhead(), 0);
   EXPECT_GT(two_jobs.simulationsAheadUsed(), 0);
+  const auto idle_thread = std::make_shared<ThreadBudget>(1);
+  DesignNlp shared_thread(problem, "adjoint", 1e-6, 2, idle_thread);
+  const OptimizerResult shared = minimize("sdcc", shared_thread, options);
+  EXPECT_EQ(serial.x, shared.x);
+  EXPECT_EQ(serial.value_evaluations, shared.value_evaluations);
+  EXPECT_EQ(shared_thread.simulationsAhead(), 0);
+  EXPECT_EQ(idle_thread->idle(), 1);
 }
 
 }  // namespace
