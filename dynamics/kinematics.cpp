@@ -35,17 +35,14 @@ void placeExit(const ElementKind& kind, std::size_t k, std::size_t e, std::size_
                  },
                  [&](const CurveSliderJoint& j) {
                    // dr/ds = t to first order, as the heading and curvature (trackStateAt).
-                   using std::cos;
-                   using std::sin;
                    const TrackState<Scalar> track = trackStateAt(*j.track, q);
                    const TrackPoint& point = track.point;
                    const Scalar& ds = track.offset;
-                   const Scalar& heading = track.heading;
                    const Scalar& curvature = track.curvature;
-                   const Scalar cos_heading = cos(heading), sin_heading = sin(heading);
+                   const Scalar& cos_heading = track.cos_heading;
+                   const Scalar& sin_heading = track.sin_heading;
                    ws.slider_track[k] = {cos_heading, sin_heading, curvature};
-                   const Eigen::Vector3d tangent_at_s(valueOf(cos_heading), valueOf(sin_heading), 0.0);  // t(s)
-                   const Vector3<Scalar> translation = Re * (point.position + tangent_at_s * ds);
+                   const Vector3<Scalar> translation = Re * (point.position + point.tangent() * ds);  // t(s)
                    ws.position[s] = ws.position[e] + translation;
                    const bool turns = j.orientation != SliderOrientation::Translate;
                    if (axes) {

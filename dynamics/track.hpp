@@ -14,11 +14,13 @@ namespace mbsopt {
 struct TrackPoint {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double heading = 0.0;              ///< ψ(s): angle of the tangent from the base x axis, about z
+  double cos_heading = 1.0;          ///< cos ψ(s)
+  double sin_heading = 0.0;          ///< sin ψ(s)
   double curvature = 0.0;            ///< κ(s) = dψ/ds, positive when turning left
   double curvature_derivative = 0.0; ///< dκ/ds
 
-  Eigen::Vector3d tangent() const;   ///< (cos ψ, sin ψ, 0)
-  Eigen::Vector3d normal() const;    ///< (−sin ψ, cos ψ, 0), points to the left
+  Eigen::Vector3d tangent() const { return {cos_heading, sin_heading, 0.0}; }
+  Eigen::Vector3d normal() const { return {-sin_heading, cos_heading, 0.0}; }  ///< points to the left
 };
 
 /// Track geometry at arc length s for a scalar type that may carry derivatives: the exact values at
@@ -26,10 +28,12 @@ struct TrackPoint {
 /// all a first-order derivative type needs. For double it is just the exact geometry.
 template <class Scalar>
 struct TrackState {
-  TrackPoint point;   ///< exact geometry at the value of s
-  Scalar offset;      ///< s − value(s): zero, with the derivatives of s
-  Scalar heading;     ///< ψ(s)
-  Scalar curvature;   ///< κ(s)
+  TrackPoint point;    ///< exact geometry at the value of s
+  Scalar offset;       ///< s − value(s): zero, with the derivatives of s
+  Scalar heading;      ///< ψ(s)
+  Scalar cos_heading;  ///< cos ψ(s)
+  Scalar sin_heading;  ///< sin ψ(s)
+  Scalar curvature;    ///< κ(s)
 };
 
 class Track {
@@ -62,22 +66,26 @@ class Track {
   struct SegmentStart {
     double arc_length;
     Eigen::Vector3d position;
-    double heading;
+    double heading, cos_heading, sin_heading;
   };
   void append(const Segment& segment);
-  static TrackPoint advance(const Segment& segment, const Eigen::Vector3d& position, double heading, double sigma);
+  static TrackPoint advance(const Segment& segment, const SegmentStart& start, double sigma);
 
   Eigen::Vector3d origin_;
-  double heading_;
+  double heading_, cos_heading_, sin_heading_;
   std::vector<Segment> segments_;
   std::vector<SegmentStart> starts_;
 };
 
 template <class Scalar>
 TrackState<Scalar> trackStateAt(const Track& track, const Scalar& s) {
-  TrackState<Scalar> state{track.at(valueOf(s)), s - Scalar(valueOf(s)), Scalar(0), Scalar(0)};
-  state.heading = Scalar(state.point.heading) + Scalar(state.point.curvature) * state.offset;
-  state.curvature = Scalar(state.point.curvature) + Scalar(state.point.curvature_derivative) * state.offset;
+  TrackState<Scalar> state{track.at(valueOf(s)), s - Scalar(valueOf(s)), Scalar(0), Scalar(0), Scalar(0), Scalar(0)};
+  const TrackPoint& p = state.point;
+  const Scalar turn = Scalar(p.curvature) * state.offset;  // ψ(s) − ψ(value(s)): zero, with dψ = κ ds
+  state.heading = Scalar(p.heading) + turn;
+  state.cos_heading = Scalar(p.cos_heading) - Scalar(p.sin_heading) * turn;
+  state.sin_heading = Scalar(p.sin_heading) + Scalar(p.cos_heading) * turn;
+  state.curvature = Scalar(p.curvature) + Scalar(p.curvature_derivative) * state.offset;
   return state;
 }
 

@@ -208,8 +208,8 @@ TEST_P(TrackGeometryTest, PositionAgreesWithIndependentQuadratureOfTheHeading) {
 TEST_P(TrackGeometryTest, ArcPointsLieOnTheCircleOfRadiusR) {
   // Centre of the circle, closed form from the arc's start: c = r_a + n(ψ_a)/κ (n points left, so
   // towards the centre for a left turn and away from it for a right turn). Every point of the arc
-  // is then c − n(ψ(s))/κ; the chord formula reproduces this to round-off of |r| ~ 30 m (~1e-14),
-  // and the reference start r_a carries ≲ 6e-13 m: tolerance 1e-12 m.
+  // is then c − n(ψ(s))/κ; Track's chord (sin θ t_a + (1 − cos θ) n_a)/κ, θ = κσ, reproduces this to
+  // round-off of |r| ~ 30 m (~1e-14), and the reference start r_a carries ≲ 6e-13 m: tolerance 1e-12 m.
   const std::vector<double> b = curve.breaks();
   const double arc_start = b[2], arc_end = b[3];
   const Eigen::Vector3d centre = referencePosition(curve, arc_start) + unitNormal(curve.heading(arc_start)) / curve.kappa();
