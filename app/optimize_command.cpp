@@ -131,8 +131,9 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
                       "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "
                       "gradient_evaluations, simulation_equivalents (the evaluations' thread time, each one's wall "
-                      "time times the threads it held, over one simulation's, simulation_s), simulations_ahead (run on a spare core for the point SDCC "
-                      "would try after a rejection) and simulations_ahead_used (those among the simulations), "
+                      "time times the threads it held, over one simulation's, simulation_s), simulations_ahead "
+                      "(run on a spare core for the point SDCC would try after a rejection) and "
+                      "simulations_ahead_used (those among the simulations), "
                       "wall_time_s, history[{iteration, cost, max_violation, step, "
                       "simulations, gradient_evaluations, design (SI, null where the optimizer does not say)}]");
   command->add_option("--out", options->out,

@@ -65,17 +65,18 @@ TrackPoint Track::advance(const Segment& segment, const SegmentStart& start, dou
   point.curvature = k0 + dk * sigma;
   point.curvature_derivative = dk;
   point.heading = heading + k0 * sigma + 0.5 * dk * sigma * sigma;
-  const Eigen::Vector3d tangent(start.cos_heading, start.sin_heading, 0.0), normal(-start.sin_heading, start.cos_heading, 0.0);
-  if (segment.type != SegmentType::Clothoid && k0 == 0.0) {  // a straight line: the start's tangent throughout
-    point.cos_heading = start.cos_heading;
-    point.sin_heading = start.sin_heading;
-    point.position = position + sigma * tangent;
-    return point;
-  }
   if (segment.type != SegmentType::Clothoid) {
+    const Eigen::Vector3d tangent(start.cos_heading, start.sin_heading, 0.0);
+    if (k0 == 0.0) {  // a straight line: the start's tangent throughout
+      point.cos_heading = start.cos_heading;
+      point.sin_heading = start.sin_heading;
+      point.position = position + sigma * tangent;
+      return point;
+    }
     // A circular arc turning by θ = κσ: the start's tangent turned by θ, and the chord
     // (sin θ t₀ + (1 − cos θ) n₀)/κ, one sine and cosine for both. 1 − cos θ is sin²θ/(1 + cos θ)
     // while cos θ > 0, with no cancellation for small θ.
+    const Eigen::Vector3d normal(-start.sin_heading, start.cos_heading, 0.0);
     const double turn = k0 * sigma;
     const double sin_turn = std::sin(turn), cos_turn = std::cos(turn);
     const double versine = cos_turn > 0.0 ? sin_turn * sin_turn / (1.0 + cos_turn) : 1.0 - cos_turn;

@@ -1,8 +1,10 @@
-// Threads that concurrent runs lend one another. `mbsopt compare` runs several optimizations at
-// once, one thread each; when no run is left to start, a thread that finishes its run is idle, and
-// the runs still going borrow it for their gradients and their simulations ahead (DesignNlp).
-// Borrowing never waits: it takes what is idle at that moment. The results never depend on what
-// was borrowed (the gradients and the simulations are the same to the bit on any number of threads).
+// Idle threads, lent for as long as a piece of work needs them. `mbsopt compare` runs several
+// optimizations at once, one thread each; when no run is left to start, a thread that finishes its
+// run is idle, and the runs still going borrow it for their gradients. A lone run (`mbsopt
+// optimize`) holds a budget of its own spare threads, for its gradients and its simulations ahead
+// (DesignNlp). Borrowing never waits: it takes what is idle at that moment. The results never
+// depend on what was borrowed (gradients and simulations are the same to the bit on any number of
+// threads).
 #pragma once
 
 #include <algorithm>
