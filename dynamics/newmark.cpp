@@ -269,7 +269,7 @@ bool NewmarkIntegrator::closesLoopsAtPositionLevel() const {
 }
 
 double NewmarkIntegrator::incrementRoundoffFloor(double beta_h2) const {
-  // Needs roundoff_ to have measured the current geometry (relativeResidual). The closure rows'
+  // Needs roundoff_ to have measured the current geometry (measureScales). The closure rows'
   // round-off ε‖s‖ (positions, newton_convergence.hpp), divided by βh² as the rows are, and mapped
   // into q̈ through B⁺, whose gain is 1/σ_r, σ_r the smallest singular value the partition keeps;
   // and at least the round-off of the coordinates themselves, ε‖q‖∞ / βh² (a joint angle that has
@@ -313,9 +313,12 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     // Every row of (37) at its round-off level: this iterate is a solution (newton_convergence.hpp).
     // The closure rows are positions here; with the paper's acceleration-level closure (38) they
     // have no such scale, and only the increment test below applies.
+    if (k == 0) {
+      roundoff_.measureScales(model_, ws_, lambda_);
+      roundoff_floor = incrementRoundoffFloor(beta_h2);
+    }
     last_relative_residual_ =
-        roundoff_.relativeResidual(model_, ws_, r_free_, free_, lambda_, position_closure ? closure_ : no_rows_);
-    if (k == 0) roundoff_floor = incrementRoundoffFloor(beta_h2);
+        roundoff_.relativeResidual(model_, ws_, r_free_, free_, position_closure ? closure_ : no_rows_);
     if (position_closure || model_.constraintCount() == 0) {
       // Not before the first iteration matrix exists: the next steps reuse its tangent part.
       if (last_relative_residual_ <= roundoff_.factor() && J_.size() > 0) {

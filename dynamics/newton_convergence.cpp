@@ -78,11 +78,13 @@ void NewtonRoundoff::setWrenchMagnitudes(const Model& model, const Workspace<dou
   }
 }
 
-double NewtonRoundoff::relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
-                                        const std::vector<int>& free, const Eigen::VectorXd& lambda,
-                                        const Eigen::VectorXd& closure) {
+void NewtonRoundoff::measureScales(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda) {
   frameReach(model, ws, reach_, depth_);
   setWrenchMagnitudes(model, ws, lambda);
+}
+
+double NewtonRoundoff::relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
+                                        const std::vector<int>& free, const Eigen::VectorXd& closure) const {
   double largest = 0.0;
   for (std::size_t j = 0; j < free.size(); ++j) {
     const auto element = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(free[j])].element);

@@ -44,18 +44,23 @@ class NewtonRoundoff {
   /// Reads the bodies' parameters once: `model` must stay unchanged while this is used with it.
   explicit NewtonRoundoff(const Model& model);
 
-  /// The largest ratio |row| / (ε · its scale) over the free rows r of the residual and the closure
-  /// rows `closure` (positions and orthogonalities, not divided by βh²), with λ the multipliers.
-  /// ws must hold the kinematics at Acceleration level of the state r was evaluated at. A value
-  /// below factor() means every row is at round-off. `closure` may be empty (closure rows not tested).
-  double relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
-                          const std::vector<int>& free, const Eigen::VectorXd& lambda,
-                          const Eigen::VectorXd& closure);
+  /// Measures the rows' scales (the frames' reach and depth, the running error bounds Sᵢ) at the
+  /// state in ws (kinematics at Acceleration level) with λ the multipliers. The Newton iterates of
+  /// one step differ by increments that move positions by ~ε relative and accelerations by far less
+  /// than the factor 64 of the test: the scales of a step's first iterate serve all its iterates.
+  void measureScales(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda);
 
-  /// ε ‖s‖₂ with s the closure rows' scales (ρ_a + ρ_b, d_a + d_b + 1) at the state of the last
-  /// relativeResidual call: how far round-off alone can leave the closure rows from zero. Divided by
-  /// βh² and by B's smallest retained singular value (when above 1), it is how far that round-off
-  /// moves a Newton increment of q̈ (the floor below which increments carry no information).
+  /// The largest ratio |row| / (ε · its scale) over the free rows r of the residual and the closure
+  /// rows `closure` (positions and orthogonalities, not divided by βh²), with the scales of the last
+  /// measureScales. ws must hold the joint axes of that state. A value below factor() means every
+  /// row is at round-off. `closure` may be empty (closure rows not tested).
+  double relativeResidual(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& r,
+                          const std::vector<int>& free, const Eigen::VectorXd& closure) const;
+
+  /// ε ‖s‖₂ with s the closure rows' scales (ρ_a + ρ_b, d_a + d_b + 1) of the last measureScales:
+  /// how far round-off alone can leave the closure rows from zero. Divided by βh² and by B's
+  /// smallest retained singular value (when above 1), it is how far that round-off moves a Newton
+  /// increment of q̈ (the floor below which increments carry no information).
   double closureRoundoff(const Model& model) const;
 
   /// The factor c of this model: kFactor, or its number of frames when that is larger. A row sums up
