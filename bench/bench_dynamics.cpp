@@ -169,6 +169,13 @@ void BM_ChainTangentMatrices(benchmark::State& bench) {
 }
 BENCHMARK(BM_ChainTangentMatrices)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Complexity();
 
+/// One Newmark step of the open chain (no loop: Newton's target is its tolerance, and its start
+/// the degree-6 least-squares extrapolation, newton_predictor.hpp).
+void BM_ChainNewmarkStep(benchmark::State& bench) {
+  timeNewmarkSteps(bench, planarChainScene(static_cast<int>(bench.range(0))));
+}
+BENCHMARK(BM_ChainNewmarkStep)->Arg(8)->Arg(32)->Unit(benchmark::kMicrosecond);
+
 /// One Newmark step of the closed chain (position-level closure, the defaults): Newton on the
 /// augmented system, B and its SVD, the projections.
 void BM_ClosedChainNewmarkStep(benchmark::State& bench) {

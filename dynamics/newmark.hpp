@@ -22,6 +22,7 @@
 
 #include "dynamics/model.hpp"
 #include "dynamics/newton_convergence.hpp"
+#include "dynamics/newton_predictor.hpp"
 #include "dynamics/run_checks.hpp"
 #include "dynamics/scalar.hpp"
 #include "dynamics/svd_partition.hpp"
@@ -234,8 +235,8 @@ class NewmarkIntegrator {
   Eigen::VectorXd q_pred_, v_pred_;  // full-size predictors q̃, ṽ
   Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
   Eigen::VectorXd a_accepted_;  ///< q̈ₙ, the start of the last retry
-  Eigen::VectorXd a_newton_, a_newton_previous_, a_newton_before_;  ///< converged Newton accelerations before projection
-  int newton_history_ = 0;
+  NewtonPredictor predictor_;          ///< Newton's start, from its converged free accelerations
+  Eigen::VectorXd free_accelerations_;  ///< scratch: q̈ on the free coordinates, for predictor_
   Eigen::VectorXd f_, closure_, r_free_, da_, dlambda_, correction_;
   Eigen::VectorXd position_closure_;  ///< b(q) at the last accepted q (or at q₀)
   Eigen::MatrixXd B_free_;
@@ -243,8 +244,8 @@ class NewmarkIntegrator {
   double t0_ = 0.0;
   double closure_error_ = 0.0;
   int last_iterations_ = 0;
-  double last_relative_residual_ = 0.0;
-  double acceleration_scale_ = 0.0;  ///< ‖q̈ₙ‖∞ over the free coordinates, the last accepted step's  ///< of the last residual evaluated, in units of ε (NewtonRoundoff)
+  double last_relative_residual_ = 0.0;  ///< of the last residual evaluated, in units of ε (NewtonRoundoff)
+  double acceleration_scale_ = 0.0;  ///< ‖q̈ₙ‖∞ over the free coordinates, the last accepted step's
   double contraction_ = 0.0;  ///< last measured ‖Δₖ‖/‖Δₖ₋₁‖ of the Newton iteration (0: unknown)
   IntegratorStatistics stats_;
 };

@@ -111,7 +111,11 @@ TEST(Allocations, TramwayStepsAllocateNothing) {
 }
 
 TEST(Allocations, OpenChainStepsAllocateNothingEvenWhenTheTangentsAreRefreshed) {
-  const CountedSteps counted = countSteps(planarChainScene(8), 10, 200);
+  // At h = 5 ms the chain's modified Newton slows down on tens of these steps and refreshes the
+  // tangents (at 1 ms, started from its extrapolated solutions, it hardly ever does).
+  Scene scene = planarChainScene(8);
+  scene.settings.step = 5e-3;
+  const CountedSteps counted = countSteps(scene, 10, 200);
   EXPECT_EQ(counted.allocations, 0);
   EXPECT_GT(counted.tangent_refreshes, 0);  // the AD passes were among the counted steps
 }
