@@ -44,7 +44,8 @@ constexpr int kClosedPredictorDegree = 2, kClosedPredictorWindow = 3;
 constexpr int kOpenPredictorDegree = 6, kOpenPredictorWindow = 12;
 // A contraction rate is measured only from increments this far above the round-off floor: the next
 // increment carries round-off of 0.1-0.2 of the floor (measured on the tram), which must not pass
-// for a slow rate.
+// for a slow rate. Without position-level closure the floor is 0 and every rate counts: there the
+// target, the tolerance, lies far above the increments' round-off.
 constexpr double kRateMeasurable = 16.0;
 
 }  // namespace
@@ -110,6 +111,7 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
   const Eigen::Index n = model.coordinateCount();
   q_ = v_ = a_ = Eigen::VectorXd::Zero(n);
   r_free_.resize(static_cast<Eigen::Index>(free_.size()));
+  free_accelerations_.resize(static_cast<Eigen::Index>(free_.size()));
   lambda_ = Eigen::VectorXd::Zero(model.constraintCount());
 }
 
@@ -374,8 +376,8 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     const double scale = std::min(largest, 2.0 * acceleration_scale_ + 1.0);
     const double target = std::max(settings_.newton_tolerance * (1.0 + scale), roundoff_floor);
     // The contraction rate, where the previous increment stands far enough above the round-off
-    // floor for this one not to be noise; it is measured again every kRateCheckInterval steps so
-    // that it cannot go stale.
+    // floor for this one not to be noise. Every kRateCheckInterval steps no first iterate is
+    // accepted on it, so that the rate is measured again wherever the increments allow.
     if (k > 0 && previous >= kRateMeasurable * roundoff_floor) contraction_ = increment / previous;
     const bool rate_known = contraction_ > 0.0 && step_count_ % kRateCheckInterval != 0;
     // An iterate's error is about the contraction rate times its increment. An increment below the
@@ -436,8 +438,9 @@ void NewmarkIntegrator::step() {
   q_pred_ = q_ + h * v_ + (0.5 - beta) * h * h * a_;  // (32), the parts known at tₙ
   v_pred_ = v_ + (1.0 - gamma) * h * a_;
   // Newton starts from an extrapolation of its own last solutions before projection
-  // (newton_predictor.hpp), the multipliers from a linear one (they do not enter the increments of
-  // q̈: V₂ᵀBᵀ = 0); the converged solution does not depend on the start, only the iteration count does.
+  // (newton_predictor.hpp), the multipliers from a linear one (they hardly enter the increments of
+  // q̈: V₂ᵀBᵀ = 0 for the partition's B); the solution depends on the start only within the
+  // iteration's target, the iteration count does.
   a_start_ = a_;
   if (predictor_.predict(free_accelerations_))
     for (std::size_t k = 0; k < free_.size(); ++k) a_start_[free_[k]] = free_accelerations_[static_cast<Eigen::Index>(k)];
@@ -467,7 +470,6 @@ void NewmarkIntegrator::step() {
         fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) + " iterations", r_free_);
     }
   }
-  free_accelerations_.resize(static_cast<Eigen::Index>(free_.size()));
   for (std::size_t k = 0; k < free_.size(); ++k) free_accelerations_[static_cast<Eigen::Index>(k)] = a_[free_[k]];
   predictor_.record(free_accelerations_);
   v_unprojected_ = v_;

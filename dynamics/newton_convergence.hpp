@@ -46,8 +46,8 @@ class NewtonRoundoff {
 
   /// Measures the rows' scales (the frames' reach and depth, the running error bounds Sᵢ) at the
   /// state in ws (kinematics at Acceleration level) with λ the multipliers. The Newton iterates of
-  /// one step differ by increments that move positions by ~ε relative and accelerations by far less
-  /// than the factor 64 of the test: the scales of a step's first iterate serve all its iterates.
+  /// one step change these scales (reaches, body wrenches, multipliers) by a relative amount far
+  /// below the test's factor 64: the scales of a step's first iterate serve all its iterates.
   void measureScales(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda);
 
   /// The largest ratio |row| / (ε · its scale) over the free rows r of the residual and the closure
