@@ -1,5 +1,6 @@
 #include "dynamics/kinematics.hpp"
 #include "dynamics/overloaded.hpp"
+#include "dynamics/planar_kinematics.hpp"
 
 #include <cmath>
 
@@ -74,8 +75,8 @@ void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
 }  // namespace
 
 template <class Scalar>
-void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
-                KinematicsLevel level) {
+void spatialFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                       KinematicsLevel level) {
   const bool accelerations = level == KinematicsLevel::Acceleration;
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
@@ -109,7 +110,7 @@ void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>
 }
 
 template <class Scalar>
-void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a) {
+void spatialFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a) {
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
@@ -128,6 +129,19 @@ void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const V
     ws.angular_acceleration[s] = alpha_e + ws.motion_angular[k] * ai;
     ws.acceleration[s] = ws.acceleration[e] + alpha_e.cross(r) + ws.motion_linear[k] * ai;
   }
+}
+
+template <class Scalar>
+void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                KinematicsLevel level) {
+  if (model.planar()) planarFrameRates(model, ws, v, a, level);
+  else spatialFrameRates(model, ws, v, a, level);
+}
+
+template <class Scalar>
+void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a) {
+  if (model.planar()) planarFrameAccelerationsAtRest(model, ws, a);
+  else spatialFrameAccelerationsAtRest(model, ws, a);
 }
 
 template <class Scalar>
@@ -156,6 +170,12 @@ void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, Fr
   ws.velocity[f] = ws.motion_linear[k] + ws.motion_angular[k].cross(ws.position[f] - ws.position[exit]);  // (20)
 }
 
+template void spatialFrameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
+                                        const VectorX<double>&, KinematicsLevel);
+template void spatialFrameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                          const VectorX<AdScalar>&, KinematicsLevel);
+template void spatialFrameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+template void spatialFrameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
 template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,
                                  KinematicsLevel);
 template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

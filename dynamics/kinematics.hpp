@@ -32,6 +32,14 @@ void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>
 /// frameRates(model, ws, 0, a, Acceleration), to the bit, at about a third of its products.
 template <class Scalar>
 void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a);
+/// The spatial recursions behind frameRates and frameAccelerationsAtRest, for any model; those two
+/// take the planar path (planar_kinematics.hpp) on a model that is planar (Model::planar) and these
+/// otherwise.
+template <class Scalar>
+void spatialFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                       KinematicsLevel level);
+template <class Scalar>
+void spatialFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a);
 /// Column `coordinate` of the velocity Jacobian of `frame`, into ws.angular_velocity[frame] and
 /// ws.velocity[frame]: its rates when that coordinate alone moves, at unit rate. Every other element
 /// is then rigid, so a frame the joint moves (`moved`: the joint is on its path from the ground)
@@ -39,6 +47,13 @@ void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const V
 /// the rotations, positions and joint axes in ws.
 void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, FrameIndex frame, bool moved);
 
+extern template void spatialFrameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
+                                               const VectorX<double>&, KinematicsLevel);
+extern template void spatialFrameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                                 const VectorX<AdScalar>&, KinematicsLevel);
+extern template void spatialFrameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+extern template void spatialFrameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&,
+                                                               const VectorX<AdScalar>&);
 extern template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                         const VectorX<double>&, KinematicsLevel);
 extern template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -122,9 +122,28 @@ void Model::checkNewName(const std::string& name) const {
     throw std::invalid_argument("the name '" + name + "' is used twice");
 }
 
+namespace {
+
+/// Whether an element keeps the motion of a frame in the xy plane of its entry frame (Model::planar).
+/// Exact comparisons: an axis a round-off away from z takes the general path, which is always right.
+bool movesInPlane(const ElementKind& kind) {
+  return std::visit(Overloaded{[](const Offset& o) {
+                                 return !o.rotates || (o.rotation(2, 2) == 1.0 && o.rotation(0, 2) == 0.0 &&
+                                                       o.rotation(1, 2) == 0.0 && o.rotation(2, 0) == 0.0 &&
+                                                       o.rotation(2, 1) == 0.0);
+                               },
+                               [](const RevoluteJoint& j) { return j.axis.x() == 0.0 && j.axis.y() == 0.0; },
+                               [](const PrismaticJoint& j) { return j.axis.z() == 0.0; },
+                               [](const CurveSliderJoint&) { return true; }},  // its track lies in the plane
+                    kind);
+}
+
+}  // namespace
+
 FrameIndex Model::addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active) {
   checkNewName(name);
   checkFrame(parent, name);
+  planar_ = planar_ && movesInPlane(kind);
   names_.push_back(name);
   const int element = static_cast<int>(elements_.size());
   const FrameIndex exit = frameCount();

@@ -242,6 +242,13 @@ class Model {
   int frameCount() const { return static_cast<int>(frames_.size()); }
   int coordinateCount() const { return static_cast<int>(coordinates_.size()); }
   int constraintCount() const { return constraint_count_; }
+  /// Whether every frame moves in the ground's xy plane, at any q: every rotation is about z (revolute
+  /// axes ±z, offsets that turn about z, curve sliders, whose tracks lie in the xy plane of their entry
+  /// frame) and every translation moves in that plane (prismatic axes without a z component; an offset
+  /// may lift a frame out of it, which moves rigidly with it). Angular velocities and accelerations are
+  /// then along z and linear ones in the plane, and the kinematics' rate stage takes its planar path
+  /// (dynamics/planar_kinematics.hpp).
+  bool planar() const { return planar_; }
   const std::vector<Frame>& frames() const { return frames_; }
   const std::vector<KinematicElement>& elements() const { return elements_; }
   const std::vector<Body>& bodies() const { return bodies_; }
@@ -313,6 +320,7 @@ class Model {
   std::vector<std::string> parameter_names_;
   ParameterVector3 gravity_;
   int constraint_count_ = 0;
+  bool planar_ = true;  ///< no element added so far moves a frame out of the xy plane
 };
 
 /// Number of closure equations of a cut joint.

@@ -1,0 +1,226 @@
+// The planar path of the kinematics' rate stage (dynamics/planar_kinematics.hpp):
+//   - which models take it (Model::planar): every shipped scene, whose joints all turn about z or
+//     slide in the xy plane (read from the files), and no model with one element that leaves the plane;
+//   - the premise it rests on: on a planar model the spatial recursion's out-of-plane rates are exact
+//     zeros, at any state;
+//   - that it computes the spatial recursion's in-plane rates, in double and in the derivative lanes of
+//     AD, at random states: the two add the same non-zero products in a different order, so they
+//     differ by round-off only. Each component is a sum along the frame's path of at most eight
+//     products per element, each bounded by the scale below (the largest rate or rate product of
+//     the state); with at most 40 elements on a path that is 320 roundings of at most ε·scale each,
+//     and the bound taken is 1024 ε·scale.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "dynamics/kinematics.hpp"
+#include "dynamics/model.hpp"
+#include "dynamics/planar_kinematics.hpp"
+#include "dynamics/track.hpp"
+#include "dynamics/workspace.hpp"
+#include "problems/scene_file.hpp"
+
+namespace mbsopt {
+namespace {
+
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+
+const std::vector<std::string> kShippedScenes = {
+    "pendulum", "double_pendulum", "four_bar", "slider_crank", "tramway", "tramway_track_chart",
+    "hard/pendulum_a01", "hard/n_four_bar_a02", "hard/andrews_squeezer"};
+
+Model shippedModel(const std::string& name) {
+  return loadScene(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml")).scene.model;
+}
+
+TEST(PlanarModel, EveryShippedSceneIsPlanar) {
+  for (const std::string& name : kShippedScenes) EXPECT_TRUE(shippedModel(name).planar()) << name;
+}
+
+TEST(PlanarModel, OneElementOutOfThePlaneMakesAModelSpatial) {
+  const auto chain = [](auto&& last) {
+    Model model;
+    FrameIndex frame = model.addRevolute("hinge", Model::ground, Eigen::Vector3d::UnitZ());
+    frame = model.addOffset("arm", frame, Eigen::Vector3d(1.0, 0.0, 0.3));  // lifted: still planar motion
+    EXPECT_TRUE(model.planar());
+    last(model, frame);
+    return model.planar();
+  };
+  const Eigen::Matrix3d about_z = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d about_x = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  EXPECT_TRUE(chain([](Model& m, FrameIndex f) { m.addRevolute("z", f, -Eigen::Vector3d::UnitZ()); }));
+  EXPECT_TRUE(chain([&](Model& m, FrameIndex f) { m.addOffset("turn", f, Eigen::Vector3d::Zero(), about_z); }));
+  EXPECT_TRUE(chain([](Model& m, FrameIndex f) { m.addPrismatic("slide", f, Eigen::Vector3d(1.0, 2.0, 0.0)); }));
+  EXPECT_FALSE(chain([](Model& m, FrameIndex f) { m.addRevolute("tilt", f, Eigen::Vector3d(0.0, 0.1, 1.0)); }));
+  EXPECT_FALSE(chain([&](Model& m, FrameIndex f) { m.addOffset("roll", f, Eigen::Vector3d::Zero(), about_x); }));
+  EXPECT_FALSE(chain([](Model& m, FrameIndex f) { m.addPrismatic("lift", f, Eigen::Vector3d(1.0, 0.0, 0.1)); }));
+}
+
+/// The largest velocity-like magnitude of the rates in ws (velocities, ω times the model's reach),
+/// and the same for accelerations (α and ω² times the reach): the scale of every product summed.
+struct RateScales {
+  double velocity = 0.0, acceleration = 0.0;
+};
+
+template <class Scalar>
+RateScales rateScales(const Workspace<Scalar>& ws) {
+  double reach = 0.0, w = 0.0, v = 0.0, alpha = 0.0, a = 0.0;
+  for (std::size_t k = 0; k < ws.position.size(); ++k) {
+    for (int i = 0; i < 3; ++i) {
+      reach = std::max(reach, std::abs(valueOf(ws.position[k][i])));
+      w = std::max(w, std::abs(valueOf(ws.angular_velocity[k][i])));
+      v = std::max(v, std::abs(valueOf(ws.velocity[k][i])));
+      alpha = std::max(alpha, std::abs(valueOf(ws.angular_acceleration[k][i])));
+      a = std::max(a, std::abs(valueOf(ws.acceleration[k][i])));
+    }
+  }
+  return {1.0 + v + w * (1.0 + reach), 1.0 + a + (alpha + w * w) * (1.0 + reach)};
+}
+
+/// The largest |derivative lane| of the same quantities, as a scale for the lanes' round-off.
+double laneScale(const Workspace<AdScalar>& ws) {
+  double out = 1.0;
+  for (std::size_t k = 0; k < ws.position.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      for (const auto* x : {&ws.position[k][i], &ws.angular_velocity[k][i], &ws.velocity[k][i],
+                            &ws.angular_acceleration[k][i], &ws.acceleration[k][i]})
+        out = std::max(out, x->derivatives().cwiseAbs().maxCoeff());
+  return out;
+}
+
+/// Component i of frame k's rate in both workspaces, and the spatial one's premise: exactly zero out of
+/// the plane (angular rates' x and y, linear rates' z).
+template <class Scalar>
+void expectSameRates(const std::vector<Vector3<Scalar>>& spatial, const std::vector<Vector3<Scalar>>& planar,
+                     bool angular, double value_tolerance, double lane_tolerance, const std::string& what) {
+  for (std::size_t k = 0; k < spatial.size(); ++k) {
+    for (int i = 0; i < 3; ++i) {
+      const bool in_plane = angular ? i == 2 : i < 2;
+      const std::string where = what + ", frame " + std::to_string(k) + ", component " + std::to_string(i);
+      if (!in_plane) {
+        EXPECT_EQ(valueOf(spatial[k][i]), 0.0) << where;
+        EXPECT_EQ(valueOf(planar[k][i]), 0.0) << where;
+      }
+      EXPECT_NEAR(valueOf(planar[k][i]), valueOf(spatial[k][i]), value_tolerance) << where;
+      if constexpr (!std::is_same_v<Scalar, double>) {
+        for (int j = 0; j < kMaxAdDirections; ++j) {
+          if (!in_plane) {
+            EXPECT_EQ(spatial[k][i].derivatives()[j], 0.0) << where << ", lane " << j;
+          }
+          EXPECT_NEAR(planar[k][i].derivatives()[j], spatial[k][i].derivatives()[j], lane_tolerance)
+              << where << ", lane " << j;
+        }
+      }
+    }
+  }
+}
+
+/// A random state of the model near q0: q0 + U(−1, 1), q̇ and q̈ in U(−3, 3); in AD, the lanes seeded
+/// with random directions in q, q̇ and q̈ at once.
+template <class Scalar>
+struct RandomState {
+  VectorX<Scalar> q, v, a;
+};
+
+template <class Scalar>
+RandomState<Scalar> randomState(const Eigen::VectorXd& q0, std::mt19937& generator) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto n = q0.size();
+  RandomState<Scalar> out{VectorX<Scalar>(n), VectorX<Scalar>(n), VectorX<Scalar>(n)};
+  for (Eigen::Index i = 0; i < n; ++i) {
+    out.q[i] = Scalar(q0[i] + unit(generator));
+    out.v[i] = Scalar(3.0 * unit(generator));
+    out.a[i] = Scalar(3.0 * unit(generator));
+    if constexpr (!std::is_same_v<Scalar, double>) {
+      for (VectorX<Scalar>* x : {&out.q, &out.v, &out.a})
+        for (int j = 0; j < kMaxAdDirections; ++j) (*x)[i].derivatives()[j] = unit(generator);
+    }
+  }
+  return out;
+}
+
+/// A planar model whose every kind of element sits on a moving frame (the shipped scenes slide only
+/// on fixed frames, where 2 ω_e × v_rel and the slider's κ ṡ² terms meet no rotation): a hinge, an
+/// offset turned about z and lifted out of the plane, a prismatic joint on it, a hinge about −z, a curve
+/// slider that follows its track (a clothoid into an arc) and one that only translates on another.
+Model everyPlanarElement() {
+  Model model;
+  FrameIndex frame = model.addRevolute("hinge", Model::ground, Eigen::Vector3d::UnitZ());
+  frame = model.addOffset("arm", frame, Eigen::Vector3d(1.0, 0.2, 0.3),
+                          Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix());
+  frame = model.addPrismatic("slide", frame, Eigen::Vector3d(1.0, 2.0, 0.0));
+  frame = model.addRevolute("swivel", frame, -Eigen::Vector3d::UnitZ());
+  const auto track = std::make_shared<Track>(Eigen::Vector3d(0.1, -0.2, 0.0), 0.3);
+  track->straight(0.5).clothoid(1.0, 2.0).arc(0.5, 1.0);
+  frame = model.addCurveSlider("rider", frame, track, SliderOrientation::FollowTrack);
+  frame = model.addOffset("tail", frame, Eigen::Vector3d(-0.3, 0.5, 0.0));
+  model.addCurveSlider("shuttle", frame, track, SliderOrientation::Translate);
+  return model;
+}
+
+template <class Scalar>
+void comparePaths(const Model& model, const Eigen::VectorXd& q0, const std::string& name) {
+  std::mt19937 generator(20261125);
+  for (int trial = 0; trial < 20; ++trial) {
+    const RandomState<Scalar> x = randomState<Scalar>(q0, generator);
+    Workspace<Scalar> spatial(model), planar(model);
+    // Rotations, positions and the joints' axes (which the position level leaves out), then each path.
+    forwardKinematics(model, spatial, x.q, x.v, x.a, KinematicsLevel::Velocity);
+    forwardKinematics(model, planar, x.q, x.v, x.a, KinematicsLevel::Velocity);
+    for (const KinematicsLevel level : {KinematicsLevel::Velocity, KinematicsLevel::Acceleration}) {
+      spatialFrameRates(model, spatial, x.v, x.a, level);
+      planarFrameRates(model, planar, x.v, x.a, level);
+      const RateScales scales = rateScales(spatial);
+      double lanes = 1.0;
+      if constexpr (!std::is_same_v<Scalar, double>) lanes = laneScale(spatial);
+      const std::string what = name + ", trial " + std::to_string(trial);
+      expectSameRates(spatial.angular_velocity, planar.angular_velocity, true, 1024 * kEpsilon * scales.velocity,
+                      1024 * kEpsilon * lanes, what + ", ω");
+      expectSameRates(spatial.velocity, planar.velocity, false, 1024 * kEpsilon * scales.velocity,
+                      1024 * kEpsilon * lanes, what + ", v");
+      if (level != KinematicsLevel::Acceleration) continue;
+      expectSameRates(spatial.angular_acceleration, planar.angular_acceleration, true,
+                      1024 * kEpsilon * scales.acceleration, 1024 * kEpsilon * lanes, what + ", α");
+      expectSameRates(spatial.acceleration, planar.acceleration, false, 1024 * kEpsilon * scales.acceleration,
+                      1024 * kEpsilon * lanes, what + ", a");
+    }
+    spatialFrameAccelerationsAtRest(model, spatial, x.a);
+    planarFrameAccelerationsAtRest(model, planar, x.a);
+    const RateScales scales = rateScales(spatial);
+    double lanes = 1.0;
+    if constexpr (!std::is_same_v<Scalar, double>) lanes = laneScale(spatial);
+    const std::string what = name + ", trial " + std::to_string(trial) + ", at rest";
+    expectSameRates(spatial.angular_velocity, planar.angular_velocity, true, 0.0, 0.0, what + ", ω");
+    expectSameRates(spatial.velocity, planar.velocity, false, 0.0, 0.0, what + ", v");
+    expectSameRates(spatial.angular_acceleration, planar.angular_acceleration, true,
+                    1024 * kEpsilon * scales.acceleration, 1024 * kEpsilon * lanes, what + ", α");
+    expectSameRates(spatial.acceleration, planar.acceleration, false, 1024 * kEpsilon * scales.acceleration,
+                    1024 * kEpsilon * lanes, what + ", a");
+  }
+}
+
+template <class Scalar>
+void compareOnEveryModel() {
+  for (const std::string& name : kShippedScenes) {
+    const LoadedScene loaded = loadScene(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml"));
+    comparePaths<Scalar>(loaded.scene.model, loaded.scene.q0, name);
+  }
+  const Model model = everyPlanarElement();
+  ASSERT_TRUE(model.planar());
+  comparePaths<Scalar>(model, Eigen::VectorXd::Constant(model.coordinateCount(), 0.7), "every planar element");
+}
+
+TEST(PlanarKinematics, RatesAreThoseOfTheSpatialRecursion) { compareOnEveryModel<double>(); }
+
+TEST(PlanarKinematics, DerivativeLanesAreThoseOfTheSpatialRecursion) { compareOnEveryModel<AdScalar>(); }
+
+}  // namespace
+}  // namespace mbsopt
