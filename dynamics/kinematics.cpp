@@ -1,6 +1,6 @@
 #include "dynamics/kinematics.hpp"
 #include "dynamics/overloaded.hpp"
-#include "dynamics/planar_kinematics.hpp"
+#include "dynamics/planar_recursions.hpp"
 
 #include <cmath>
 

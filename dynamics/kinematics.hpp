@@ -33,7 +33,7 @@ void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>
 template <class Scalar>
 void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a);
 /// The spatial recursions behind frameRates and frameAccelerationsAtRest, for any model; those two
-/// take the planar path (planar_kinematics.hpp) on a model that is planar (Model::planar) and these
+/// take the planar path (planar_recursions.hpp) on a model that is planar (Model::planar) and these
 /// otherwise.
 template <class Scalar>
 void spatialFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,

@@ -247,7 +247,7 @@ class Model {
   /// frame) and every translation moves in that plane (prismatic axes without a z component; an offset
   /// may lift a frame out of it, which moves rigidly with it). Angular velocities and accelerations are
   /// then along z and linear ones in the plane, and the kinematics' rate stage takes its planar path
-  /// (dynamics/planar_kinematics.hpp).
+  /// (dynamics/planar_recursions.hpp).
   bool planar() const { return planar_; }
   const std::vector<Frame>& frames() const { return frames_; }
   const std::vector<KinematicElement>& elements() const { return elements_; }

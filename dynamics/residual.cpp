@@ -7,6 +7,7 @@
 
 #include "dynamics/closure.hpp"
 #include "dynamics/overloaded.hpp"
+#include "dynamics/planar_recursions.hpp"
 
 namespace mbsopt {
 
@@ -31,6 +32,7 @@ void updateBodyAxes(const Model& model, Workspace<Scalar>& ws) {
     const Body& body = bodies[i];
     const Matrix3<Scalar>& R = ws.rotation[static_cast<std::size_t>(body.frame)];
     ws.body_centre[i] = R * parameter(model, ws, body.centre_of_mass);
+    if (model.planar()) continue;  // the planar wrenches read I_zz alone, the same in every axes about z
     Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
     body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
     ws.body_inertia[i] = R * body_inertia * R.transpose();
@@ -43,6 +45,7 @@ template <class Scalar>
 void addBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
   const auto& bodies = model.bodies();
   updateBodyAxes(model, ws);
+  if (model.planar()) return planarBodyWrenches(model, ws, g, motion == FrameMotion::Moving);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const auto k = static_cast<std::size_t>(body.frame);
@@ -132,6 +135,7 @@ void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scal
 template <class Scalar>
 void addElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<Scalar>& f) {
   const auto& elements = model.elements();
+  if (model.planar()) return planarElementResiduals(model, ws, f);
   for (std::size_t k = elements.size(); k-- > 0;) {
     const KinematicElement& element = elements[k];
     const auto e = static_cast<std::size_t>(element.entry);

@@ -1,4 +1,4 @@
-// The planar path of the kinematics' rate stage (dynamics/planar_kinematics.hpp):
+// The planar path of the kinematics' rate stage (dynamics/planar_recursions.hpp):
 //   - which models take it (Model::planar): every shipped scene, whose joints all turn about z or
 //     slide in the xy plane (read from the files), and no model with one element that leaves the plane;
 //   - the premise it rests on: on a planar model the spatial recursion's out-of-plane rates are exact
@@ -15,15 +15,19 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "dynamics/kinematics.hpp"
 #include "dynamics/model.hpp"
-#include "dynamics/planar_kinematics.hpp"
+#include "dynamics/planar_recursions.hpp"
+#include "dynamics/residual.hpp"
+#include "sensitivity/forward_ad.hpp"
 #include "dynamics/track.hpp"
 #include "dynamics/workspace.hpp"
 #include "problems/scene_file.hpp"
@@ -221,6 +225,110 @@ void compareOnEveryModel() {
 TEST(PlanarKinematics, RatesAreThoseOfTheSpatialRecursion) { compareOnEveryModel<double>(); }
 
 TEST(PlanarKinematics, DerivativeLanesAreThoseOfTheSpatialRecursion) { compareOnEveryModel<AdScalar>(); }
+
+// The residual is a list of generalised forces: it does not change when the whole mechanism and its
+// gravity are turned. Hung from a frame turned by R0 about an oblique axis, a planar scene takes the
+// spatial recursions, and at the same (q, q̇, q̈) with its multipliers turned the same way (a cut's
+// coincidence rows p_a − p_b are in ground axes; its orthogonality rows u·w are invariant) its
+// residual and the residual's derivatives must be the planar model's. Both sum the same wrenches,
+// once in other axes: each row is a sum of at most a few hundred products, each bounded by the
+// scale of the evaluation (its largest row or derivative), so they differ by a few hundred
+// roundings of ε·scale at most; the bound taken is 4096 ε·scale.
+
+const Eigen::Matrix3d kTilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+
+/// The scene's text with every reference to the ground moved to a frame "tilted", an offset turned by
+/// kTilt under the ground, and its gravity turned by kTilt.
+std::string tiltedScene(std::string text) {
+  for (std::size_t at = text.find(": ground"); at != std::string::npos; at = text.find(": ground", at))
+    text.replace(at, 8, ": tilted");
+  const std::size_t elements = text.find("\nelements:\n");
+  EXPECT_NE(elements, std::string::npos);
+  text.insert(elements + 11,
+              "  - {name: tilted, type: offset, parent: ground, rotation: {axis: [1, 2, 3], angle: 0.7}}\n");
+  const std::size_t gravity = text.find("\ngravity: [");
+  if (gravity != std::string::npos) {
+    const std::size_t begin = gravity + 11, end = text.find(']', begin);
+    Eigen::Vector3d g;
+    EXPECT_EQ(std::sscanf(text.substr(begin, end - begin).c_str(), "%lf, %lf, %lf", &g.x(), &g.y(), &g.z()), 3);
+    const Eigen::Vector3d turned = kTilt * g;
+    char numbers[128];
+    std::snprintf(numbers, sizeof numbers, "%.17g, %.17g, %.17g", turned.x(), turned.y(), turned.z());
+    text.replace(begin, end - begin, numbers);
+  }
+  return text;
+}
+
+/// λ for the tilted model: each cut's coincidence rows turned by kTilt.
+Eigen::VectorXd tiltedMultipliers(const Model& model, Eigen::VectorXd lambda) {
+  Eigen::Index row = 0;
+  for (const CutJoint& cut : model.cuts()) {
+    lambda.segment<3>(row) = kTilt * lambda.segment<3>(row);
+    row += equationCount(cut.kind);
+  }
+  return lambda;
+}
+
+double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+
+TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
+  for (const std::string& name : kShippedScenes) {
+    const SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
+    const LoadedScene planar = loadScene(source);
+    const LoadedScene turned = loadScene({source.path, tiltedScene(source.text)});
+    const Model& a = planar.scene.model;
+    const Model& b = turned.scene.model;
+    ASSERT_TRUE(a.planar()) << name;
+    ASSERT_FALSE(b.planar()) << name;
+    ASSERT_EQ(a.coordinateCount(), b.coordinateCount()) << name;
+    std::mt19937 generator(20261125);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const std::vector<AdInput> inputs = adInputs({adInputs(AdInput::Kind::Position, allCoordinates(a)),
+                                                  adInputs(AdInput::Kind::Velocity, allCoordinates(a)),
+                                                  adInputs(AdInput::Kind::Acceleration, allCoordinates(a))});
+    Workspace<double> wa(a), wb(b);
+    Workspace<AdScalar> ada(a), adb(b);
+    for (int trial = 0; trial < 10; ++trial) {
+      const RandomState<double> x = randomState<double>(planar.scene.q0, generator);
+      Eigen::VectorXd lambda(a.constraintCount());
+      for (Eigen::Index i = 0; i < lambda.size(); ++i) lambda[i] = 100.0 * unit(generator);
+      const Eigen::VectorXd lambda_b = tiltedMultipliers(a, lambda);
+      const double t = 0.5 + unit(generator);
+      Eigen::VectorXd fa, fb;
+      residual(a, wa, x.q, x.v, x.a, lambda, t, fa);
+      residual(b, wb, x.q, x.v, x.a, lambda_b, t, fb);
+      const std::string what = name + ", trial " + std::to_string(trial);
+      const double scale = 1.0 + std::max(largest(fa), largest(fb));
+      EXPECT_LE(largest(fa - fb), 4096 * kEpsilon * scale) << what << ": f " << fa.transpose() << " against " << fb.transpose();
+      const Eigen::MatrixXd ja = residualJacobian(a, ada, x.q, x.v, x.a, lambda, t, inputs, {});
+      const Eigen::MatrixXd jb = residualJacobian(b, adb, x.q, x.v, x.a, lambda_b, t, inputs, {});
+      const double lanes = 1.0 + std::max(largest(ja), largest(jb));
+      EXPECT_LE(largest(ja - jb), 4096 * kEpsilon * lanes) << what << ": ∂f/∂(q, q̇, q̈)";
+      // M(q) q̈ + B(q)ᵀλ alone (the projections' terms), at rest, with its derivatives in q.
+      const Eigen::Index seeded = std::min<Eigen::Index>(a.coordinateCount(), kMaxAdDirections);
+      VectorX<AdScalar> q, zero, acceleration, multipliers_a, multipliers_b, ga, gb;
+      seedVector(x.q, 0, 0, seeded, q);
+      seedVector(Eigen::VectorXd::Zero(x.q.size()), 0, 0, 0, zero);
+      seedVector(x.a, 0, 0, 0, acceleration);
+      seedVector(lambda, 0, 0, 0, multipliers_a);
+      seedVector(lambda_b, 0, 0, 0, multipliers_b);
+      for (auto [model, ws, multipliers, g] : {std::tuple{&a, &ada, &multipliers_a, &ga}, std::tuple{&b, &adb, &multipliers_b, &gb}}) {
+        forwardKinematics(*model, *ws, q, zero, acceleration, KinematicsLevel::Velocity);  // geometry and joint axes
+        frameAccelerationsAtRest(*model, *ws, acceleration);
+        inertialAndLoopForcesFromKinematics(*model, *ws, *multipliers, *g);
+      }
+      Eigen::MatrixXd rest_a(ga.size(), 1 + kMaxAdDirections), rest_b(gb.size(), 1 + kMaxAdDirections);
+      for (Eigen::Index i = 0; i < ga.size(); ++i) {
+        rest_a(i, 0) = ga[i].value();
+        rest_a.row(i).tail(kMaxAdDirections) = ga[i].derivatives().transpose();
+        rest_b(i, 0) = gb[i].value();
+        rest_b.row(i).tail(kMaxAdDirections) = gb[i].derivatives().transpose();
+      }
+      const double rest_scale = 1.0 + std::max(largest(rest_a), largest(rest_b));
+      EXPECT_LE(largest(rest_a - rest_b), 4096 * kEpsilon * rest_scale) << what << ": M q̈ + Bᵀλ";
+    }
+  }
+}
 
 }  // namespace
 }  // namespace mbsopt

@@ -1,4 +1,4 @@
-#include "dynamics/planar_kinematics.hpp"
+#include "dynamics/planar_recursions.hpp"
 
 namespace mbsopt {
 
@@ -78,11 +78,59 @@ void planarFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, c
   }
 }
 
+template <class Scalar>
+void planarBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, bool moving) {
+  const auto& bodies = model.bodies();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
+    const auto k = static_cast<std::size_t>(body.frame);
+    const Scalar& alpha = ws.angular_acceleration[k].z();
+    const Scalar& cx = ws.body_centre[i].x();
+    const Scalar& cy = ws.body_centre[i].y();
+    const Scalar mass = parameter(model, ws, body.mass);
+    Scalar fx, fy;
+    if (moving) {
+      const Scalar& w = ws.angular_velocity[k].z();
+      const Scalar w2 = w * w;
+      fx = mass * ((ws.acceleration[k].x() - alpha * cy - w2 * cx) - g.x());
+      fy = mass * ((ws.acceleration[k].y() + alpha * cx - w2 * cy) - g.y());
+    } else {
+      fx = mass * ((ws.acceleration[k].x() - alpha * cy) - g.x());
+      fy = mass * ((ws.acceleration[k].y() + alpha * cx) - g.y());
+    }
+    ws.force[k].x() += fx;
+    ws.force[k].y() += fy;
+    ws.moment[k].z() += parameter(model, ws, body.moments_of_inertia[2]) * alpha + (cx * fy - cy * fx);
+  }
+}
+
+template <class Scalar>
+void planarElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<Scalar>& f) {
+  const auto& elements = model.elements();
+  for (std::size_t k = elements.size(); k-- > 0;) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    const Scalar& fx = ws.force[s].x();
+    const Scalar& fy = ws.force[s].y();
+    const Scalar& mz = ws.moment[s].z();
+    if (element.coordinate >= 0)  // (24)
+      f[element.coordinate] += ws.motion_linear[k].x() * fx + ws.motion_linear[k].y() * fy + ws.motion_angular[k].z() * mz;
+    ws.moment[e].z() += mz + ((ws.position[s].x() - ws.position[e].x()) * fy - (ws.position[s].y() - ws.position[e].y()) * fx);
+    ws.force[e].x() += fx;
+    ws.force[e].y() += fy;
+  }
+}
+
 template void planarFrameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                        const VectorX<double>&, KinematicsLevel);
 template void planarFrameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                          const VectorX<AdScalar>&, KinematicsLevel);
 template void planarFrameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 template void planarFrameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
+template void planarBodyWrenches<double>(const Model&, Workspace<double>&, const Vector3<double>&, bool);
+template void planarBodyWrenches<AdScalar>(const Model&, Workspace<AdScalar>&, const Vector3<AdScalar>&, bool);
+template void planarElementResiduals<double>(const Model&, Workspace<double>&, VectorX<double>&);
+template void planarElementResiduals<AdScalar>(const Model&, Workspace<AdScalar>&, VectorX<AdScalar>&);
 
 }  // namespace mbsopt
