@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
 
 #include "dynamics/closure.hpp"
@@ -223,6 +224,25 @@ void setConstant(const std::vector<From>& from, std::vector<To>& to) {
 
 void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdScalar>& to) {
   updateBodyAxes(model, from);
+  if (model.planar()) {
+    for (std::size_t k = 0; k < from.rotation.size(); ++k) {
+      for (const auto [i, j] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+        setConstant(from.rotation[k](i, j), to.rotation[k](i, j));
+      setConstant(from.position[k], to.position[k]);
+    }
+    for (std::size_t k = 0; k < from.motion_angular.size(); ++k) {
+      setConstant(from.motion_angular[k].z(), to.motion_angular[k].z());
+      setConstant(from.bias_angular[k].z(), to.bias_angular[k].z());
+      for (int i = 0; i < 2; ++i) {
+        setConstant(from.motion_linear[k][i], to.motion_linear[k][i]);
+        setConstant(from.bias_linear[k][i], to.bias_linear[k][i]);
+      }
+    }
+    setConstant(from.body_centre, to.body_centre);
+    setConstant(from.slider_track, to.slider_track);
+    to.body_axes_current = true;
+    return;
+  }
   setConstant(from.rotation, to.rotation);
   setConstant(from.position, to.position);
   setConstant(from.motion_angular, to.motion_angular);

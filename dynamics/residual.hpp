@@ -44,7 +44,10 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
 /// of an AD pass in `to`: its rotations, positions, joint axes and biases, curve sliders' tracks and
 /// body axes, with zero derivatives. For a pass that seeds neither q nor a model parameter, this
 /// stands in for the geometry stage, whose AD arithmetic would only carry zeros; frameRates then
-/// computes the rates on it.
+/// computes the rates on it. On a planar model only what changes with q is copied (the rotations'
+/// xy block, the positions, the in-plane components of the joints' axes and biases, R c; not R I Rᵀ,
+/// which the planar recursions do not read): the other entries are constants of the model that no
+/// stage ever changes in any workspace of it (1 and 0 in the rotations, 0 out of the plane).
 void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdScalar>& to);
 /// Whether the parameter p is the stiffness or the damping of a joint spring-damper, a point
 /// spring-damper or a track guidance: f is then linear in it, through that element alone.

@@ -26,6 +26,13 @@ Model checkedModel(const DesignProblem& problem, const Eigen::VectorXd& x) {
   return model;
 }
 
+/// out = x's entries at `rows`, reusing out's storage (an Eigen view indexed by a std::vector copies
+/// the vector, an allocation per call).
+void gather(const Eigen::VectorXd& x, const std::vector<int>& rows, Eigen::VectorXd& out) {
+  out.resize(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r) out[static_cast<Eigen::Index>(r)] = x[rows[r]];
+}
+
 /// out = the rows `rows` of source's columns [first, first + count), reusing out's storage.
 void copyRows(const Eigen::MatrixXd& source, const std::vector<int>& rows, Eigen::Index row_offset, Eigen::Index first,
               Eigen::Index count, Eigen::MatrixXd& out) {
@@ -98,7 +105,8 @@ void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::
   for (std::size_t j = 0; j < ad_parameter_.size(); ++j) {
     if (ad_parameter_[j] >= 0) continue;
     linearForceParameterColumn(model_, s.plain_ws, s.q, v, time(k), parameter_indices_[j], s.column);
-    parameters.col(static_cast<Eigen::Index>(j)) = s.column(model_.freeCoordinates());
+    gather(s.column, model_.freeCoordinates(), s.free_rows);
+    parameters.col(static_cast<Eigen::Index>(j)) = s.free_rows;
   }
 }
 
@@ -201,9 +209,13 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     s.jacobian_transposed = s.jacobian.transpose();
     s.transposed_svd.compute(s.jacobian_transposed);
     const double threshold = settings().svd_threshold;
-    s.plain_f = -s.mass * s.plain_correction_v(free);
+    gather(s.plain_correction_v, free, s.free_rows);
+    s.plain_f.noalias() = s.mass * s.free_rows;
+    s.plain_f = -s.plain_f;
     s.transposed_svd.solveLeastSquares(s.plain_f, threshold, s.plain_mu_v, s.svd_work);
-    s.plain_f = -s.mass * s.plain_correction_a(free);
+    gather(s.plain_correction_a, free, s.free_rows);
+    s.plain_f.noalias() = s.mass * s.free_rows;
+    s.plain_f = -s.plain_f;
     s.transposed_svd.solveLeastSquares(s.plain_f, threshold, s.plain_mu_a, s.svd_work);
   }
   // The constants of the passes.

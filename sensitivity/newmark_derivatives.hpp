@@ -136,9 +136,11 @@ class TrajectoryDerivatives {
     // The constants and intermediate results of pointAt's AD passes.
     VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, correction_v, correction_a;
     VectorX<AdScalar> f, closure_rates;
-    // pointAt's buffers in double: the projections' corrections and multipliers, Bᵀ and its SVD,
-    // the Jacobian of the AD pass; the sensors selected at a time point and their Jacobians.
-    Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column;
+    // pointAt's buffers in double: the projections' corrections and multipliers, a vector's free
+    // rows, Bᵀ and its SVD, the Jacobian of the AD pass; the sensors selected at a time point and
+    // their Jacobians.
+    Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column,
+        free_rows;
     Eigen::MatrixXd jacobian_transposed, pass_jacobian;
     OneSidedJacobiSvd transposed_svd;
     Eigen::VectorXd svd_work;
