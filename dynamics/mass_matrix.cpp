@@ -29,6 +29,59 @@ void compositeInertias(const Model& model, const Workspace<double>& ws, std::vec
   }
 }
 
+/// The composite inertia of a planar model (Model::planar) about a frame's origin: what the planar
+/// rows read of CompositeInertia, the mass, the first moment in the plane and the moment of inertia
+/// about z (the parallel-axis shift of I_zz involves d in the plane alone, and a body's I_zz is the
+/// same in every axes turned about z).
+struct PlanarInertia {
+  double mass = 0.0, hx = 0.0, hy = 0.0, izz = 0.0;
+};
+
+/// Force in the plane and moment about z at `point` (x, y), in ground axes.
+struct PlanarWrench {
+  double fx, fy, mz, px, py;
+};
+
+/// addShifted (rigid_inertia.hpp) in the plane: h += m d, I_zz += 2 u·d with u = h + m d / 2.
+void addShifted(const PlanarInertia& beyond, double dx, double dy, PlanarInertia& composite) {
+  composite.mass += beyond.mass;
+  const double ux = beyond.hx + 0.5 * beyond.mass * dx, uy = beyond.hy + 0.5 * beyond.mass * dy;
+  composite.hx += beyond.hx + beyond.mass * dx;
+  composite.hy += beyond.hy + beyond.mass * dy;
+  composite.izz += beyond.izz + 2.0 * (ux * dx + uy * dy);
+}
+
+void compositeInertias(const Model& model, const Workspace<double>& ws, std::vector<PlanarInertia>& composites) {
+  composites.assign(static_cast<std::size_t>(model.frameCount()), PlanarInertia{});
+  for (const Body& body : model.bodies()) {
+    const auto f = static_cast<std::size_t>(body.frame);
+    const Eigen::Vector3d c = ws.rotation[f] * model.centreOfMass(body);
+    addShifted(PlanarInertia{model.value(body.mass), 0.0, 0.0, model.value(body.moments_of_inertia[2])}, c.x(), c.y(),
+               composites[f]);
+  }
+  const auto& elements = model.elements();
+  for (std::size_t k = elements.size(); k-- > 0;) {
+    const auto e = static_cast<std::size_t>(elements[k].entry), s = static_cast<std::size_t>(elements[k].exit);
+    addShifted(composites[s], ws.position[s].x() - ws.position[e].x(), ws.position[s].y() - ws.position[e].y(),
+               composites[e]);
+  }
+}
+
+/// unitAccelerationWrench below in the plane: f = m v̇ + ω̇ × h, n_z = I_zz ω̇ + (h × v̇)_z.
+PlanarWrench unitAccelerationWrench(const PlanarInertia& composite, const Workspace<double>& ws, std::size_t k,
+                                    std::size_t exit) {
+  const double w = ws.motion_angular[k].z(), vx = ws.motion_linear[k].x(), vy = ws.motion_linear[k].y();
+  return {composite.mass * vx - w * composite.hy, composite.mass * vy + w * composite.hx,
+          composite.izz * w + composite.hx * vy - composite.hy * vx, ws.position[exit].x(), ws.position[exit].y()};
+}
+
+/// generalisedForce below in the plane.
+double generalisedForce(const PlanarWrench& wrench, const Workspace<double>& ws, std::size_t k, std::size_t exit) {
+  const double mz = wrench.mz + (wrench.px - ws.position[exit].x()) * wrench.fy -
+                    (wrench.py - ws.position[exit].y()) * wrench.fx;
+  return ws.motion_angular[k].z() * mz + ws.motion_linear[k].x() * wrench.fx + ws.motion_linear[k].y() * wrench.fy;
+}
+
 /// IC S: the rate of momentum of the composite inertia IC of element k's exit frame when the joint
 /// accelerates at unit rate from rest, S = (motion_angular, motion_linear):
 /// f = m v̇ + ω̇ × h, n = I ω̇ + h × v̇ about the exit origin.
@@ -69,12 +122,13 @@ void parentJoints(const Model& model, std::vector<int>& parent_joint) {
 
 /// Column c of M (the joint of element i) and, by symmetry, row c: S_jᵀ IC_i S_i for the joints j
 /// from element i to the ground whose coordinate is requested (`position` ≥ 0).
-void fillColumnAndRow(const Model& model, const Workspace<double>& ws, const std::vector<CompositeInertia>& composites,
+template <class Inertia>
+void fillColumnAndRow(const Model& model, const Workspace<double>& ws, const std::vector<Inertia>& composites,
                       const std::vector<int>& position, const std::vector<int>& parent_joint, int i, Eigen::Index c,
                       Eigen::MatrixXd& M) {
   const auto& elements = model.elements();
   const auto moved = static_cast<std::size_t>(elements[static_cast<std::size_t>(i)].exit);
-  const Wrench wrench = unitAccelerationWrench(composites[moved], ws, static_cast<std::size_t>(i), moved);
+  const auto wrench = unitAccelerationWrench(composites[moved], ws, static_cast<std::size_t>(i), moved);
   for (int j = i; j >= 0; j = parent_joint[static_cast<std::size_t>(j)]) {
     const KinematicElement& joint = elements[static_cast<std::size_t>(j)];
     const int r = position[static_cast<std::size_t>(joint.coordinate)];
@@ -83,15 +137,10 @@ void fillColumnAndRow(const Model& model, const Workspace<double>& ws, const std
   }
 }
 
-}  // namespace
-
-// Composite Rigid Body Algorithm (Featherstone, Rigid Body Dynamics Algorithms, 2008, ch. 6). The joint of
-// element i moves only what lies beyond it, so M(i, j) = S_jᵀ IC_i S_i for every joint j on the path
-// from element i to the ground (i included), IC_i being the composite inertia beyond i, and
-// M(i, j) = 0 when neither joint is on the other's path. One backward sweep for the IC, then one
-// walk to the ground per requested column, from joint to joint.
-void massMatrix(const Model& model, Workspace<double>& ws, const std::vector<int>& coordinates, Eigen::MatrixXd& M) {
-  thread_local std::vector<CompositeInertia> composites;
+/// The mass matrix's block on `coordinates` from the composite inertias of type Inertia.
+template <class Inertia>
+void massMatrixBlock(const Model& model, Workspace<double>& ws, const std::vector<int>& coordinates, Eigen::MatrixXd& M) {
+  thread_local std::vector<Inertia> composites;
   thread_local std::vector<int> position;  // of each coordinate in `coordinates`, or -1
   thread_local std::vector<int> parent_joint;
   compositeInertias(model, ws, composites);
@@ -103,6 +152,19 @@ void massMatrix(const Model& model, Workspace<double>& ws, const std::vector<int
     const int element = model.coordinates()[static_cast<std::size_t>(coordinates[static_cast<std::size_t>(c)])].element;
     fillColumnAndRow(model, ws, composites, position, parent_joint, element, c, M);
   }
+}
+
+}  // namespace
+
+// Composite Rigid Body Algorithm (Featherstone, Rigid Body Dynamics Algorithms, 2008, ch. 6). The joint of
+// element i moves only what lies beyond it, so M(i, j) = S_jᵀ IC_i S_i for every joint j on the path
+// from element i to the ground (i included), IC_i being the composite inertia beyond i, and
+// M(i, j) = 0 when neither joint is on the other's path. One backward sweep for the IC, then one
+// walk to the ground per requested column, from joint to joint. On a planar model the composites
+// and the wrenches keep only their planar parts (PlanarInertia).
+void massMatrix(const Model& model, Workspace<double>& ws, const std::vector<int>& coordinates, Eigen::MatrixXd& M) {
+  if (model.planar()) massMatrixBlock<PlanarInertia>(model, ws, coordinates, M);
+  else massMatrixBlock<CompositeInertia>(model, ws, coordinates, M);
 }
 
 void massMatrix(const Model& model, Workspace<double>& ws, Eigen::MatrixXd& M) {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "dynamics/kinematics.hpp"
+#include "dynamics/mass_matrix.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/planar_recursions.hpp"
 #include "dynamics/residual.hpp"
@@ -230,10 +231,10 @@ TEST(PlanarKinematics, DerivativeLanesAreThoseOfTheSpatialRecursion) { compareOn
 // gravity are turned. Hung from a frame turned by R0 about an oblique axis, a planar scene takes the
 // spatial recursions, and at the same (q, q̇, q̈) with its multipliers turned the same way (a cut's
 // coincidence rows p_a − p_b are in ground axes; its orthogonality rows u·w are invariant) its
-// residual and the residual's derivatives must be the planar model's. Both sum the same wrenches,
-// once in other axes: each row is a sum of at most a few hundred products, each bounded by the
-// scale of the evaluation (its largest row or derivative), so they differ by a few hundred
-// roundings of ε·scale at most; the bound taken is 4096 ε·scale.
+// residual, the residual's derivatives and its mass matrix must be the planar model's. Both sum the
+// same wrenches, once in other axes: each row is a sum of at most a few hundred products, each
+// bounded by the scale of the evaluation (its largest row or derivative), so they differ by a few
+// hundred roundings of ε·scale at most; the bound taken is 4096 ε·scale.
 
 const Eigen::Matrix3d kTilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
 
@@ -300,6 +301,10 @@ TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
       const std::string what = name + ", trial " + std::to_string(trial);
       const double scale = 1.0 + std::max(largest(fa), largest(fb));
       EXPECT_LE(largest(fa - fb), 4096 * kEpsilon * scale) << what << ": f " << fa.transpose() << " against " << fb.transpose();
+      Eigen::MatrixXd ma, mb;  // M = ∂f/∂q̈ by the composite rigid bodies, at the geometry the residual left
+      massMatrix(a, wa, ma);
+      massMatrix(b, wb, mb);
+      EXPECT_LE(largest(ma - mb), 4096 * kEpsilon * (1.0 + largest(ma))) << what << ": M";
       const Eigen::MatrixXd ja = residualJacobian(a, ada, x.q, x.v, x.a, lambda, t, inputs, {});
       const Eigen::MatrixXd jb = residualJacobian(b, adb, x.q, x.v, x.a, lambda_b, t, inputs, {});
       const double lanes = 1.0 + std::max(largest(ja), largest(jb));
