@@ -63,6 +63,7 @@ void placeExit(const ElementKind& kind, std::size_t k, std::size_t e, std::size_
 template <class Scalar>
 void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
   ws.body_axes_current = false;
+  if (model.planar()) return planarGeometry(model, ws, q, axes);
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];

@@ -1,5 +1,11 @@
 #include "dynamics/planar_recursions.hpp"
 
+#include <cmath>
+#include <utility>
+#include <variant>
+
+#include "dynamics/overloaded.hpp"
+
 namespace mbsopt {
 
 // Each acceleration is written as one expression: the terms of the pass at rest, in its order
@@ -7,6 +13,100 @@ namespace mbsopt {
 // passes then give the same bits at q̇ = 0 (tests/test_tramway.cpp); the two groups are independent
 // chains of products (the double pass is bound by their latency, frame after frame); and an AD
 // scalar's derivatives are evaluated in one loop over the whole expression.
+
+namespace {
+
+/// The xy block of R_e turned about z by the angle of cosine c and sine s (R_e R_z): its first two
+/// columns' first two rows, into those of `out`.
+template <class Scalar>
+void turnInPlane(const Matrix3<Scalar>& Re, const Scalar& c, const Scalar& s, Matrix3<Scalar>& out) {
+  const Scalar r00 = Re(0, 0), r10 = Re(1, 0), r01 = Re(0, 1), r11 = Re(1, 1);
+  out(0, 0) = r00 * c + r01 * s;
+  out(1, 0) = r10 * c + r11 * s;
+  out(0, 1) = r01 * c - r00 * s;
+  out(1, 1) = r11 * c - r10 * s;
+}
+
+/// R_e's xy block into `out`'s.
+template <class Scalar>
+void copyPlaneBlock(const Matrix3<Scalar>& Re, Matrix3<Scalar>& out) {
+  out(0, 0) = Re(0, 0);
+  out(1, 0) = Re(1, 0);
+  out(0, 1) = Re(0, 1);
+  out(1, 1) = Re(1, 1);
+}
+
+/// R_e (x, y, ·) in the plane: the first two components of R_e v for v = (x, y, z), whose third is z.
+template <class Scalar, class X, class Y>
+std::pair<Scalar, Scalar> inPlane(const Matrix3<Scalar>& Re, const X& x, const Y& y) {
+  return {Re(0, 0) * x + Re(0, 1) * y, Re(1, 0) * x + Re(1, 1) * y};
+}
+
+}  // namespace
+
+template <class Scalar>
+void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
+  using std::cos;
+  using std::sin;
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    const Matrix3<Scalar>& Re = ws.rotation[e];
+    const auto coordinate = [&]() -> const Scalar& { return q[element.coordinate]; };  // joints only
+    std::visit(Overloaded{
+                   [&](const Offset& o) {
+                     const auto [x, y] = inPlane(Re, o.translation.x(), o.translation.y());
+                     ws.position[s] = Vector3<Scalar>(ws.position[e].x() + x, ws.position[e].y() + y,
+                                                      ws.position[e].z() + o.translation.z());
+                     if (o.rotates) turnInPlane(Re, Scalar(o.rotation(0, 0)), Scalar(o.rotation(1, 0)), ws.rotation[s]);
+                     else copyPlaneBlock(Re, ws.rotation[s]);
+                   },
+                   [&](const RevoluteJoint& j) {  // about ±z: the angle ±q
+                     const Scalar c = cos(coordinate()), sn = sin(coordinate());
+                     turnInPlane(Re, c, j.axis.z() > 0.0 ? sn : Scalar(-sn), ws.rotation[s]);
+                     ws.position[s] = ws.position[e];
+                     if (axes) ws.motion_angular[k].z() = Scalar(j.axis.z());
+                   },
+                   [&](const PrismaticJoint& j) {
+                     const auto [x, y] = inPlane(Re, j.axis.x(), j.axis.y());
+                     const Scalar& qi = coordinate();
+                     ws.position[s] = Vector3<Scalar>(ws.position[e].x() + x * qi, ws.position[e].y() + y * qi,
+                                                      ws.position[e].z());
+                     copyPlaneBlock(Re, ws.rotation[s]);
+                     if (axes) {
+                       ws.motion_linear[k].x() = x;
+                       ws.motion_linear[k].y() = y;
+                     }
+                   },
+                   [&](const CurveSliderJoint& j) {
+                     // As placeExit (kinematics.cpp): dr/ds = t to first order, as the heading and curvature.
+                     const TrackState<Scalar> track = trackStateAt(*j.track, coordinate());
+                     const TrackPoint& point = track.point;
+                     ws.slider_track[k] = {track.cos_heading, track.sin_heading, track.curvature};
+                     const auto [x, y] = inPlane(Re, Scalar(point.position.x()) + point.cos_heading * track.offset,
+                                                 Scalar(point.position.y()) + point.sin_heading * track.offset);
+                     ws.position[s] = Vector3<Scalar>(ws.position[e].x() + x, ws.position[e].y() + y,
+                                                      ws.position[e].z() + point.position.z());
+                     const bool turns = j.orientation != SliderOrientation::Translate;
+                     if (axes) {
+                       const auto [tx, ty] = inPlane(Re, track.cos_heading, track.sin_heading);  // a = t s̈ + κ ṡ² n
+                       ws.motion_linear[k].x() = tx;
+                       ws.motion_linear[k].y() = ty;
+                       ws.bias_linear[k].x() = -(track.curvature * ty);
+                       ws.bias_linear[k].y() = track.curvature * tx;
+                       if (turns) {  // ω = κ ṡ z, α = (κ s̈ + κ' ṡ²) z
+                         ws.motion_angular[k].z() = track.curvature;
+                         ws.bias_angular[k].z() = Scalar(point.curvature_derivative);
+                       }
+                     }
+                     if (turns) turnInPlane(Re, track.cos_heading, track.sin_heading, ws.rotation[s]);
+                     else copyPlaneBlock(Re, ws.rotation[s]);
+                   }},
+               element.kind);
+  }
+}
 
 template <class Scalar>
 void planarFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
@@ -122,6 +222,8 @@ void planarElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<S
   }
 }
 
+template void planarGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&, bool);
+template void planarGeometry<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&, bool);
 template void planarFrameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                        const VectorX<double>&, KinematicsLevel);
 template void planarFrameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

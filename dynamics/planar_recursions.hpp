@@ -1,5 +1,9 @@
 // The recursions of a planar model (Model::planar), where every angular velocity and acceleration
 // is along z and every linear one in the xy plane.
+// - The geometric stage: every rotation is about z, so only the xy block of a rotation changes with q
+//   (turned by cos and sin) and the joints' axes S_ω = ±z are constants; the other entries of the
+//   rotations, and the axes' out-of-plane components, keep the values a workspace starts with
+//   (those of the identity, and zeros), which no stage changes on a planar model.
 // - The rate stage of the forward recursion (20)-(21): the cross products of the spatial recursion
 //   reduce to ω × r = ω (−r_y, r_x) and ω × (ω × r) = −ω² (r_x, r_y), and ω_e × ω_rel vanishes: about
 //   a third of its products. Its results are the spatial recursion's, whose out-of-plane terms are
@@ -18,6 +22,10 @@
 
 namespace mbsopt {
 
+/// The geometric stage of forwardKinematics (kinematics.hpp) for a planar model: rotations,
+/// positions and curve sliders' tracks, and with `axes` the joints' axes and biases.
+template <class Scalar>
+void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes);
 /// frameRates (kinematics.hpp) for a planar model.
 template <class Scalar>
 void planarFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
@@ -36,6 +44,8 @@ void planarBodyWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3
 template <class Scalar>
 void planarElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<Scalar>& f);
 
+extern template void planarGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&, bool);
+extern template void planarGeometry<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&, bool);
 extern template void planarFrameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
                                               const VectorX<double>&, KinematicsLevel);
 extern template void planarFrameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,

@@ -152,22 +152,43 @@ RandomState<Scalar> randomState(const Eigen::VectorXd& q0, std::mt19937& generat
   return out;
 }
 
+/// The turn of the whole mechanism in the invariance tests below: about an oblique axis.
+const Eigen::Matrix3d kTilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+
 /// A planar model whose every kind of element sits on a moving frame (the shipped scenes slide only
 /// on fixed frames, where 2 ω_e × v_rel and the slider's κ ṡ² terms meet no rotation): a hinge, an
 /// offset turned about z and lifted out of the plane, a prismatic joint on it, a hinge about −z, a curve
-/// slider that follows its track (a clothoid into an arc) and one that only translates on another.
-Model everyPlanarElement() {
+/// slider that follows its track (a clothoid into an arc) and one that only translates on another;
+/// bodies with products of inertia, gravity in the plane, a joint spring, a point spring and a
+/// track guidance. `turned`: the same mechanism and gravity hung from a frame turned by kTilt (the
+/// first element), which moves out of the plane.
+Model everyPlanarElement(bool turned = false) {
   Model model;
-  FrameIndex frame = model.addRevolute("hinge", Model::ground, Eigen::Vector3d::UnitZ());
+  FrameIndex root = Model::ground;
+  if (turned) root = model.addOffset("tilted", Model::ground, Eigen::Vector3d::Zero(), kTilt);
+  const Eigen::Vector3d gravity(0.0, -9.81, 0.0);
+  model.setGravity(turned ? Eigen::Vector3d(kTilt * gravity) : gravity);
+  Eigen::Matrix3d inertia;
+  inertia << 0.3, 0.01, 0.02, 0.01, 0.2, 0.03, 0.02, 0.03, 0.4;
+  FrameIndex frame = model.addRevolute("hinge", root, Eigen::Vector3d::UnitZ());
+  model.addBody("crank", frame, 2.0, Eigen::Vector3d(0.4, 0.1, 0.05), inertia);
   frame = model.addOffset("arm", frame, Eigen::Vector3d(1.0, 0.2, 0.3),
                           Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix());
   frame = model.addPrismatic("slide", frame, Eigen::Vector3d(1.0, 2.0, 0.0));
+  model.addBody("block", frame, 1.5, Eigen::Vector3d(-0.1, 0.2, 0.0), 0.5 * inertia);
   frame = model.addRevolute("swivel", frame, -Eigen::Vector3d::UnitZ());
+  model.addBody("head", frame, 0.7, Eigen::Vector3d(0.2, -0.3, 0.1), 0.2 * inertia);
   const auto track = std::make_shared<Track>(Eigen::Vector3d(0.1, -0.2, 0.0), 0.3);
   track->straight(0.5).clothoid(1.0, 2.0).arc(0.5, 1.0);
-  frame = model.addCurveSlider("rider", frame, track, SliderOrientation::FollowTrack);
-  frame = model.addOffset("tail", frame, Eigen::Vector3d(-0.3, 0.5, 0.0));
-  model.addCurveSlider("shuttle", frame, track, SliderOrientation::Translate);
+  const FrameIndex rider = model.addCurveSlider("rider", frame, track, SliderOrientation::FollowTrack);
+  model.addBody("bogie", rider, 1.1, Eigen::Vector3d(0.3, 0.1, 0.0), 0.3 * inertia);
+  frame = model.addOffset("tail", rider, Eigen::Vector3d(-0.3, 0.5, 0.0));
+  const FrameIndex shuttle = model.addCurveSlider("shuttle", frame, track, SliderOrientation::Translate);
+  model.addBody("car", shuttle, 0.9, Eigen::Vector3d(0.05, 0.1, -0.2), 0.4 * inertia);
+  model.addJointSpringDamper("hinge_spring", "hinge", 30.0, 0.5, 0.1);
+  model.addPointSpringDamper("tether", root, Eigen::Vector3d(0.5, -1.0, 0.0), shuttle, Eigen::Vector3d(0.1, 0.0, 0.0),
+                             40.0, 0.8, 0.5);
+  model.addTrackGuidance("guidance", rider, "rider", 200.0, 3.0);
   return model;
 }
 
@@ -236,8 +257,6 @@ TEST(PlanarKinematics, DerivativeLanesAreThoseOfTheSpatialRecursion) { compareOn
 // bounded by the scale of the evaluation (its largest row or derivative), so they differ by a few
 // hundred roundings of ε·scale at most; the bound taken is 4096 ε·scale.
 
-const Eigen::Matrix3d kTilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
-
 /// The scene's text with every reference to the ground moved to a frame "tilted", an offset turned by
 /// kTilt under the ground, and its gravity turned by kTilt.
 std::string tiltedScene(std::string text) {
@@ -272,16 +291,86 @@ Eigen::VectorXd tiltedMultipliers(const Model& model, Eigen::VectorXd lambda) {
 
 double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
 
-TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
+/// A planar model and the same mechanism turned by kTilt (spatial), with a state to start from.
+struct TurnedPair {
+  std::string name;
+  Model planar, turned;
+  Eigen::VectorXd q0;
+};
+
+std::vector<TurnedPair> turnedPairs() {
+  std::vector<TurnedPair> out;
   for (const std::string& name : kShippedScenes) {
     const SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
     const LoadedScene planar = loadScene(source);
-    const LoadedScene turned = loadScene({source.path, tiltedScene(source.text)});
-    const Model& a = planar.scene.model;
-    const Model& b = turned.scene.model;
-    ASSERT_TRUE(a.planar()) << name;
-    ASSERT_FALSE(b.planar()) << name;
-    ASSERT_EQ(a.coordinateCount(), b.coordinateCount()) << name;
+    out.push_back({name, planar.scene.model, loadScene({source.path, tiltedScene(source.text)}).scene.model,
+                   planar.scene.q0});
+  }
+  const Model model = everyPlanarElement();
+  out.push_back({"every planar element", model, everyPlanarElement(true),
+                 Eigen::VectorXd::Constant(model.coordinateCount(), 0.7)});
+  for (const TurnedPair& pair : out) {
+    EXPECT_TRUE(pair.planar.planar()) << pair.name;
+    EXPECT_FALSE(pair.turned.planar()) << pair.name;
+    EXPECT_EQ(pair.planar.coordinateCount(), pair.turned.coordinateCount()) << pair.name;
+    EXPECT_EQ(pair.planar.frameCount() + 1, pair.turned.frameCount()) << pair.name;
+  }
+  return out;
+}
+
+// Frame by frame: the turned mechanism's frame k + 1 (its frame 1 is the turned root) is the planar
+// model's frame k turned by kTilt: R' = kTilt R, and kTilt times its position, its velocities and its
+// accelerations, in value and in the derivative lanes. Both compute the same sums of products, once
+// in other axes; the bound is 1024 ε times the largest magnitude of the kind (as above).
+template <class Scalar>
+void expectTurnedFrames(const TurnedPair& pair) {
+  std::mt19937 generator(20261125);
+  Workspace<Scalar> a(pair.planar), b(pair.turned);
+  for (int trial = 0; trial < 10; ++trial) {
+    const RandomState<Scalar> x = randomState<Scalar>(pair.q0, generator);
+    forwardKinematics(pair.planar, a, x.q, x.v, x.a, KinematicsLevel::Acceleration);
+    forwardKinematics(pair.turned, b, x.q, x.v, x.a, KinematicsLevel::Acceleration);
+    const RateScales scales = rateScales(b);
+    double reach = 1.0, lanes = 1.0;
+    for (const auto& p : b.position) reach = std::max(reach, std::abs(valueOf(p.norm())));
+    if constexpr (!std::is_same_v<Scalar, double>) lanes = laneScale(b);
+    const auto expectTurned = [&](const auto& planar, const auto& turned, double scale, const std::string& what) {
+      for (Eigen::Index i = 0; i < planar.size(); ++i) {
+        Scalar expected(0);
+        const Eigen::Index row = i % 3, col = i / 3;  // entries of a 3-vector, or of a 3 × 3 matrix by column
+        for (int j = 0; j < 3; ++j) expected += kTilt(row, j) * planar(j + 3 * (col));
+        EXPECT_NEAR(valueOf(turned(i)), valueOf(expected), 1024 * kEpsilon * scale) << what << ", entry " << i;
+        if constexpr (!std::is_same_v<Scalar, double>) {
+          for (int l = 0; l < kMaxAdDirections; ++l)
+            EXPECT_NEAR(turned(i).derivatives()[l], expected.derivatives()[l], 1024 * kEpsilon * lanes)
+                << what << ", entry " << i << ", lane " << l;
+        }
+      }
+    };
+    for (std::size_t k = 1; k < a.rotation.size(); ++k) {
+      const std::string what = pair.name + ", trial " + std::to_string(trial) + ", frame " + std::to_string(k);
+      expectTurned(a.rotation[k], b.rotation[k + 1], 1.0, what + ", R");
+      expectTurned(a.position[k], b.position[k + 1], reach, what + ", p");
+      expectTurned(a.angular_velocity[k], b.angular_velocity[k + 1], scales.velocity, what + ", ω");
+      expectTurned(a.velocity[k], b.velocity[k + 1], scales.velocity, what + ", v");
+      expectTurned(a.angular_acceleration[k], b.angular_acceleration[k + 1], scales.acceleration, what + ", α");
+      expectTurned(a.acceleration[k], b.acceleration[k + 1], scales.acceleration, what + ", a");
+    }
+  }
+}
+
+TEST(PlanarKinematics, FramesAreThoseOfTheTurnedMechanism) {
+  for (const TurnedPair& pair : turnedPairs()) {
+    expectTurnedFrames<double>(pair);
+    expectTurnedFrames<AdScalar>(pair);
+  }
+}
+
+void expectSameResidual(const TurnedPair& pair) {
+  const std::string& name = pair.name;
+  const Model& a = pair.planar;
+  const Model& b = pair.turned;
+  {
     std::mt19937 generator(20261125);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     const std::vector<AdInput> inputs = adInputs({adInputs(AdInput::Kind::Position, allCoordinates(a)),
@@ -290,7 +379,7 @@ TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
     Workspace<double> wa(a), wb(b);
     Workspace<AdScalar> ada(a), adb(b);
     for (int trial = 0; trial < 10; ++trial) {
-      const RandomState<double> x = randomState<double>(planar.scene.q0, generator);
+      const RandomState<double> x = randomState<double>(pair.q0, generator);
       Eigen::VectorXd lambda(a.constraintCount());
       for (Eigen::Index i = 0; i < lambda.size(); ++i) lambda[i] = 100.0 * unit(generator);
       const Eigen::VectorXd lambda_b = tiltedMultipliers(a, lambda);
@@ -333,6 +422,10 @@ TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
       EXPECT_LE(largest(rest_a - rest_b), 4096 * kEpsilon * rest_scale) << what << ": M q̈ + Bᵀλ";
     }
   }
+}
+
+TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
+  for (const TurnedPair& pair : turnedPairs()) expectSameResidual(pair);
 }
 
 }  // namespace
