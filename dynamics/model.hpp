@@ -246,8 +246,8 @@ class Model {
   /// axes ±z, offsets that turn about z, curve sliders, whose tracks lie in the xy plane of their entry
   /// frame) and every translation moves in that plane (prismatic axes without a z component; an offset
   /// may lift a frame out of it, which moves rigidly with it). Angular velocities and accelerations are
-  /// then along z and linear ones in the plane, and the kinematics' rate stage takes its planar path
-  /// (dynamics/planar_recursions.hpp).
+  /// then along z and linear ones in the plane, and the recursions (geometry, rates, wrenches, mass
+  /// matrix) take their planar paths (dynamics/planar_recursions.hpp, mass_matrix.cpp).
   bool planar() const { return planar_; }
   const std::vector<Frame>& frames() const { return frames_; }
   const std::vector<KinematicElement>& elements() const { return elements_; }
