@@ -215,9 +215,11 @@ void planarElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<S
     const Scalar& fy = ws.force[s].y();
     const Scalar& mz = ws.moment[s].z();
     if (element.coordinate >= 0)  // (24)
-      f[element.coordinate] += ws.motion_linear[k].x() * fx + ws.motion_linear[k].y() * fy + ws.motion_angular[k].z() * mz;
-    ws.moment[e].z() += mz + ((ws.position[s].x() - ws.position[e].x()) * fy - (ws.position[s].y() - ws.position[e].y()) * fx);
-    ws.force[e].x() += fx;
+      f[element.coordinate] +=
+          ws.motion_linear[k].x() * fx + ws.motion_linear[k].y() * fy + ws.motion_angular[k].z() * mz;
+    const Scalar rx = ws.position[s].x() - ws.position[e].x(), ry = ws.position[s].y() - ws.position[e].y();
+    ws.moment[e].z() += mz + (rx * fy - ry * fx);  // (23): M_e += M_s + (r × F_s)_z
+    ws.force[e].x() += fx;  // (22)
     ws.force[e].y() += fy;
   }
 }
