@@ -26,6 +26,7 @@
 #include "dynamics/kinematics.hpp"
 #include "dynamics/mass_matrix.hpp"
 #include "dynamics/model.hpp"
+#include "dynamics/newmark.hpp"
 #include "dynamics/planar_recursions.hpp"
 #include "dynamics/residual.hpp"
 #include "sensitivity/forward_ad.hpp"
@@ -426,6 +427,40 @@ void expectSameResidual(const TurnedPair& pair) {
 
 TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
   for (const TurnedPair& pair : turnedPairs()) expectSameResidual(pair);
+}
+
+// The whole integrator on both paths: the tram and the four-bar, turned, follow the same motion. The
+// two runs solve the same equations at every step, each to Newton's target, the larger of the
+// tolerance and the increments' round-off floor (ε times the largest coordinate, or the closure
+// rows' reach, over βh²): q̈ may differ by that per step, and q by βh² times it summed over the
+// steps. The bounds take ten times those, as tests/test_articulated_mass.cpp does (two runs, each
+// off by up to its target, and what the earlier steps carry into the later ones).
+TEST(PlanarModel, TheTurnedMechanismFollowsTheSameMotion) {
+  for (const std::string& name : {std::string("tramway"), std::string("four_bar")}) {
+    const SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
+    LoadedScene planar = loadScene(source), turned = loadScene({source.path, tiltedScene(source.text)});
+    ASSERT_TRUE(planar.scene.model.planar());
+    ASSERT_FALSE(turned.scene.model.planar());
+    for (LoadedScene* scene : {&planar, &turned}) scene->scene.settings.end_time = 2.0;
+    NewmarkIntegrator a(planar.scene.model, planar.scene.settings), b(turned.scene.model, turned.scene.settings);
+    const Trajectory ta = a.simulate(planar.scene.q0, planar.scene.v0);
+    const Trajectory tb = b.simulate(turned.scene.q0, turned.scene.v0);
+    ASSERT_EQ(ta.q.cols(), tb.q.cols()) << name;
+    const NewmarkSettings& s = planar.scene.settings;
+    const double beta_h2 = s.beta * s.step * s.step;
+    double reach = 1.0;
+    Workspace<double> ws(planar.scene.model);
+    for (Eigen::Index k = 0; k < ta.q.cols(); ++k) {
+      const Eigen::VectorXd q = ta.q.col(k);
+      forwardKinematics(planar.scene.model, ws, q, q, q, KinematicsLevel::Position);
+      for (const auto& p : ws.position) reach = std::max(reach, p.lpNorm<1>() + ta.q.col(k).cwiseAbs().maxCoeff());
+    }
+    const double per_step = s.newton_tolerance * (1.0 + ta.a.cwiseAbs().maxCoeff()) + kEpsilon * reach / beta_h2;
+    const double steps = static_cast<double>(ta.q.cols() - 1);
+    EXPECT_LE((ta.a - tb.a).cwiseAbs().maxCoeff(), 10.0 * per_step) << name;
+    EXPECT_LE((ta.q - tb.q).cwiseAbs().maxCoeff(), 10.0 * steps * beta_h2 * per_step) << name;
+    EXPECT_LE((ta.v - tb.v).cwiseAbs().maxCoeff(), 10.0 * steps * s.gamma * s.step * per_step) << name;
+  }
 }
 
 }  // namespace
