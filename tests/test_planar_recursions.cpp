@@ -1,14 +1,18 @@
-// The planar path of the kinematics' rate stage (dynamics/planar_recursions.hpp):
-//   - which models take it (Model::planar): every shipped scene, whose joints all turn about z or
+// The planar paths of the recursions (dynamics/planar_recursions.hpp, the mass matrix of
+// mass_matrix.cpp):
+//   - which models take them (Model::planar): every shipped scene, whose joints all turn about z or
 //     slide in the xy plane (read from the files), and no model with one element that leaves the plane;
-//   - the premise it rests on: on a planar model the spatial recursion's out-of-plane rates are exact
+//   - the premise they rest on: on a planar model the spatial recursion's out-of-plane rates are exact
 //     zeros, at any state;
-//   - that it computes the spatial recursion's in-plane rates, in double and in the derivative lanes of
-//     AD, at random states: the two add the same non-zero products in a different order, so they
-//     differ by round-off only. Each component is a sum along the frame's path of at most eight
-//     products per element, each bounded by the scale below (the largest rate or rate product of
-//     the state); with at most 40 elements on a path that is 320 roundings of at most ε·scale each,
-//     and the bound taken is 1024 ε·scale.
+//   - that the rate stage computes the spatial recursion's in-plane rates, in double and in the
+//     derivative lanes of AD, at random states: the two add the same non-zero products in a
+//     different order, so they differ by round-off only. Each component is a sum along the frame's
+//     path of at most eight products per element, each bounded by the scale below (the largest rate
+//     or rate product of the state); with at most 40 elements on a path that is 320 roundings of at
+//     most ε·scale each, and the bound taken is 1024 ε·scale;
+//   - independently of either path's formulas, that a planar mechanism and the same mechanism turned
+//     about an oblique axis (which takes the spatial paths) have the same frames turned, the same
+//     residual and derivatives and mass matrix, and the same motion (each test below gives its bound).
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -29,10 +33,10 @@
 #include "dynamics/newmark.hpp"
 #include "dynamics/planar_recursions.hpp"
 #include "dynamics/residual.hpp"
-#include "sensitivity/forward_ad.hpp"
 #include "dynamics/track.hpp"
 #include "dynamics/workspace.hpp"
 #include "problems/scene_file.hpp"
+#include "sensitivity/forward_ad.hpp"
 
 namespace mbsopt {
 namespace {
