@@ -47,12 +47,12 @@ const std::vector<std::string> kShippedScenes = {
     "pendulum", "double_pendulum", "four_bar", "slider_crank", "tramway", "tramway_track_chart",
     "hard/pendulum_a01", "hard/n_four_bar_a02", "hard/andrews_squeezer"};
 
-Model shippedModel(const std::string& name) {
-  return loadScene(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml")).scene.model;
+SceneSource shippedSource(const std::string& name) {
+  return readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
 }
 
 TEST(PlanarModel, EveryShippedSceneIsPlanar) {
-  for (const std::string& name : kShippedScenes) EXPECT_TRUE(shippedModel(name).planar()) << name;
+  for (const std::string& name : kShippedScenes) EXPECT_TRUE(loadScene(shippedSource(name)).scene.model.planar()) << name;
 }
 
 TEST(PlanarModel, OneElementOutOfThePlaneMakesAModelSpatial) {
@@ -241,7 +241,7 @@ void comparePaths(const Model& model, const Eigen::VectorXd& q0, const std::stri
 template <class Scalar>
 void compareOnEveryModel() {
   for (const std::string& name : kShippedScenes) {
-    const LoadedScene loaded = loadScene(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml"));
+    const LoadedScene loaded = loadScene(shippedSource(name));
     comparePaths<Scalar>(loaded.scene.model, loaded.scene.q0, name);
   }
   const Model model = everyPlanarElement();
@@ -306,7 +306,7 @@ struct TurnedPair {
 std::vector<TurnedPair> turnedPairs() {
   std::vector<TurnedPair> out;
   for (const std::string& name : kShippedScenes) {
-    const SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
+    const SceneSource source = shippedSource(name);
     const LoadedScene planar = loadScene(source);
     out.push_back({name, planar.scene.model, loadScene({source.path, tiltedScene(source.text)}).scene.model,
                    planar.scene.q0});
@@ -375,57 +375,55 @@ void expectSameResidual(const TurnedPair& pair) {
   const std::string& name = pair.name;
   const Model& a = pair.planar;
   const Model& b = pair.turned;
-  {
-    std::mt19937 generator(20261125);
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    const std::vector<AdInput> inputs = adInputs({adInputs(AdInput::Kind::Position, allCoordinates(a)),
-                                                  adInputs(AdInput::Kind::Velocity, allCoordinates(a)),
-                                                  adInputs(AdInput::Kind::Acceleration, allCoordinates(a))});
-    Workspace<double> wa(a), wb(b);
-    Workspace<AdScalar> ada(a), adb(b);
-    for (int trial = 0; trial < 10; ++trial) {
-      const RandomState<double> x = randomState<double>(pair.q0, generator);
-      Eigen::VectorXd lambda(a.constraintCount());
-      for (Eigen::Index i = 0; i < lambda.size(); ++i) lambda[i] = 100.0 * unit(generator);
-      const Eigen::VectorXd lambda_b = tiltedMultipliers(a, lambda);
-      const double t = 0.5 + unit(generator);
-      Eigen::VectorXd fa, fb;
-      residual(a, wa, x.q, x.v, x.a, lambda, t, fa);
-      residual(b, wb, x.q, x.v, x.a, lambda_b, t, fb);
-      const std::string what = name + ", trial " + std::to_string(trial);
-      const double scale = 1.0 + std::max(largest(fa), largest(fb));
-      EXPECT_LE(largest(fa - fb), 4096 * kEpsilon * scale) << what << ": f " << fa.transpose() << " against " << fb.transpose();
-      Eigen::MatrixXd ma, mb;  // M = ∂f/∂q̈ by the composite rigid bodies, at the geometry the residual left
-      massMatrix(a, wa, ma);
-      massMatrix(b, wb, mb);
-      EXPECT_LE(largest(ma - mb), 4096 * kEpsilon * (1.0 + largest(ma))) << what << ": M";
-      const Eigen::MatrixXd ja = residualJacobian(a, ada, x.q, x.v, x.a, lambda, t, inputs, {});
-      const Eigen::MatrixXd jb = residualJacobian(b, adb, x.q, x.v, x.a, lambda_b, t, inputs, {});
-      const double lanes = 1.0 + std::max(largest(ja), largest(jb));
-      EXPECT_LE(largest(ja - jb), 4096 * kEpsilon * lanes) << what << ": ∂f/∂(q, q̇, q̈)";
-      // M(q) q̈ + B(q)ᵀλ alone (the projections' terms), at rest, with its derivatives in q.
-      const Eigen::Index seeded = std::min<Eigen::Index>(a.coordinateCount(), kMaxAdDirections);
-      VectorX<AdScalar> q, zero, acceleration, multipliers_a, multipliers_b, ga, gb;
-      seedVector(x.q, 0, 0, seeded, q);
-      seedVector(Eigen::VectorXd::Zero(x.q.size()), 0, 0, 0, zero);
-      seedVector(x.a, 0, 0, 0, acceleration);
-      seedVector(lambda, 0, 0, 0, multipliers_a);
-      seedVector(lambda_b, 0, 0, 0, multipliers_b);
-      for (auto [model, ws, multipliers, g] : {std::tuple{&a, &ada, &multipliers_a, &ga}, std::tuple{&b, &adb, &multipliers_b, &gb}}) {
-        forwardKinematics(*model, *ws, q, zero, acceleration, KinematicsLevel::Velocity);  // geometry and joint axes
-        frameAccelerationsAtRest(*model, *ws, acceleration);
-        inertialAndLoopForcesFromKinematics(*model, *ws, *multipliers, *g);
-      }
-      Eigen::MatrixXd rest_a(ga.size(), 1 + kMaxAdDirections), rest_b(gb.size(), 1 + kMaxAdDirections);
-      for (Eigen::Index i = 0; i < ga.size(); ++i) {
-        rest_a(i, 0) = ga[i].value();
-        rest_a.row(i).tail(kMaxAdDirections) = ga[i].derivatives().transpose();
-        rest_b(i, 0) = gb[i].value();
-        rest_b.row(i).tail(kMaxAdDirections) = gb[i].derivatives().transpose();
-      }
-      const double rest_scale = 1.0 + std::max(largest(rest_a), largest(rest_b));
-      EXPECT_LE(largest(rest_a - rest_b), 4096 * kEpsilon * rest_scale) << what << ": M q̈ + Bᵀλ";
+  std::mt19937 generator(20261125);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::vector<AdInput> inputs = adInputs({adInputs(AdInput::Kind::Position, allCoordinates(a)),
+                                                adInputs(AdInput::Kind::Velocity, allCoordinates(a)),
+                                                adInputs(AdInput::Kind::Acceleration, allCoordinates(a))});
+  Workspace<double> wa(a), wb(b);
+  Workspace<AdScalar> ada(a), adb(b);
+  for (int trial = 0; trial < 10; ++trial) {
+    const RandomState<double> x = randomState<double>(pair.q0, generator);
+    Eigen::VectorXd lambda(a.constraintCount());
+    for (Eigen::Index i = 0; i < lambda.size(); ++i) lambda[i] = 100.0 * unit(generator);
+    const Eigen::VectorXd lambda_b = tiltedMultipliers(a, lambda);
+    const double t = 0.5 + unit(generator);
+    Eigen::VectorXd fa, fb;
+    residual(a, wa, x.q, x.v, x.a, lambda, t, fa);
+    residual(b, wb, x.q, x.v, x.a, lambda_b, t, fb);
+    const std::string what = name + ", trial " + std::to_string(trial);
+    const double scale = 1.0 + std::max(largest(fa), largest(fb));
+    EXPECT_LE(largest(fa - fb), 4096 * kEpsilon * scale) << what << ": f " << fa.transpose() << " against " << fb.transpose();
+    Eigen::MatrixXd ma, mb;  // M = ∂f/∂q̈ by the composite rigid bodies, at the geometry the residual left
+    massMatrix(a, wa, ma);
+    massMatrix(b, wb, mb);
+    EXPECT_LE(largest(ma - mb), 4096 * kEpsilon * (1.0 + largest(ma))) << what << ": M";
+    const Eigen::MatrixXd ja = residualJacobian(a, ada, x.q, x.v, x.a, lambda, t, inputs, {});
+    const Eigen::MatrixXd jb = residualJacobian(b, adb, x.q, x.v, x.a, lambda_b, t, inputs, {});
+    const double lanes = 1.0 + std::max(largest(ja), largest(jb));
+    EXPECT_LE(largest(ja - jb), 4096 * kEpsilon * lanes) << what << ": ∂f/∂(q, q̇, q̈)";
+    // M(q) q̈ + B(q)ᵀλ alone (the projections' terms), at rest, with its derivatives in q.
+    const Eigen::Index seeded = std::min<Eigen::Index>(a.coordinateCount(), kMaxAdDirections);
+    VectorX<AdScalar> q, zero, acceleration, multipliers_a, multipliers_b, ga, gb;
+    seedVector(x.q, 0, 0, seeded, q);
+    seedVector(Eigen::VectorXd::Zero(x.q.size()), 0, 0, 0, zero);
+    seedVector(x.a, 0, 0, 0, acceleration);
+    seedVector(lambda, 0, 0, 0, multipliers_a);
+    seedVector(lambda_b, 0, 0, 0, multipliers_b);
+    for (auto [model, ws, multipliers, g] : {std::tuple{&a, &ada, &multipliers_a, &ga}, std::tuple{&b, &adb, &multipliers_b, &gb}}) {
+      forwardKinematics(*model, *ws, q, zero, acceleration, KinematicsLevel::Velocity);  // geometry and joint axes
+      frameAccelerationsAtRest(*model, *ws, acceleration);
+      inertialAndLoopForcesFromKinematics(*model, *ws, *multipliers, *g);
     }
+    Eigen::MatrixXd rest_a(ga.size(), 1 + kMaxAdDirections), rest_b(gb.size(), 1 + kMaxAdDirections);
+    for (Eigen::Index i = 0; i < ga.size(); ++i) {
+      rest_a(i, 0) = ga[i].value();
+      rest_a.row(i).tail(kMaxAdDirections) = ga[i].derivatives().transpose();
+      rest_b(i, 0) = gb[i].value();
+      rest_b.row(i).tail(kMaxAdDirections) = gb[i].derivatives().transpose();
+    }
+    const double rest_scale = 1.0 + std::max(largest(rest_a), largest(rest_b));
+    EXPECT_LE(largest(rest_a - rest_b), 4096 * kEpsilon * rest_scale) << what << ": M q̈ + Bᵀλ";
   }
 }
 
@@ -441,7 +439,7 @@ TEST(PlanarResidual, IsTheSpatialResidualOfTheTurnedMechanism) {
 // off by up to its target, and what the earlier steps carry into the later ones).
 TEST(PlanarModel, TheTurnedMechanismFollowsTheSameMotion) {
   for (const std::string& name : {std::string("tramway"), std::string("four_bar")}) {
-    const SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
+    const SceneSource source = shippedSource(name);
     LoadedScene planar = loadScene(source), turned = loadScene({source.path, tiltedScene(source.text)});
     ASSERT_TRUE(planar.scene.model.planar());
     ASSERT_FALSE(turned.scene.model.planar());
