@@ -6,8 +6,11 @@
 # comparing two versions where timings spread by ±30 %. Valgrind cannot run the default
 # -march=native build (AVX-512), so this configures a portable one in build/portable
 # (-DMBSOPT_NATIVE=OFF, Release, no tests) and builds bench_dynamics and bench_gradients there. Only
-# NewmarkIntegrator::simulate, evaluateDesign or adjointGradient, and what they call, are counted.
-# The three runs take about 4 minutes.
+# NewmarkIntegrator::simulate, evaluateDesign or adjointGradient, and what they call, are counted:
+# callgrind's --toggle-collect switches counting at every entry to and exit from a function its
+# pattern matches, so each pattern names the one overload that does the work (the convenience
+# overloads call it, and a pattern matching both would switch counting off inside it). The three
+# runs take about 4 minutes.
 #
 #   scripts/count_instructions.sh              # configure, build (-j2), count
 #   scripts/count_instructions.sh --no-build   # count with the binary already built
@@ -20,7 +23,8 @@ if [ "$build" -eq 1 ]; then
   cmake --build build/portable --target bench_dynamics bench_gradients -j2
 fi
 out=build/portable/callgrind.tramway.out
-valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::NewmarkIntegrator::simulate*' \
+valgrind --tool=callgrind --callgrind-out-file="$out" \
+  --toggle-collect='mbsopt::NewmarkIntegrator::simulate(*mbsopt::Trajectory&, std::function<void (long)> const&)' \
   build/portable/bench/bench_dynamics --benchmark_filter='TramwaySimulation/accept_by_rate:0' \
   --benchmark_min_time=0.01 2> build/portable/callgrind.log > build/portable/callgrind.bench.txt
 # Under valgrind one simulation takes seconds, far above the minimum time: one iteration is run.
@@ -35,7 +39,8 @@ echo "per function: callgrind_annotate --inclusive=yes $out"
 # evaluates the point a few times more; the total is divided by the calls of simulate() that
 # callgrind recorded (one per evaluation).
 out=build/portable/callgrind.evaluation.out
-valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::evaluateDesign*' \
+valgrind --tool=callgrind --callgrind-out-file="$out" \
+  --toggle-collect='mbsopt::evaluateDesign(*mbsopt::DesignResponse&, std::function<void (long)> const&)' \
   build/portable/bench/bench_gradients --benchmark_filter='TramwaySimulation' \
   --benchmark_min_time=0.01 2> build/portable/callgrind.evaluation.log > /dev/null
 count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' build/portable/callgrind.evaluation.log)
