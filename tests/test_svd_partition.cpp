@@ -2,10 +2,12 @@
 // solves, [J Bᵀ; B 0][Δx; Δμ] = −[r; g], on random systems with consistent right-hand sides: full
 // row rank and with a dependent row, with few coordinates (V₂ᵀ J V₂ from the explicit V₂) and with
 // many (from the Householder reflectors of V₁). The residuals must vanish to round-off; and so
-// must those of the projection, the system with r = 0 solved without its multipliers.
+// must those of the projection, the system with r = 0 solved without its multipliers. With a
+// dependent row the multipliers are not unique: the partition's must be those of minimum norm.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <limits>
 #include <random>
 
@@ -58,6 +60,13 @@ void expectSolves(const System& s, int expected_rank) {
   const double scale = s.J.norm() * dx.norm() + s.B.norm() * dmu.norm() + s.r.norm();
   EXPECT_LT((s.J * dx + s.B.transpose() * dmu + s.r).norm(), 1e-12 * scale) << "n = " << n;
   EXPECT_LT((s.B * dx + s.g).norm(), 1e-12 * (s.B.norm() * dx.norm() + s.g.norm())) << "n = " << n;
+  // Minimum norm: no component along the kernel of Bᵀ (the combinations of rows that vanish, from an
+  // LU of Bᵀ with full pivoting, independent of the SVD), along which Bᵀ Δμ would not change.
+  const Eigen::MatrixXd kernel = Eigen::FullPivLU<Eigen::MatrixXd>(s.B.transpose()).kernel();
+  if (expected_rank < s.B.rows()) {
+    ASSERT_EQ(kernel.cols(), s.B.rows() - expected_rank);
+    EXPECT_LT((kernel.transpose() * dmu).norm(), 1e-12 * kernel.norm() * dmu.norm()) << "n = " << n;
+  }
   // The projection (r = 0, no multipliers): B Δ = −g, and J Δ in the range of Bᵀ (V₂ᵀ J Δ = 0), the
   // first row of the system with some multipliers.
   Eigen::VectorXd projection;
