@@ -196,6 +196,54 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
   dmu = -dmu;
 }
 
+void SvdPartition::solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd& G, Eigen::MatrixXd& dx,
+                                Eigen::MatrixXd* dmu) const {
+  const Eigen::Index n = v1_.rows(), m = u1_.rows(), p = R.cols(), free = v2_.cols();
+  dx.resize(n, p);
+  if (dmu) dmu->resize(m, p);
+  if (inverse_) {  // the range-space solves, a column at a time
+    for (Eigen::Index j = 0; j < p; ++j) {
+      column_r_ = R.col(j);
+      column_g_ = G.col(j);
+      if (dmu) {
+        solve(column_r_, column_g_, column_dx_, column_dmu_);
+        dmu->col(j) = column_dmu_;
+      } else {
+        increment(&column_r_, column_g_, column_dx_);
+      }
+      dx.col(j) = column_dx_;
+    }
+    return;
+  }
+  // increment() on p columns: X_r = −S₁⁻¹ U₁ᵀ G, ΔX = V₁ X_r + V₂ X_n with
+  // (V₂ᵀ J V₂) X_n = −V₂ᵀ (R + J V₁ X_r).
+  x_r_block_.resize(rank_, p);
+  multiplyTransposed(u1_.data(), G.data(), x_r_block_.data(), rank_, m, p);
+  for (Eigen::Index j = 0; j < p; ++j)
+    for (Eigen::Index i = 0; i < rank_; ++i) x_r_block_(i, j) *= -inverse_s1_[i];
+  multiply(v1_.data(), x_r_block_.data(), dx.data(), n, rank_, p, false);
+  if (free > 0) {
+    work_block_ = R;
+    multiply(J_.data(), dx.data(), work_block_.data(), n, n, p, true);
+    reduced_block_.resize(free, p);
+    multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
+    for (Eigen::Index j = 0; j < p; ++j) {
+      reduced_rhs_ = -reduced_block_.col(j);
+      luSolve(reduced_, reduced_rhs_, x_n_);
+      multiply(v2_.data(), x_n_.data(), dx.data() + j * n, n, free, 1, true);
+    }
+  }
+  if (!dmu) return;
+  // solve()'s multipliers on p columns: ΔM = −U₁ S₁⁻¹ V₁ᵀ (R + J ΔX).
+  work_block_ = R;
+  multiply(J_.data(), dx.data(), work_block_.data(), n, n, p, true);
+  multiplyTransposed(v1_.data(), work_block_.data(), x_r_block_.data(), rank_, n, p);
+  for (Eigen::Index j = 0; j < p; ++j)
+    for (Eigen::Index i = 0; i < rank_; ++i) x_r_block_(i, j) *= inverse_s1_[i];
+  multiply(u1_.data(), x_r_block_.data(), dmu->data(), m, rank_, p, false);
+  *dmu = -*dmu;
+}
+
 void SvdPartition::project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const { increment(nullptr, g, dx); }
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {

@@ -35,10 +35,9 @@ Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::
   return X;
 }
 
-void AugmentedSolver::solveColumn(Eigen::MatrixXd& X, Eigen::Index c) const {
+void AugmentedSolver::solveColumns(Eigen::MatrixXd& X) const {
   if (factored_ != Factored::Matrix) throw std::logic_error("AugmentedSolver::solve needs setMatrix");
-  partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);  // it solves for −[r; g]
-  X.col(c) = dx_;
+  partition_.solveColumns(top_rhs_, bottom_rhs_, X, nullptr);
 }
 
 void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const {
@@ -47,17 +46,10 @@ void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::Matrix
   // with Jᵀ, right-hand side [x̄ᵀ; 0], its Δx being t̄ᵀ and its minimum-norm Δμ being b̄ᵀ.
   if (factored_ != Factored::Transposed)
     throw std::logic_error("AugmentedSolver::solveTransposed needs setTransposedMatrix");
-  // Filled by columns of the transposes: a row of bbar without constraints (B.rows() = 0) would be
-  // an offset from Eigen's null data pointer.
-  tbar_t_.resize(xbar.cols(), xbar.rows());
-  bbar_t_.resize(constraints_, xbar.rows());
-  bottom_rhs_.setZero(constraints_);
-  for (Eigen::Index r = 0; r < xbar.rows(); ++r) {
-    top_rhs_ = -xbar.row(r).transpose();
-    partition_.solve(top_rhs_, bottom_rhs_, dx_, dmu_);
-    tbar_t_.col(r) = dx_;
-    bbar_t_.col(r) = dmu_;
-  }
+  // Solved as the columns of the transposes, one per row of x̄.
+  top_rhs_ = -xbar.transpose();
+  bottom_rhs_.setZero(constraints_, xbar.rows());
+  partition_.solveColumns(top_rhs_, bottom_rhs_, tbar_t_, &bbar_t_);
   tbar = tbar_t_.transpose();
   bbar = bbar_t_.transpose();
 }

@@ -33,25 +33,22 @@ class AugmentedSolver {
   /// The same into X, reusing its storage; top and bottom may be expressions, X must not appear in them.
   template <class Top, class Bottom>
   void solve(const Eigen::MatrixBase<Top>& top, const Eigen::MatrixBase<Bottom>& bottom, Eigen::MatrixXd& X) const {
-    X.resize(top.rows(), top.cols());
-    for (Eigen::Index c = 0; c < top.cols(); ++c) {
-      top_rhs_ = -top.col(c);
-      bottom_rhs_ = -bottom.col(c);
-      solveColumn(X, c);
-    }
+    top_rhs_ = -top;  // the partition solves for −[r; g]
+    bottom_rhs_ = -bottom;
+    solveColumns(X);
   }
   /// Rows of t̄ (r × n) and b̄ (r × m), one per row of x̄ (r × n). Needs setTransposedMatrix.
   void solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const;
 
  private:
   enum class Factored { None, Matrix, Transposed };
-  /// Column c of X from the right-hand side in top_rhs_, bottom_rhs_ (negated: the partition solves
-  /// for −[r; g]). Needs setMatrix.
-  void solveColumn(Eigen::MatrixXd& X, Eigen::Index c) const;
+  /// X from the right-hand sides in top_rhs_, bottom_rhs_ (negated: the partition solves for
+  /// −[r; g]), all columns in one SvdPartition::solveColumns. Needs setMatrix.
+  void solveColumns(Eigen::MatrixXd& X) const;
   SvdPartition partition_;
   Eigen::Index constraints_ = 0;
   Eigen::MatrixXd transposed_;  ///< Jᵀ for setTransposedMatrix
-  mutable Eigen::VectorXd top_rhs_, bottom_rhs_, dx_, dmu_;  ///< one column's right-hand side and solution
+  mutable Eigen::MatrixXd top_rhs_, bottom_rhs_;  ///< the right-hand sides, negated
   mutable Eigen::MatrixXd tbar_t_, bbar_t_;  ///< solveTransposed's results, transposed
   Factored factored_ = Factored::None;
 };

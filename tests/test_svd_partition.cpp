@@ -4,6 +4,7 @@
 // many (from the Householder reflectors of V₁). The residuals must vanish to round-off; and so
 // must those of the projection, the system with r = 0 solved without its multipliers. With a
 // dependent row the multipliers are not unique: the partition's must be those of minimum norm.
+// Several right-hand sides at once give what one solve per column gives, to the bit.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -90,6 +91,45 @@ TEST(SvdPartition, SolvesTheAugmentedSystemWithManyCoordinates) {
   }
 }
 
+// Several right-hand sides at once (solveColumns, the exact gradients' sweeps): the same operations
+// in the same order as one solve() per column, so the same bits, with and without the multipliers;
+// on few and many coordinates, with a dependent row, and without constraints.
+void expectColumnsAsSolves(const SvdPartition& partition, const Eigen::MatrixXd& R, const Eigen::MatrixXd& G) {
+  Eigen::MatrixXd dx, dmu, dx_alone;
+  partition.solveColumns(R, G, dx, &dmu);
+  partition.solveColumns(R, G, dx_alone, nullptr);
+  ASSERT_EQ(dx.cols(), R.cols());
+  ASSERT_EQ(dmu.rows(), G.rows());
+  for (Eigen::Index j = 0; j < R.cols(); ++j) {
+    Eigen::VectorXd column_dx, column_dmu;
+    partition.solve(R.col(j), G.col(j), column_dx, column_dmu);
+    EXPECT_TRUE(dx.col(j) == column_dx) << "column " << j << " of " << R.rows() << " coordinates";
+    EXPECT_TRUE(dx_alone.col(j) == column_dx) << "column " << j << " without multipliers";
+    EXPECT_TRUE(dmu.col(j) == column_dmu) << "column " << j;
+  }
+}
+
+TEST(SvdPartition, SolvesColumnsBitForBitAsItSolvesEachColumn) {
+  struct Case {
+    Eigen::Index n, m;
+    bool dependent;
+  };
+  for (const Case c : {Case{5, 3, false}, Case{5, 3, true}, Case{40, 6, true}, Case{30, 0, false}})
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+      SvdPartition partition(1e-8);
+      const System s = randomSystem(c.n, c.m, c.dependent, seed);
+      partition.setConstraintJacobian(s.B);
+      ASSERT_TRUE(partition.setIterationMatrix(s.J));
+      Eigen::MatrixXd R(c.n, 4), G(c.m, 4);
+      for (Eigen::Index j = 0; j < 4; ++j) {
+        const System other = randomSystem(c.n, c.m, c.dependent, 100 * seed + static_cast<unsigned>(j));
+        R.col(j) = other.r;
+        G.col(j) = s.B * other.r;  // consistent with this B
+      }
+      expectColumnsAsSolves(partition, R, G);
+    }
+}
+
 // J = M given by its articulated-body factorization: the range-space solves, on the closed chains
 // (3 closure rows of rank 2) at their starting geometry. Their residuals in the augmented system
 // vanish to round-off as the partition's do, and they agree with the partition's solution from the
@@ -132,6 +172,13 @@ TEST(SvdPartition, RangeSpaceSolveWithTheArticulatedMassEqualsThePartitions) {
     range.project(g, projection);
     dense.project(g, projection_dense);
     EXPECT_LT((projection - projection_dense).norm(), tolerance * projection_dense.norm()) << links << " links";
+    Eigen::MatrixXd R(M.rows(), 3), G(B.rows(), 3);
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      R.col(j) = random(M.rows());
+      G.col(j) = B * random(M.rows());
+    }
+    expectColumnsAsSolves(range, R, G);
+    expectColumnsAsSolves(dense, R, G);
   }
 }
 
