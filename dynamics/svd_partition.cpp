@@ -52,9 +52,40 @@ namespace {
 // peeling their loops than on the arithmetic (perf on BM_TramwaySimulation); for the large chains
 // the inner loops run down contiguous columns, which the compiler vectorises.
 
-/// C = A B (A rows × inner, B inner × cols), or C += A B when `accumulate`.
+/// multiply() below with the row count a constant: its inner loops unrolled, the same operations in
+/// the same order.
+template <int Rows>
+void multiplyFixedRows(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index inner,
+                       Eigen::Index cols, bool accumulate) {
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    double* cj = c + j * Rows;
+    if (!accumulate)
+      for (int i = 0; i < Rows; ++i) cj[i] = 0.0;
+    for (Eigen::Index k = 0; k < inner; ++k) {
+      const double* ak = a + k * Rows;
+      const double bkj = b[k + j * inner];
+      for (int i = 0; i < Rows; ++i) cj[i] += ak[i] * bkj;
+    }
+  }
+}
+
+/// C = A B (A rows × inner, B inner × cols), or C += A B when `accumulate`. Up to 8 rows (the tram's
+/// 5 coordinates and 3 closure rows) with the rows a constant, where the loops over a few rows cost
+/// more in their control than in their products (callgrind on BM_TramwaySimulation). Each column of
+/// C gets the same operations whatever the number of columns (SvdPartition::solveColumns relies on it).
 void multiply(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index rows, Eigen::Index inner, Eigen::Index cols,
               bool accumulate) {
+  switch (rows) {
+    case 1: return multiplyFixedRows<1>(a, b, c, inner, cols, accumulate);
+    case 2: return multiplyFixedRows<2>(a, b, c, inner, cols, accumulate);
+    case 3: return multiplyFixedRows<3>(a, b, c, inner, cols, accumulate);
+    case 4: return multiplyFixedRows<4>(a, b, c, inner, cols, accumulate);
+    case 5: return multiplyFixedRows<5>(a, b, c, inner, cols, accumulate);
+    case 6: return multiplyFixedRows<6>(a, b, c, inner, cols, accumulate);
+    case 7: return multiplyFixedRows<7>(a, b, c, inner, cols, accumulate);
+    case 8: return multiplyFixedRows<8>(a, b, c, inner, cols, accumulate);
+    default: break;
+  }
   for (Eigen::Index j = 0; j < cols; ++j) {
     double* cj = c + j * rows;
     if (!accumulate) std::fill(cj, cj + rows, 0.0);
