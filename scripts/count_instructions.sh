@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # Counts the instructions of one tramway simulation (12 s at h = 1 ms, default settings), of one
 # design evaluation of the tramway problem (the simulation with its sensors, then the functionals)
-# and of one adjoint gradient of that problem (all 7 functionals, with its simulation, one thread)
-# under valgrind's callgrind: figures that do not move with the load of a shared machine, for
-# comparing two versions where timings spread by ±30 %. Valgrind cannot run the default
-# -march=native build (AVX-512), so this configures a portable one in build/portable
-# (-DMBSOPT_NATIVE=OFF, Release, no tests) and builds bench_dynamics and bench_gradients there. Only
-# NewmarkIntegrator::simulate, evaluateDesign or adjointGradient, and what they call, are counted:
-# callgrind's --toggle-collect switches counting at every entry to and exit from a function its
-# pattern matches, so each pattern names the one overload that does the work (the convenience
-# overloads call it, and a pattern matching both would switch counting off inside it). The three
-# runs take about 4 minutes.
+# and of one adjoint and one direct gradient of that problem (all 7 functionals, the paper's 4
+# design variables, with its simulation, one thread) under valgrind's callgrind: figures that do not
+# move with the load of a shared machine, for comparing two versions where timings spread by ±30 %.
+# Valgrind cannot run the default -march=native build (AVX-512), so this configures a portable one
+# in build/portable (-DMBSOPT_NATIVE=OFF, Release, no tests) and builds bench_dynamics and
+# bench_gradients there. Only NewmarkIntegrator::simulate, evaluateDesign, adjointGradient or
+# directGradient, and what they call, are counted: callgrind's --toggle-collect switches counting at
+# every entry to and exit from a function its pattern matches, so each pattern names the one
+# overload that does the work (the convenience overloads call it, and a pattern matching both would
+# switch counting off inside it). The four runs take about 5 minutes.
 #
 #   scripts/count_instructions.sh              # configure, build (-j2), count
 #   scripts/count_instructions.sh --no-build   # count with the binary already built
@@ -52,15 +52,21 @@ calls=$(awk '/^c?fn=\([0-9]+\) mbsopt::NewmarkIntegrator::simulate\([^{]*\)$/ { 
 echo "instructions in one tramway design evaluation: $((count / calls)) (over $calls evaluations)"
 echo "per function: callgrind_annotate --inclusive=yes $out"
 
-# The adjoint gradient: bench_gradients' GradientAdjoint/jobs:1/variables:4 times adjointGradient once per
-# iteration, and under valgrind runs one iteration.
-out=build/portable/callgrind.adjoint.out
-valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='mbsopt::adjointGradient*' \
-  build/portable/bench/bench_gradients --benchmark_filter='GradientAdjoint/jobs:1/variables:4' \
-  --benchmark_min_time=0.01 2> build/portable/callgrind.adjoint.log > build/portable/callgrind.adjoint.txt
-iterations=$(awk '/^BM_TramwayGradientAdjoint/ {print $6}' build/portable/callgrind.adjoint.txt)
-[ "$iterations" = "1" ] || { echo "count_instructions.sh: expected one adjoint iteration, got '$iterations'" >&2; exit 1; }
-count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' build/portable/callgrind.adjoint.log)
-[ -n "$count" ] || { echo "count_instructions.sh: callgrind reported no count (build/portable/callgrind.adjoint.log)" >&2; exit 1; }
-echo "instructions in one tramway adjoint gradient (with its simulation): $count"
-echo "per function: callgrind_annotate --inclusive=yes $out"
+# The exact gradients: bench_gradients' GradientAdjoint/jobs:1/variables:4 (GradientDirect/...)
+# times adjointGradient (directGradient) once per iteration, and under valgrind runs one iteration.
+count_gradient() {  # method, benchmark, function
+  local method=$1 benchmark=$2 function=$3
+  local out=build/portable/callgrind.$method.out log=build/portable/callgrind.$method.log
+  valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect="mbsopt::$function*" \
+    build/portable/bench/bench_gradients --benchmark_filter="$benchmark/jobs:1/variables:4" \
+    --benchmark_min_time=0.01 2> "$log" > "build/portable/callgrind.$method.txt"
+  local iterations count
+  iterations=$(awk -v name="^BM_Tramway$benchmark/" '$0 ~ name {print $6}' "build/portable/callgrind.$method.txt")
+  [ "$iterations" = "1" ] || { echo "count_instructions.sh: expected one $method iteration, got '$iterations'" >&2; exit 1; }
+  count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$log")
+  [ -n "$count" ] || { echo "count_instructions.sh: callgrind reported no count ($log)" >&2; exit 1; }
+  echo "instructions in one tramway $method gradient, 4 design variables (with its simulation): $count"
+  echo "per function: callgrind_annotate --inclusive=yes $out"
+}
+count_gradient adjoint GradientAdjoint adjointGradient
+count_gradient direct GradientDirect directGradient
