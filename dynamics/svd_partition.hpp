@@ -47,10 +47,10 @@ class SvdPartition {
 
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
   /// solve() for several right-hand sides, the columns of R (n × p) and G (m × p): the columns of dx
-  /// and, when `dmu` is given, of *dmu are those solve() gives, bit for bit (the same operations in
-  /// the same order, column by column), for one pass of each product over the block instead of p
-  /// calls. The exact gradients' sweeps solve 4 to 12 columns per step. Allocates nothing once the
-  /// buffers have these sizes.
+  /// and, when `dmu` is given, of *dmu are those solve() gives in the same build, bit for bit (the
+  /// same kernels, the same operations in the same order, column by column), for one pass of each
+  /// product over the block instead of p calls. The exact gradients' sweeps solve 4 to 12 columns
+  /// per step. Allocates nothing once the buffers have these sizes.
   void solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd& G, Eigen::MatrixXd& dx, Eigen::MatrixXd* dmu) const;
   /// Δx of the system with r = 0 (a projection onto the constraints), without the multipliers.
   void project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;

@@ -30,7 +30,7 @@ class AugmentedSolver {
 
   /// Columns of X, one per column of top (n × p) and bottom (m × p). Needs setMatrix.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& top, const Eigen::MatrixXd& bottom) const;
-  /// The same into X, reusing its storage; top and bottom may be expressions, X must not appear in them.
+  /// The same into X, reusing its storage; top and bottom may be expressions (copied before X is written).
   template <class Top, class Bottom>
   void solve(const Eigen::MatrixBase<Top>& top, const Eigen::MatrixBase<Bottom>& bottom, Eigen::MatrixXd& X) const {
     top_rhs_ = -top;  // the partition solves for −[r; g]
