@@ -114,7 +114,8 @@ TEST(SvdPartition, SolvesColumnsBitForBitAsItSolvesEachColumn) {
     Eigen::Index n, m;
     bool dependent;
   };
-  for (const Case c : {Case{5, 3, false}, Case{5, 3, true}, Case{40, 6, true}, Case{30, 0, false}})
+  // Case{3, 3, false}: B square and regular, no free direction left (V₂ has no column).
+  for (const Case c : {Case{5, 3, false}, Case{5, 3, true}, Case{40, 6, true}, Case{30, 0, false}, Case{3, 3, false}})
     for (unsigned seed = 1; seed <= 5; ++seed) {
       SvdPartition partition(1e-8);
       const System s = randomSystem(c.n, c.m, c.dependent, seed);
@@ -127,6 +128,11 @@ TEST(SvdPartition, SolvesColumnsBitForBitAsItSolvesEachColumn) {
         G.col(j) = s.B * other.r;  // consistent with this B
       }
       expectColumnsAsSolves(partition, R, G);
+      Eigen::MatrixXd none_dx, none_dmu;  // no right-hand side: empty blocks of the right heights
+      partition.solveColumns(Eigen::MatrixXd(c.n, 0), Eigen::MatrixXd(c.m, 0), none_dx, &none_dmu);
+      EXPECT_EQ(none_dx.rows(), c.n);
+      EXPECT_EQ(none_dx.cols(), 0);
+      EXPECT_EQ(none_dmu.rows(), c.m);
     }
 }
 
