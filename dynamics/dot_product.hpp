@@ -8,11 +8,12 @@ namespace mbsopt {
 
 namespace detail {
 
-/// Σ aₖbₖ over N entries, in the order of the plain loop: unrolled, without the loop's overhead.
+/// Σ aₖbₖ in the order of the loop, over N entries when N > 0 (unrolled), over n when N = 0.
 template <int N>
-inline double fixedDotProduct(const double* a, const double* b) {
+inline double loopDotProduct(const double* a, const double* b, Eigen::Index n) {
+  const Eigen::Index length = N > 0 ? N : n;
   double sum = 0.0;
-  for (int k = 0; k < N; ++k) sum += a[k] * b[k];
+  for (Eigen::Index k = 0; k < length; ++k) sum += a[k] * b[k];
   return sum;
 }
 
@@ -27,20 +28,18 @@ inline double fixedDotProduct(const double* a, const double* b) {
 inline double dotProduct(const double* a, const double* b, Eigen::Index n) {
   switch (n) {
     case 0: return 0.0;
-    case 1: return detail::fixedDotProduct<1>(a, b);
-    case 2: return detail::fixedDotProduct<2>(a, b);
-    case 3: return detail::fixedDotProduct<3>(a, b);
-    case 4: return detail::fixedDotProduct<4>(a, b);
-    case 5: return detail::fixedDotProduct<5>(a, b);
-    case 6: return detail::fixedDotProduct<6>(a, b);
-    case 7: return detail::fixedDotProduct<7>(a, b);
-    case 8: return detail::fixedDotProduct<8>(a, b);
+    case 1: return detail::loopDotProduct<1>(a, b, n);
+    case 2: return detail::loopDotProduct<2>(a, b, n);
+    case 3: return detail::loopDotProduct<3>(a, b, n);
+    case 4: return detail::loopDotProduct<4>(a, b, n);
+    case 5: return detail::loopDotProduct<5>(a, b, n);
+    case 6: return detail::loopDotProduct<6>(a, b, n);
+    case 7: return detail::loopDotProduct<7>(a, b, n);
+    case 8: return detail::loopDotProduct<8>(a, b, n);
     default: break;
   }
   if (n >= 16) return Eigen::Map<const Eigen::VectorXd>(a, n).dot(Eigen::Map<const Eigen::VectorXd>(b, n));
-  double sum = 0.0;
-  for (Eigen::Index k = 0; k < n; ++k) sum += a[k] * b[k];
-  return sum;
+  return detail::loopDotProduct<0>(a, b, n);
 }
 
 }  // namespace mbsopt

@@ -52,19 +52,20 @@ namespace {
 // peeling their loops than on the arithmetic (perf on BM_TramwaySimulation); for the large chains
 // the inner loops run down contiguous columns, which the compiler vectorises.
 
-/// multiply() below with the row count a constant: its inner loops unrolled, the same operations in
-/// the same order.
+/// C = A B or C += A B, with the row count a constant when Rows > 0 (its inner loops unrolled), the
+/// runtime `rows` when Rows = 0: the same operations in the same order either way.
 template <int Rows>
-void multiplyFixedRows(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index inner,
-                       Eigen::Index cols, bool accumulate) {
+void multiplyRows(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index runtime_rows,
+                  Eigen::Index inner, Eigen::Index cols, bool accumulate) {
+  const Eigen::Index rows = Rows > 0 ? Rows : runtime_rows;
   for (Eigen::Index j = 0; j < cols; ++j) {
-    double* cj = c + j * Rows;
+    double* cj = c + j * rows;
     if (!accumulate)
-      for (int i = 0; i < Rows; ++i) cj[i] = 0.0;
+      for (Eigen::Index i = 0; i < rows; ++i) cj[i] = 0.0;
     for (Eigen::Index k = 0; k < inner; ++k) {
-      const double* ak = a + k * Rows;
+      const double* ak = a + k * rows;
       const double bkj = b[k + j * inner];
-      for (int i = 0; i < Rows; ++i) cj[i] += ak[i] * bkj;
+      for (Eigen::Index i = 0; i < rows; ++i) cj[i] += ak[i] * bkj;
     }
   }
 }
@@ -72,28 +73,19 @@ void multiplyFixedRows(const double* __restrict a, const double* __restrict b, d
 /// C = A B (A rows × inner, B inner × cols), or C += A B when `accumulate`. Up to 8 rows (the tram's
 /// 5 coordinates and 3 closure rows) with the rows a constant, where the loops over a few rows cost
 /// more in their control than in their products (callgrind on BM_TramwaySimulation). Each column of
-/// C gets the same operations whatever the number of columns (SvdPartition::solveColumns relies on it).
+/// C gets the same operations whatever the number of columns.
 void multiply(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index rows, Eigen::Index inner, Eigen::Index cols,
               bool accumulate) {
   switch (rows) {
-    case 1: return multiplyFixedRows<1>(a, b, c, inner, cols, accumulate);
-    case 2: return multiplyFixedRows<2>(a, b, c, inner, cols, accumulate);
-    case 3: return multiplyFixedRows<3>(a, b, c, inner, cols, accumulate);
-    case 4: return multiplyFixedRows<4>(a, b, c, inner, cols, accumulate);
-    case 5: return multiplyFixedRows<5>(a, b, c, inner, cols, accumulate);
-    case 6: return multiplyFixedRows<6>(a, b, c, inner, cols, accumulate);
-    case 7: return multiplyFixedRows<7>(a, b, c, inner, cols, accumulate);
-    case 8: return multiplyFixedRows<8>(a, b, c, inner, cols, accumulate);
-    default: break;
-  }
-  for (Eigen::Index j = 0; j < cols; ++j) {
-    double* cj = c + j * rows;
-    if (!accumulate) std::fill(cj, cj + rows, 0.0);
-    for (Eigen::Index k = 0; k < inner; ++k) {
-      const double* ak = a + k * rows;
-      const double bkj = b[k + j * inner];
-      for (Eigen::Index i = 0; i < rows; ++i) cj[i] += ak[i] * bkj;
-    }
+    case 1: return multiplyRows<1>(a, b, c, rows, inner, cols, accumulate);
+    case 2: return multiplyRows<2>(a, b, c, rows, inner, cols, accumulate);
+    case 3: return multiplyRows<3>(a, b, c, rows, inner, cols, accumulate);
+    case 4: return multiplyRows<4>(a, b, c, rows, inner, cols, accumulate);
+    case 5: return multiplyRows<5>(a, b, c, rows, inner, cols, accumulate);
+    case 6: return multiplyRows<6>(a, b, c, rows, inner, cols, accumulate);
+    case 7: return multiplyRows<7>(a, b, c, rows, inner, cols, accumulate);
+    case 8: return multiplyRows<8>(a, b, c, rows, inner, cols, accumulate);
+    default: return multiplyRows<0>(a, b, c, rows, inner, cols, accumulate);
   }
 }
 
@@ -185,29 +177,51 @@ void SvdPartition::rangeSpaceIncrement(const Eigen::VectorXd* r, Eigen::VectorXd
   dx = -dx;
 }
 
+void SvdPartition::rangeCoordinates(const double* g, Eigen::Index p, double* x_r) const {
+  multiplyTransposed(u1_.data(), g, x_r, rank_, u1_.rows(), p);
+  for (Eigen::Index j = 0; j < p; ++j)
+    for (Eigen::Index i = 0; i < rank_; ++i) x_r[i + j * rank_] *= -inverse_s1_[i];
+}
+
+void SvdPartition::partitionIncrement(const double* r, const double* x_r, Eigen::Index p, double* dx) const {
+  const Eigen::Index n = v1_.rows(), free = v2_.cols();
+  multiply(v1_.data(), x_r, dx, n, rank_, p, false);  // V₁ X_r (zero without constraints: V₁ is n × 0)
+  if (free == 0) return;
+  work_block_.resize(n, p);
+  if (r) std::copy(r, r + n * p, work_block_.data());
+  multiply(J_.data(), dx, work_block_.data(), n, n, p, r != nullptr);  // R + J V₁ X_r
+  reduced_block_.resize(free, p);
+  multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
+  for (Eigen::Index j = 0; j < p; ++j) {
+    reduced_rhs_ = -reduced_block_.col(j);
+    luSolve(reduced_, reduced_rhs_, x_n_);
+    multiply(v2_.data(), x_n_.data(), dx + j * n, n, free, 1, true);
+  }
+}
+
+void SvdPartition::partitionMultipliers(const double* r, const double* dx, Eigen::Index p, double* dmu) const {
+  const Eigen::Index n = v1_.rows(), m = u1_.rows();
+  work_block_.resize(n, p);
+  std::copy(r, r + n * p, work_block_.data());
+  multiply(J_.data(), dx, work_block_.data(), n, n, p, true);  // R + J ΔX
+  multiplier_block_.resize(rank_, p);
+  multiplyTransposed(v1_.data(), work_block_.data(), multiplier_block_.data(), rank_, n, p);
+  for (Eigen::Index j = 0; j < p; ++j)
+    for (Eigen::Index i = 0; i < rank_; ++i) multiplier_block_(i, j) *= inverse_s1_[i];
+  multiply(u1_.data(), multiplier_block_.data(), dmu, m, rank_, p, false);
+  for (Eigen::Index i = 0; i < m * p; ++i) dmu[i] = -dmu[i];
+}
+
 void SvdPartition::increment(const Eigen::VectorXd* r, const Eigen::VectorXd& g, Eigen::VectorXd& dx) const {
-  const Eigen::Index n = v1_.rows();
-  dx.resize(n);
-  work_.resize(n);
-  multiplyTransposed(u1_, g, x_r_);  // x_r = −S₁⁻¹ U₁ᵀ g
-  for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= -inverse_s1_[i];
+  dx.resize(v1_.rows());
+  x_r_.resize(rank_);
+  rangeCoordinates(g.data(), 1, x_r_.data());
   if (inverse_) {
+    work_.resize(v1_.rows());
     rangeSpaceIncrement(r, dx);
     return;
   }
-  multiply(v1_, x_r_, dx, false);  // V₁ x_r (zero without constraints: V₁ is n × 0)
-  if (v2_.cols() == 0) return;
-  if (r) {
-    work_ = *r;
-    multiply(J_, dx, work_, true);  // r + J V₁ x_r
-  } else {
-    multiply(J_, dx, work_, false);
-  }
-  reduced_rhs_.resize(v2_.cols());
-  multiplyTransposed(v2_, work_, reduced_rhs_);
-  reduced_rhs_ = -reduced_rhs_;
-  luSolve(reduced_, reduced_rhs_, x_n_);
-  multiply(v2_, x_n_, dx, true);
+  partitionIncrement(r ? r->data() : nullptr, x_r_.data(), 1, dx.data());
 }
 
 void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
@@ -219,19 +233,14 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
     multiply(u1_, x_r_, dmu, false);
     return;
   }
-  work_ = r;
-  multiply(J_, dx, work_, true);  // r + J Δx
-  multiplyTransposed(v1_, work_, x_r_);
-  for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= inverse_s1_[i];
-  multiply(u1_, x_r_, dmu, false);
-  dmu = -dmu;
+  partitionMultipliers(r.data(), dx.data(), 1, dmu.data());
 }
 
 void SvdPartition::solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd& G, Eigen::MatrixXd& dx,
                                 Eigen::MatrixXd* dmu) const {
-  const Eigen::Index n = v1_.rows(), m = u1_.rows(), p = R.cols(), free = v2_.cols();
-  dx.resize(n, p);
-  if (dmu) dmu->resize(m, p);
+  const Eigen::Index p = R.cols();
+  dx.resize(v1_.rows(), p);
+  if (dmu) dmu->resize(u1_.rows(), p);
   if (inverse_) {  // the range-space solves, a column at a time
     for (Eigen::Index j = 0; j < p; ++j) {
       column_r_ = R.col(j);
@@ -246,33 +255,10 @@ void SvdPartition::solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd&
     }
     return;
   }
-  // increment() on p columns: X_r = −S₁⁻¹ U₁ᵀ G, ΔX = V₁ X_r + V₂ X_n with
-  // (V₂ᵀ J V₂) X_n = −V₂ᵀ (R + J V₁ X_r).
   x_r_block_.resize(rank_, p);
-  multiplyTransposed(u1_.data(), G.data(), x_r_block_.data(), rank_, m, p);
-  for (Eigen::Index j = 0; j < p; ++j)
-    for (Eigen::Index i = 0; i < rank_; ++i) x_r_block_(i, j) *= -inverse_s1_[i];
-  multiply(v1_.data(), x_r_block_.data(), dx.data(), n, rank_, p, false);
-  if (free > 0) {
-    work_block_ = R;
-    multiply(J_.data(), dx.data(), work_block_.data(), n, n, p, true);
-    reduced_block_.resize(free, p);
-    multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
-    for (Eigen::Index j = 0; j < p; ++j) {
-      reduced_rhs_ = -reduced_block_.col(j);
-      luSolve(reduced_, reduced_rhs_, x_n_);
-      multiply(v2_.data(), x_n_.data(), dx.data() + j * n, n, free, 1, true);
-    }
-  }
-  if (!dmu) return;
-  // solve()'s multipliers on p columns: ΔM = −U₁ S₁⁻¹ V₁ᵀ (R + J ΔX).
-  work_block_ = R;
-  multiply(J_.data(), dx.data(), work_block_.data(), n, n, p, true);
-  multiplyTransposed(v1_.data(), work_block_.data(), x_r_block_.data(), rank_, n, p);
-  for (Eigen::Index j = 0; j < p; ++j)
-    for (Eigen::Index i = 0; i < rank_; ++i) x_r_block_(i, j) *= inverse_s1_[i];
-  multiply(u1_.data(), x_r_block_.data(), dmu->data(), m, rank_, p, false);
-  *dmu = -*dmu;
+  rangeCoordinates(G.data(), p, x_r_block_.data());
+  partitionIncrement(R.data(), x_r_block_.data(), p, dx.data());
+  if (dmu) partitionMultipliers(R.data(), dx.data(), p, dmu->data());
 }
 
 void SvdPartition::project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const { increment(nullptr, g, dx); }

@@ -47,10 +47,10 @@ class SvdPartition {
 
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eigen::VectorXd& dx, Eigen::VectorXd& dmu) const;
   /// solve() for several right-hand sides, the columns of R (n × p) and G (m × p): the columns of dx
-  /// and, when `dmu` is given, of *dmu are those solve() gives in the same build, bit for bit (the
-  /// same kernels, the same operations in the same order, column by column), for one pass of each
-  /// product over the block instead of p calls. The exact gradients' sweeps solve 4 to 12 columns
-  /// per step. Allocates nothing once the buffers have these sizes.
+  /// and, when `dmu` is given, of *dmu are those solve() gives, bit for bit (solve() is the same code
+  /// on one column), for one pass of each product over the block instead of p calls. The exact
+  /// gradients' sweeps solve 4 to 12 columns per step. Allocates nothing once the buffers have
+  /// these sizes.
   void solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd& G, Eigen::MatrixXd& dx, Eigen::MatrixXd* dmu) const;
   /// Δx of the system with r = 0 (a projection onto the constraints), without the multipliers.
   void project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
@@ -95,11 +95,19 @@ class SvdPartition {
   Eigen::VectorXd bound_scratch_;
   mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of the solves: no allocation
   mutable Eigen::VectorXd column_, nu_;                        // buffers of the range-space solves
-  mutable Eigen::MatrixXd x_r_block_, work_block_, reduced_block_;  // buffers of solveColumns
+  mutable Eigen::MatrixXd x_r_block_, work_block_, reduced_block_, multiplier_block_;  // of the block solves
   mutable Eigen::VectorXd column_r_, column_g_, column_dx_, column_dmu_;  // its range-space columns
 
   /// Δx of (48) into dx, r = 0 when null.
   void increment(const Eigen::VectorXd* r, const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
+  // The rows of (48) on p columns of raw column-major data, shared by the solves of one column and
+  // of a block:
+  /// X_r = −S₁⁻¹ U₁ᵀ G (third row) into x_r (rank × p).
+  void rangeCoordinates(const double* g, Eigen::Index p, double* x_r) const;
+  /// ΔX = V₁ X_r + V₂ X_n with (V₂ᵀ J V₂) X_n = −V₂ᵀ (R + J V₁ X_r) (second row), R = 0 when null.
+  void partitionIncrement(const double* r, const double* x_r, Eigen::Index p, double* dx) const;
+  /// The minimum-norm multipliers ΔM = −U₁ S₁⁻¹ V₁ᵀ (R + J ΔX) (first row).
+  void partitionMultipliers(const double* r, const double* dx, Eigen::Index p, double* dmu) const;
   /// The same through the range of Bᵀ, leaving ν in nu_.
   void rangeSpaceIncrement(const Eigen::VectorXd* r, Eigen::VectorXd& dx) const;
 };
