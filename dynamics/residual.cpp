@@ -32,8 +32,13 @@ void updateBodyAxes(const Model& model, Workspace<Scalar>& ws) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const Matrix3<Scalar>& R = ws.rotation[static_cast<std::size_t>(body.frame)];
-    ws.body_centre[i] = R * parameter(model, ws, body.centre_of_mass);
-    if (model.planar()) continue;  // the planar wrenches read I_zz alone, the same in every axes about z
+    const Vector3<Scalar> c = parameter(model, ws, body.centre_of_mass);
+    if (model.planar()) {  // R turns about z: its xy block acts on (c_x, c_y), c_z stays; the planar
+                           // wrenches read I_zz alone, the same in every axes about z
+      ws.body_centre[i] = Vector3<Scalar>(R(0, 0) * c.x() + R(0, 1) * c.y(), R(1, 0) * c.x() + R(1, 1) * c.y(), c.z());
+      continue;
+    }
+    ws.body_centre[i] = R * c;
     Matrix3<Scalar> body_inertia = model.inertia(body).template cast<Scalar>();
     body_inertia.diagonal() = parameter(model, ws, body.moments_of_inertia);
     ws.body_inertia[i] = R * body_inertia * R.transpose();
@@ -106,9 +111,21 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   const Scalar& c = track.cos_heading;
   const Scalar& s = track.sin_heading;
   const Scalar& curvature = track.curvature;
-  const Vector3<Scalar> x = ws.rotation[base].transpose() * ws.rotation[frame].col(0);  // frame heading in base axes
+  const Matrix3<Scalar>& Rb = ws.rotation[base];
+  const Matrix3<Scalar>& Rf = ws.rotation[frame];
+  if (model.planar()) {  // both frames turn about z: the xy blocks alone, and the binormal is z
+    const Scalar x = Rb(0, 0) * Rf(0, 0) + Rb(1, 0) * Rf(1, 0), y = Rb(0, 1) * Rf(0, 0) + Rb(1, 1) * Rf(1, 0);
+    const Scalar deviation = atan2(c * y - s * x, c * x + s * y);
+    const Scalar deviation_rate = (ws.angular_velocity[frame].z() - ws.angular_velocity[base].z()) - curvature * v[i];
+    const Scalar torque = -stiffness * deviation - damping * deviation_rate;
+    ws.moment[frame].z() -= torque;
+    ws.moment[base].z() += torque;
+    f[i] += curvature * torque;
+    return;
+  }
+  const Vector3<Scalar> x = Rb.transpose() * Rf.col(0);  // frame heading in base axes
   const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
-  const Vector3<Scalar> binormal = ws.rotation[base].col(2);
+  const Vector3<Scalar> binormal = Rb.col(2);
   const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
   const Scalar torque = -stiffness * deviation - damping * deviation_rate;
   ws.moment[frame] -= torque * binormal;  // applied on the frame
@@ -226,7 +243,7 @@ void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdS
   updateBodyAxes(model, from);
   if (model.planar()) {
     for (std::size_t k = 0; k < from.rotation.size(); ++k) {
-      for (const auto [i, j] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+      for (const auto& [i, j] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
         setConstant(from.rotation[k](i, j), to.rotation[k](i, j));
       setConstant(from.position[k], to.position[k]);
     }

@@ -163,9 +163,9 @@ const Eigen::Matrix3d kTilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3
 /// A planar model whose every kind of element sits on a moving frame (the shipped scenes slide only
 /// on fixed frames, where 2 ω_e × v_rel and the slider's κ ṡ² terms meet no rotation): a hinge, an
 /// offset turned about z and lifted out of the plane, a prismatic joint on it, a hinge about −z, a curve
-/// slider that follows its track (a clothoid into an arc) and one that only translates on another;
-/// bodies with products of inertia, gravity in the plane, a joint spring, a point spring and a
-/// track guidance. `turned`: the same mechanism and gravity hung from a frame turned by kTilt (the
+/// slider that follows its track (a clothoid into an arc) and one that only translates on another, a
+/// hinge on that one; bodies with products of inertia, gravity in the plane, a joint spring, a point
+/// spring and a track guidance. `turned`: the same mechanism and gravity hung from a frame turned by kTilt (the
 /// first element), which moves out of the plane.
 Model everyPlanarElement(bool turned = false) {
   Model model;
@@ -190,10 +190,15 @@ Model everyPlanarElement(bool turned = false) {
   frame = model.addOffset("tail", rider, Eigen::Vector3d(-0.3, 0.5, 0.0));
   const FrameIndex shuttle = model.addCurveSlider("shuttle", frame, track, SliderOrientation::Translate);
   model.addBody("car", shuttle, 0.9, Eigen::Vector3d(0.05, 0.1, -0.2), 0.4 * inertia);
+  const FrameIndex yaw = model.addRevolute("yaw", shuttle, Eigen::Vector3d::UnitZ());
+  model.addBody("pivot", yaw, 0.6, Eigen::Vector3d(0.2, 0.1, 0.0), 0.3 * inertia);
   model.addJointSpringDamper("hinge_spring", "hinge", 30.0, 0.5, 0.1);
   model.addPointSpringDamper("tether", root, Eigen::Vector3d(0.5, -1.0, 0.0), shuttle, Eigen::Vector3d(0.1, 0.0, 0.0),
                              40.0, 0.8, 0.5);
-  model.addTrackGuidance("guidance", rider, "rider", 200.0, 3.0);
+  // On a hinge that turns against the track, on a slider whose base turns: its deviation, the
+  // base's rotation rate and the track's curvature all enter (on the slider that follows its track
+  // the deviation is constant and the guidance's torque and its reaction cancel in the residual).
+  model.addTrackGuidance("guidance", yaw, "shuttle", 200.0, 3.0);
   return model;
 }
 
