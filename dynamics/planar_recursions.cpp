@@ -36,6 +36,12 @@ void copyPlaneBlock(const Matrix3<Scalar>& Re, Matrix3<Scalar>& out) {
   out(1, 1) = Re(1, 1);
 }
 
+/// Whether a hinge of a planar model turns about +z (its axis is +z or −z). Its exit frame sits on its
+/// entry frame (r = 0) and it has no linear axis nor bias, so the recursions' terms in r, S_v and the
+/// biases are exact zeros there, and S_ω q̇ = ±q̇: its rates and residual skip them, to the same values
+/// (up to the sign of a zero).
+bool turnsPositively(const RevoluteJoint& hinge) { return hinge.axis.z() > 0.0; }
+
 /// R_e (x, y, ·) in the plane: the first two components of R_e v for v = (x, y, z), whose third is z.
 template <class Scalar, class X, class Y>
 std::pair<Scalar, Scalar> inPlane(const Matrix3<Scalar>& Re, const X& x, const Y& y) {
@@ -65,7 +71,7 @@ void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Sca
                    },
                    [&](const RevoluteJoint& j) {  // about ±z: the angle ±q
                      const Scalar c = cos(coordinate()), sn = sin(coordinate());
-                     turnInPlane(Re, c, j.axis.z() > 0.0 ? sn : Scalar(-sn), ws.rotation[s]);
+                     turnInPlane(Re, c, turnsPositively(j) ? sn : Scalar(-sn), ws.rotation[s]);
                      ws.position[s] = ws.position[e];
                      if (axes) ws.motion_angular[k].z() = Scalar(j.axis.z());
                    },
@@ -133,6 +139,17 @@ void planarFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<S
       continue;
     }
     const Scalar& vi = v[element.coordinate];
+    if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // (20)-(21) of a hinge: r = 0, S_v = 0
+      ws.angular_velocity[s].z() = turnsPositively(*hinge) ? Scalar(we + vi) : Scalar(we - vi);
+      ws.velocity[s].x() = ws.velocity[e].x();
+      ws.velocity[s].y() = ws.velocity[e].y();
+      if (!accelerations) continue;
+      const Scalar& ai = a[element.coordinate];
+      ws.angular_acceleration[s].z() = turnsPositively(*hinge) ? Scalar(alpha_e + ai) : Scalar(alpha_e - ai);
+      ws.acceleration[s].x() = ws.acceleration[e].x();
+      ws.acceleration[s].y() = ws.acceleration[e].y();
+      continue;
+    }
     const Scalar& Sw = ws.motion_angular[k].z();
     const Scalar& Svx = ws.motion_linear[k].x();
     const Scalar& Svy = ws.motion_linear[k].y();
@@ -172,6 +189,12 @@ void planarFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, c
       continue;
     }
     const Scalar& ai = a[element.coordinate];
+    if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // r = 0, S_v = 0
+      ws.angular_acceleration[s].z() = turnsPositively(*hinge) ? Scalar(alpha_e + ai) : Scalar(alpha_e - ai);
+      ws.acceleration[s].x() = ws.acceleration[e].x();
+      ws.acceleration[s].y() = ws.acceleration[e].y();
+      continue;
+    }
     ws.angular_acceleration[s].z() = alpha_e + ws.motion_angular[k].z() * ai;
     ws.acceleration[s].x() = ws.acceleration[e].x() - alpha_e * ry + ws.motion_linear[k].x() * ai;
     ws.acceleration[s].y() = ws.acceleration[e].y() + alpha_e * rx + ws.motion_linear[k].y() * ai;
@@ -214,6 +237,14 @@ void planarElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<S
     const Scalar& fx = ws.force[s].x();
     const Scalar& fy = ws.force[s].y();
     const Scalar& mz = ws.moment[s].z();
+    if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // (22)-(24) with r = 0, S_v = 0
+      if (turnsPositively(*hinge)) f[element.coordinate] += mz;
+      else f[element.coordinate] -= mz;
+      ws.moment[e].z() += mz;
+      ws.force[e].x() += fx;
+      ws.force[e].y() += fy;
+      continue;
+    }
     if (element.coordinate >= 0)  // (24)
       f[element.coordinate] +=
           ws.motion_linear[k].x() * fx + ws.motion_linear[k].y() * fy + ws.motion_angular[k].z() * mz;
