@@ -123,11 +123,11 @@ void planarFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<S
     const KinematicElement& element = elements[k];
     const auto e = static_cast<std::size_t>(element.entry);
     const auto s = static_cast<std::size_t>(element.exit);
-    const Scalar rx = ws.position[s].x() - ws.position[e].x();  // r_s/e in the plane
-    const Scalar ry = ws.position[s].y() - ws.position[e].y();
     const Scalar& we = ws.angular_velocity[e].z();
     const Scalar& alpha_e = ws.angular_acceleration[e].z();
     if (element.coordinate < 0) {  // (20)-(21) of a rigid offset: ω_e × r, α_e × r + ω_e × (ω_e × r)
+      const Scalar rx = ws.position[s].x() - ws.position[e].x();  // r_s/e in the plane
+      const Scalar ry = ws.position[s].y() - ws.position[e].y();
       ws.angular_velocity[s].z() = we;
       ws.velocity[s].x() = ws.velocity[e].x() - we * ry;
       ws.velocity[s].y() = ws.velocity[e].y() + we * rx;
@@ -154,6 +154,20 @@ void planarFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<S
     const Scalar& Svx = ws.motion_linear[k].x();
     const Scalar& Svy = ws.motion_linear[k].y();
     const Scalar v_rel_x = Svx * vi, v_rel_y = Svy * vi;
+    if (element.entry == Model::ground) {  // the ground does not move: the terms in ω_e, α_e, v_e, a_e vanish
+      ws.angular_velocity[s].z() = Sw * vi;
+      ws.velocity[s].x() = v_rel_x;
+      ws.velocity[s].y() = v_rel_y;
+      if (!accelerations) continue;
+      const Scalar& ai = a[element.coordinate];
+      const Scalar vi2 = vi * vi;
+      ws.angular_acceleration[s].z() = Sw * ai + ws.bias_angular[k].z() * vi2;
+      ws.acceleration[s].x() = Svx * ai + ws.bias_linear[k].x() * vi2;
+      ws.acceleration[s].y() = Svy * ai + ws.bias_linear[k].y() * vi2;
+      continue;
+    }
+    const Scalar rx = ws.position[s].x() - ws.position[e].x();
+    const Scalar ry = ws.position[s].y() - ws.position[e].y();
     ws.angular_velocity[s].z() = we + Sw * vi;                    // (21)
     ws.velocity[s].x() = ws.velocity[e].x() - we * ry + v_rel_x;  // (20)
     ws.velocity[s].y() = ws.velocity[e].y() + we * rx + v_rel_y;
@@ -176,12 +190,26 @@ void planarFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, c
     const KinematicElement& element = elements[k];
     const auto e = static_cast<std::size_t>(element.entry);
     const auto s = static_cast<std::size_t>(element.exit);
-    const Scalar rx = ws.position[s].x() - ws.position[e].x();
-    const Scalar ry = ws.position[s].y() - ws.position[e].y();
     const Scalar& alpha_e = ws.angular_acceleration[e].z();
     ws.angular_velocity[s].z() = Scalar(0);
     ws.velocity[s].x() = Scalar(0);
     ws.velocity[s].y() = Scalar(0);
+    if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // r = 0, S_v = 0
+      const Scalar& ai = a[element.coordinate];
+      ws.angular_acceleration[s].z() = turnsPositively(*hinge) ? Scalar(alpha_e + ai) : Scalar(alpha_e - ai);
+      ws.acceleration[s].x() = ws.acceleration[e].x();
+      ws.acceleration[s].y() = ws.acceleration[e].y();
+      continue;
+    }
+    if (element.coordinate >= 0 && element.entry == Model::ground) {  // α_e = 0, a_e = 0
+      const Scalar& ai = a[element.coordinate];
+      ws.angular_acceleration[s].z() = ws.motion_angular[k].z() * ai;
+      ws.acceleration[s].x() = ws.motion_linear[k].x() * ai;
+      ws.acceleration[s].y() = ws.motion_linear[k].y() * ai;
+      continue;
+    }
+    const Scalar rx = ws.position[s].x() - ws.position[e].x();
+    const Scalar ry = ws.position[s].y() - ws.position[e].y();
     if (element.coordinate < 0) {  // (20)-(21) at q̇ = 0 without joint rate: α_e, a_e + α_e × r
       ws.angular_acceleration[s].z() = alpha_e;
       ws.acceleration[s].x() = ws.acceleration[e].x() - alpha_e * ry;
@@ -189,12 +217,6 @@ void planarFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, c
       continue;
     }
     const Scalar& ai = a[element.coordinate];
-    if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // r = 0, S_v = 0
-      ws.angular_acceleration[s].z() = turnsPositively(*hinge) ? Scalar(alpha_e + ai) : Scalar(alpha_e - ai);
-      ws.acceleration[s].x() = ws.acceleration[e].x();
-      ws.acceleration[s].y() = ws.acceleration[e].y();
-      continue;
-    }
     ws.angular_acceleration[s].z() = alpha_e + ws.motion_angular[k].z() * ai;
     ws.acceleration[s].x() = ws.acceleration[e].x() - alpha_e * ry + ws.motion_linear[k].x() * ai;
     ws.acceleration[s].y() = ws.acceleration[e].y() + alpha_e * rx + ws.motion_linear[k].y() * ai;
@@ -248,6 +270,7 @@ void planarElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<S
     if (element.coordinate >= 0)  // (24)
       f[element.coordinate] +=
           ws.motion_linear[k].x() * fx + ws.motion_linear[k].y() * fy + ws.motion_angular[k].z() * mz;
+    if (element.entry == Model::ground) continue;  // nothing reads the ground's wrench
     const Scalar rx = ws.position[s].x() - ws.position[e].x(), ry = ws.position[s].y() - ws.position[e].y();
     ws.moment[e].z() += mz + (rx * fy - ry * fx);  // (23): M_e += M_s + (r × F_s)_z
     ws.force[e].x() += fx;  // (22)

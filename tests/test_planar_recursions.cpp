@@ -164,8 +164,8 @@ const Eigen::Matrix3d kTilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3
 /// on fixed frames, where 2 ω_e × v_rel and the slider's κ ṡ² terms meet no rotation): a hinge, an
 /// offset turned about z and lifted out of the plane, a prismatic joint on it, a hinge about −z, a curve
 /// slider that follows its track (a clothoid into an arc) and one that only translates on another, a
-/// hinge on that one; bodies with products of inertia, gravity in the plane, a joint spring, a point
-/// spring and a track guidance. `turned`: the same mechanism and gravity hung from a frame turned by kTilt (the
+/// hinge on that one, and on the root a second slider that follows its track; bodies with products of
+/// inertia, gravity in the plane, a joint spring, a point spring and a track guidance. `turned`: the same mechanism and gravity hung from a frame turned by kTilt (the
 /// first element), which moves out of the plane.
 Model everyPlanarElement(bool turned = false) {
   Model model;
@@ -192,6 +192,10 @@ Model everyPlanarElement(bool turned = false) {
   model.addBody("car", shuttle, 0.9, Eigen::Vector3d(0.05, 0.1, -0.2), 0.4 * inertia);
   const FrameIndex yaw = model.addRevolute("yaw", shuttle, Eigen::Vector3d::UnitZ());
   model.addBody("pivot", yaw, 0.6, Eigen::Vector3d(0.2, 0.1, 0.0), 0.3 * inertia);
+  // A second branch, on the root (the ground of the planar model, whose rates the recursions skip):
+  // a slider that follows its track, so that both its rotation rate and its curvature bias enter.
+  const FrameIndex runner = model.addCurveSlider("runner", root, track, SliderOrientation::FollowTrack);
+  model.addBody("trolley", runner, 0.8, Eigen::Vector3d(0.1, -0.2, 0.0), 0.2 * inertia);
   model.addJointSpringDamper("hinge_spring", "hinge", 30.0, 0.5, 0.1);
   model.addPointSpringDamper("tether", root, Eigen::Vector3d(0.5, -1.0, 0.0), shuttle, Eigen::Vector3d(0.1, 0.0, 0.0),
                              40.0, 0.8, 0.5);
