@@ -89,8 +89,8 @@ void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const Vect
         cut.kind,
         [&](FrameIndex a, FrameIndex b) {
           const Vector3<Scalar> f = lambda.template segment<3>(row);
-          ws.force[static_cast<std::size_t>(a)] += f;  // δ(p_a − p_b) = δp_a − δp_b
-          ws.force[static_cast<std::size_t>(b)] -= f;
+          addForce(model, ws, static_cast<std::size_t>(a), f);  // δ(p_a − p_b) = δp_a − δp_b
+          addForce(model, ws, static_cast<std::size_t>(b), Vector3<Scalar>(-f));
           row += 3;
         },
         [&](const Orthogonality& o) {
@@ -98,8 +98,8 @@ void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const Vect
           const Vector3<Scalar> u = ws.rotation[ia] * o.u_local;
           const Vector3<Scalar> w = ws.rotation[ib] * o.w_local;
           const Vector3<Scalar> torque = lambda[row++] * u.cross(w);  // δ(u·w) = δθ_a·(u×w) − δθ_b·(u×w)
-          ws.moment[ia] += torque;
-          ws.moment[ib] -= torque;
+          addMoment(model, ws, ia, torque);
+          addMoment(model, ws, ib, Vector3<Scalar>(-torque));
         });
   }
 }

@@ -14,8 +14,9 @@
 //   force in the plane and the moment about z (a joint's axes S_ω along z and S_v in the plane,
 //   M_z,e = M_z,s + (r × F)_z needing F in the plane only). A body's inertia then enters by its I_zz
 //   alone, (R I Rᵀ)_zz = I_zz for a rotation R about z, and ω × Iω has no z component. The other
-//   components of ws.force and ws.moment are not carried (a constraint or a spring may add to them):
-//   on a planar model they mean nothing.
+//   components of ws.force and ws.moment are not carried: no stage writes them on a planar model
+//   (the force elements and cut joints add through addForce and addMoment, workspace.hpp), and
+//   they keep the zeros a workspace starts with.
 #pragma once
 
 #include "dynamics/kinematics.hpp"

@@ -91,10 +91,10 @@ void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Work
   const Vector3<Scalar> u = d / length;
   const Scalar tension = stiffness * (length - parameter(model, ws, s.rest_length)) + damping * u.dot(d_rate);
   const Vector3<Scalar> on_a = tension * u;  // pulls a towards b when stretched
-  ws.force[a] -= on_a;
-  ws.moment[a] -= ra.cross(on_a);
-  ws.force[b] += on_a;
-  ws.moment[b] += rb.cross(on_a);
+  addForce(model, ws, a, Vector3<Scalar>(-on_a));
+  addMoment(model, ws, a, Vector3<Scalar>(-ra.cross(on_a)));
+  addForce(model, ws, b, on_a);
+  addMoment(model, ws, b, Vector3<Scalar>(rb.cross(on_a)));
 }
 
 /// Track guidance torque on its frame, reaction on the track's frame, and −κτ on the slider
@@ -133,10 +133,17 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
 }
 
-/// Every frame's force and moment set to zero.
+/// Every frame's force and moment set to zero: on a planar model the components written there,
+/// F_x, F_y and M_z (addForce, addMoment).
 template <class Scalar>
-void clearWrenches(Workspace<Scalar>& ws) {
+void clearWrenches(const Model& model, Workspace<Scalar>& ws) {
   for (std::size_t k = 0; k < ws.force.size(); ++k) {
+    if (model.planar()) {
+      setZero(ws.force[k].x());
+      setZero(ws.force[k].y());
+      setZero(ws.moment[k].z());
+      continue;
+    }
     ws.force[k].setZero();
     ws.moment[k].setZero();
   }
@@ -145,7 +152,7 @@ void clearWrenches(Workspace<Scalar>& ws) {
 /// The body wrenches with gravity g at the kinematics in ws, every other wrench cleared.
 template <class Scalar>
 void startWrenches(const Model& model, Workspace<Scalar>& ws, const Vector3<Scalar>& g, FrameMotion motion) {
-  clearWrenches(ws);
+  clearWrenches(model, ws);
   addBodyWrenches(model, ws, g, motion);
 }
 
@@ -306,7 +313,7 @@ bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const
   }
   // The element's force is k·(a stiffness term) + c·(a damping term): ∂f/∂k is its force with k = 1,
   // c = 0, carried to the coordinates by the same backward recursion (22)-(24).
-  clearWrenches(ws);
+  clearWrenches(model, ws);
   std::visit(Overloaded{[](const JointSpringDamper&) {},
                         [&](const PointSpringDamper& s) {
                           addPointSpringWrenches(model, s, ws, p == s.stiffness ? 1.0 : 0.0, p == s.damping ? 1.0 : 0.0);

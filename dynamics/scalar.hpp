@@ -28,6 +28,13 @@ using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;
 inline double valueOf(double x) { return x; }
 inline double valueOf(const AdScalar& x) { return x.value(); }
 
+/// x = 0 in place (for an AD scalar its value and every derivative lane, without a temporary).
+inline void setZero(double& x) { x = 0.0; }
+inline void setZero(AdScalar& x) {
+  x.value() = 0.0;
+  x.derivatives().setZero();
+}
+
 /// R_e R(axis, θ): the frame R_e turned by the angle θ, given by c = cos θ and s = sin θ, about the
 /// unit vector `axis` given in its own axes. About a coordinate axis e_k only the other two columns
 /// turn, c_i' = cos·c_i + sin·c_j and c_j' = −sin·c_i + cos·c_j for (i, j, k) cyclic: 12 products

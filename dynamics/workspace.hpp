@@ -63,6 +63,29 @@ struct Workspace {
   std::vector<std::pair<ParameterIndex, int>> parameter_seeds;
 };
 
+/// Adds F to the force frame k transmits; on a planar model only F_x and F_y, the components the
+/// planar backward recursion carries (planar_recursions.hpp), so that F_z is never written there and
+/// keeps the workspace's zero.
+template <class Scalar>
+void addForce(const Model& model, Workspace<Scalar>& ws, std::size_t k, const Vector3<Scalar>& force) {
+  if (!model.planar()) {
+    ws.force[k] += force;
+    return;
+  }
+  ws.force[k].x() += force.x();
+  ws.force[k].y() += force.y();
+}
+
+/// Adds M to the moment frame k transmits; on a planar model only M_z (as addForce).
+template <class Scalar>
+void addMoment(const Model& model, Workspace<Scalar>& ws, std::size_t k, const Vector3<Scalar>& moment) {
+  if (!model.planar()) {
+    ws.moment[k] += moment;
+    return;
+  }
+  ws.moment[k].z() += moment.z();
+}
+
 /// A model parameter read into the evaluation's scalar: with a unit derivative in its direction
 /// when ws.parameter_seeds names it (∂/∂b by forward AD of the same code), a constant otherwise.
 template <class Scalar>

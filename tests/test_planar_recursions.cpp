@@ -25,6 +25,7 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "dynamics/kinematics.hpp"
@@ -380,6 +381,19 @@ TEST(PlanarKinematics, FramesAreThoseOfTheTurnedMechanism) {
   }
 }
 
+/// On a planar model no stage writes the wrench components the planar backward recursion does not
+/// carry (F_z, M_x, M_y): they keep the workspace's zeros, in every derivative lane too, whatever the
+/// multipliers of the rows that vanish in the plane (a revolute cut's orthogonality rows turn λ
+/// into an in-plane moment), the points' heights of a point spring, or the bodies' centres.
+template <class Scalar>
+void expectUncarriedWrenchesZero(const Workspace<Scalar>& ws, const std::string& what) {
+  for (std::size_t k = 0; k < ws.force.size(); ++k)
+    for (const Scalar* x : {&ws.force[k].z(), &ws.moment[k].x(), &ws.moment[k].y()}) {
+      EXPECT_EQ(valueOf(*x), 0.0) << what << ", frame " << k;
+      if constexpr (!std::is_same_v<Scalar, double>) EXPECT_TRUE(x->derivatives().isZero(0.0)) << what << ", frame " << k;
+    }
+}
+
 void expectSameResidual(const TurnedPair& pair) {
   const std::string& name = pair.name;
   const Model& a = pair.planar;
@@ -433,6 +447,8 @@ void expectSameResidual(const TurnedPair& pair) {
     }
     const double rest_scale = 1.0 + std::max(largest(rest_a), largest(rest_b));
     EXPECT_LE(largest(rest_a - rest_b), 4096 * kEpsilon * rest_scale) << what << ": M q̈ + Bᵀλ";
+    expectUncarriedWrenchesZero(wa, what + ", after the residual");
+    expectUncarriedWrenchesZero(ada, what + ", after the AD passes");
   }
 }
 
