@@ -2,6 +2,7 @@
 // workspace per thread: evaluations on separate workspaces may run in parallel.
 #pragma once
 
+#include <initializer_list>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -63,27 +64,26 @@ struct Workspace {
   std::vector<std::pair<ParameterIndex, int>> parameter_seeds;
 };
 
-/// Adds F to the force frame k transmits; on a planar model only F_x and F_y, the components the
-/// planar backward recursion carries (planar_recursions.hpp), so that F_z is never written there and
-/// keeps the workspace's zero.
+/// to += v; on a planar model only the components in `carried`, those the planar backward recursion
+/// carries (planar_recursions.hpp), so that the others are never written there and keep the
+/// workspace's zeros.
 template <class Scalar>
-void addForce(const Model& model, Workspace<Scalar>& ws, std::size_t k, const Vector3<Scalar>& force) {
+void addCarried(const Model& model, Vector3<Scalar>& to, const Vector3<Scalar>& v, std::initializer_list<int> carried) {
   if (!model.planar()) {
-    ws.force[k] += force;
+    to += v;
     return;
   }
-  ws.force[k].x() += force.x();
-  ws.force[k].y() += force.y();
+  for (const int i : carried) to[i] += v[i];
 }
 
-/// Adds M to the moment frame k transmits; on a planar model only M_z (as addForce).
+/// Adds F to the force frame k transmits (on a planar model F_x and F_y), and M to its moment (M_z).
+template <class Scalar>
+void addForce(const Model& model, Workspace<Scalar>& ws, std::size_t k, const Vector3<Scalar>& force) {
+  addCarried(model, ws.force[k], force, {0, 1});
+}
 template <class Scalar>
 void addMoment(const Model& model, Workspace<Scalar>& ws, std::size_t k, const Vector3<Scalar>& moment) {
-  if (!model.planar()) {
-    ws.moment[k] += moment;
-    return;
-  }
-  ws.moment[k].z() += moment.z();
+  addCarried(model, ws.moment[k], moment, {2});
 }
 
 /// A model parameter read into the evaluation's scalar: with a unit derivative in its direction
