@@ -42,6 +42,13 @@ void copyPlaneBlock(const Matrix3<Scalar>& Re, Matrix3<Scalar>& out) {
 /// (up to the sign of a zero).
 bool turnsPositively(const RevoluteJoint& hinge) { return hinge.axis.z() > 0.0; }
 
+/// The rate about z of a hinge's exit frame from its entry frame's and the joint's: entry ± joint
+/// (ω from q̇, α from q̈).
+template <class Scalar>
+Scalar hingeRate(const RevoluteJoint& hinge, const Scalar& entry, const Scalar& joint) {
+  return turnsPositively(hinge) ? Scalar(entry + joint) : Scalar(entry - joint);
+}
+
 /// R_e (x, y, ·) in the plane: the first two components of R_e v for v = (x, y, z), whose third is z.
 template <class Scalar, class X, class Y>
 std::pair<Scalar, Scalar> inPlane(const Matrix3<Scalar>& Re, const X& x, const Y& y) {
@@ -140,12 +147,12 @@ void planarFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<S
     }
     const Scalar& vi = v[element.coordinate];
     if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // (20)-(21) of a hinge: r = 0, S_v = 0
-      ws.angular_velocity[s].z() = turnsPositively(*hinge) ? Scalar(we + vi) : Scalar(we - vi);
+      ws.angular_velocity[s].z() = hingeRate(*hinge, we, vi);
       ws.velocity[s].x() = ws.velocity[e].x();
       ws.velocity[s].y() = ws.velocity[e].y();
       if (!accelerations) continue;
       const Scalar& ai = a[element.coordinate];
-      ws.angular_acceleration[s].z() = turnsPositively(*hinge) ? Scalar(alpha_e + ai) : Scalar(alpha_e - ai);
+      ws.angular_acceleration[s].z() = hingeRate(*hinge, alpha_e, ai);
       ws.acceleration[s].x() = ws.acceleration[e].x();
       ws.acceleration[s].y() = ws.acceleration[e].y();
       continue;
@@ -196,7 +203,7 @@ void planarFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, c
     ws.velocity[s].y() = Scalar(0);
     if (const auto* hinge = std::get_if<RevoluteJoint>(&element.kind)) {  // r = 0, S_v = 0
       const Scalar& ai = a[element.coordinate];
-      ws.angular_acceleration[s].z() = turnsPositively(*hinge) ? Scalar(alpha_e + ai) : Scalar(alpha_e - ai);
+      ws.angular_acceleration[s].z() = hingeRate(*hinge, alpha_e, ai);
       ws.acceleration[s].x() = ws.acceleration[e].x();
       ws.acceleration[s].y() = ws.acceleration[e].y();
       continue;

@@ -113,37 +113,46 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
   const Scalar& curvature = track.curvature;
   const Matrix3<Scalar>& Rb = ws.rotation[base];
   const Matrix3<Scalar>& Rf = ws.rotation[frame];
-  if (model.planar()) {  // both frames turn about z: the xy blocks alone, and the binormal is z
-    const Scalar x = Rb(0, 0) * Rf(0, 0) + Rb(1, 0) * Rf(1, 0), y = Rb(0, 1) * Rf(0, 0) + Rb(1, 1) * Rf(1, 0);
-    const Scalar deviation = atan2(c * y - s * x, c * x + s * y);
-    const Scalar deviation_rate = (ws.angular_velocity[frame].z() - ws.angular_velocity[base].z()) - curvature * v[i];
-    const Scalar torque = -stiffness * deviation - damping * deviation_rate;
+  const bool planar = model.planar();  // both frames turn about z: the xy blocks alone, the binormal is z
+  // The frame's heading in base axes (x, y), and its rotation rate relative to the base about the binormal.
+  Scalar x, y, relative_rate;
+  if (planar) {
+    x = Rb(0, 0) * Rf(0, 0) + Rb(1, 0) * Rf(1, 0);
+    y = Rb(0, 1) * Rf(0, 0) + Rb(1, 1) * Rf(1, 0);
+    relative_rate = ws.angular_velocity[frame].z() - ws.angular_velocity[base].z();
+  } else {
+    const Vector3<Scalar> heading = Rb.transpose() * Rf.col(0);
+    x = heading.x();
+    y = heading.y();
+    relative_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(Rb.col(2));
+  }
+  const Scalar deviation = atan2(c * y - s * x, c * x + s * y);  // Δ, wrapped to (−π, π]
+  const Scalar deviation_rate = relative_rate - curvature * v[i];
+  const Scalar torque = -stiffness * deviation - damping * deviation_rate;
+  if (planar) {
     ws.moment[frame].z() -= torque;
     ws.moment[base].z() += torque;
-    f[i] += curvature * torque;
-    return;
+  } else {
+    const Vector3<Scalar> binormal = Rb.col(2);
+    ws.moment[frame] -= torque * binormal;  // applied on the frame
+    ws.moment[base] += torque * binormal;   // reaction on the track
   }
-  const Vector3<Scalar> x = Rb.transpose() * Rf.col(0);  // frame heading in base axes
-  const Scalar deviation = atan2(c * x.y() - s * x.x(), c * x.x() + s * x.y());  // Δ, wrapped to (−π, π]
-  const Vector3<Scalar> binormal = Rb.col(2);
-  const Scalar deviation_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(binormal) - curvature * v[i];
-  const Scalar torque = -stiffness * deviation - damping * deviation_rate;
-  ws.moment[frame] -= torque * binormal;  // applied on the frame
-  ws.moment[base] += torque * binormal;   // reaction on the track
-  f[i] += curvature * torque;             // generalised force −κτ on s, moved to the residual side
+  f[i] += curvature * torque;  // generalised force −κτ on s, moved to the residual side
 }
 
 /// Every frame's force and moment set to zero: on a planar model the components written there,
 /// F_x, F_y and M_z (addForce, addMoment).
 template <class Scalar>
 void clearWrenches(const Model& model, Workspace<Scalar>& ws) {
-  for (std::size_t k = 0; k < ws.force.size(); ++k) {
-    if (model.planar()) {
+  if (model.planar()) {
+    for (std::size_t k = 0; k < ws.force.size(); ++k) {
       setZero(ws.force[k].x());
       setZero(ws.force[k].y());
       setZero(ws.moment[k].z());
-      continue;
     }
+    return;
+  }
+  for (std::size_t k = 0; k < ws.force.size(); ++k) {
     ws.force[k].setZero();
     ws.moment[k].setZero();
   }

@@ -390,7 +390,9 @@ void expectUncarriedWrenchesZero(const Workspace<Scalar>& ws, const std::string&
   for (std::size_t k = 0; k < ws.force.size(); ++k)
     for (const Scalar* x : {&ws.force[k].z(), &ws.moment[k].x(), &ws.moment[k].y()}) {
       EXPECT_EQ(valueOf(*x), 0.0) << what << ", frame " << k;
-      if constexpr (!std::is_same_v<Scalar, double>) EXPECT_TRUE(x->derivatives().isZero(0.0)) << what << ", frame " << k;
+      if constexpr (!std::is_same_v<Scalar, double>) {
+        EXPECT_TRUE(x->derivatives().isZero(0.0)) << what << ", frame " << k;
+      }
     }
 }
 
