@@ -65,6 +65,13 @@ const DesignResponse& DesignNlp::keep(const Eigen::VectorXd& x, DesignResponse r
   return recent_.front().second;
 }
 
+DesignResponse DesignNlp::recycled() {
+  if (!first_ || recent_.size() < kKeptSimulations) return {};
+  DesignResponse oldest = std::move(recent_.back().second);
+  recent_.pop_back();
+  return oldest;
+}
+
 const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
   double thread_seconds = 0.0;
   return simulation(x, thread_seconds);
@@ -83,8 +90,9 @@ const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x, double& th
     return keep(x, response.get());  // what evaluateDesign threw, it throws here
   }
   startWaiting();
+  DesignResponse response = recycled();
   const auto start_time = std::chrono::steady_clock::now();
-  DesignResponse response = evaluateDesign(problem_, functionals_, x);
+  evaluateDesign(problem_, functionals_, x, response, {});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   fastest_simulation_s_ = fastest_simulation_s_ > 0.0 ? std::min(fastest_simulation_s_, seconds) : seconds;
   thread_seconds += seconds;

@@ -88,6 +88,11 @@ class DesignNlp : public NlpProblem {
   std::deque<std::pair<Eigen::VectorXd, DesignResponse>> recent_;
   /// Keeps a new simulation as the first or the most recent one.
   const DesignResponse& keep(const Eigen::VectorXd& x, DesignResponse response);
+  /// The simulation keeping a new one would forget (the oldest recent one, taken out), or an empty
+  /// one: the next simulation is written into its buffers, which then need no new pages (a fresh
+  /// trajectory's first-touch page faults cost 6-9 % of a tram simulation, bench_dynamics:
+  /// BM_TramwaySimulation).
+  DesignResponse recycled();
   /// simulation(x), adding to `thread_seconds` the wall time of a simulation run on this thread.
   const DesignResponse& simulation(const Eigen::VectorXd& x, double& thread_seconds);
 

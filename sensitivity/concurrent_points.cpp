@@ -121,10 +121,10 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
     // off the cache lines the evaluations read (thread_scratch_).
     threads.emplace_back([&] {
       try {
-        evaluateDesign(problem_, functionals_, x_, response_, [&](long k) {
+        evaluateDesign(problem_, functionals_, x_, simulation_, [&](long k) {
           std::unique_lock lock(mutex);
           if (k == 0) {
-            last = std::min(capacity, static_cast<long>(response_.trajectory.time.size()) - 1);
+            last = std::min(capacity, static_cast<long>(simulation_.trajectory.time.size()) - 1);
             early_.values.reset(new double[static_cast<std::size_t>(std::max(last, 0L) * early_.stride)]);
             early_.ready.assign(static_cast<std::size_t>(std::max(last, 0L)), 0);
           }

@@ -76,7 +76,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       functionals_(functionals),
       x_(x),
       model_(checkedModel(problem, x)),
-      response_(simulated ? *simulated : DesignResponse{}),
+      simulated_(simulated),
       scratch_(model_) {
   for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
   parameter_indices_ = parameterIndices(model_, parameters_);
@@ -94,7 +94,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   collectSensors(model_, functionals_, [](Eigen::Index) { return true; }, functional_sensor_slot_, functional_sensors_);
   if (simulated) return;
   if (jobs >= 2) simulateWhileEvaluating(jobs);
-  else evaluateDesign(problem_, functionals_, x_, response_, {});
+  else evaluateDesign(problem_, functionals_, x_, simulation_, {});
 }
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
@@ -112,7 +112,7 @@ void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::
 
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   if (k == s.geometry_point) return;
-  s.q = response_.trajectory.q.col(k);
+  s.q = response().trajectory.q.col(k);
   if (model_.constraintCount() > 0) {  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
     mbsopt::constraintJacobian(model_, s.plain_ws, s.q, model_.freeCoordinates(), s.closure, s.jacobian);
   } else {
@@ -130,7 +130,7 @@ StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
 }
 
 StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
-  const Trajectory& tr = response_.trajectory;
+  const Trajectory& tr = response().trajectory;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(model_.constraintCount());
   if (model_.constraintCount() > 0) {  // Bᵀλ = −f(q, q̇, q̈, 0) on the free rows, least squares
     const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k);
@@ -186,7 +186,7 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
 }
 
 void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
-  const Trajectory& tr = response_.trajectory;
+  const Trajectory& tr = response().trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount();
   geometryAt(k, s);
@@ -312,7 +312,7 @@ ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
 
 double TrajectoryDerivatives::seedWeight(Eigen::Index j, Eigen::Index k) const {  // ∂Ψ/∂φ_k ∂φ/∂y
   const auto f = static_cast<std::size_t>(j);
-  return functionals_[f].sign * response_.functionals[f].gradient[k];
+  return functionals_[f].sign * response().functionals[f].gradient[k];
 }
 
 bool TrajectoryDerivatives::selectSensors(Eigen::Index k, Scratch& scratch) const {
@@ -339,7 +339,7 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
 }
 
 void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSeeds& out) {
-  const Trajectory& tr = response_.trajectory;
+  const Trajectory& tr = response().trajectory;
   if (selectSensors(k, scratch))  // every selected sensor in one set of passes
     responseJacobians(model_, scratch.ws, scratch.sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k),
                       model_.freeCoordinates(), scratch.sensor_jacobians);
@@ -354,8 +354,8 @@ DesignGradient TrajectoryDerivatives::gradient(const Eigen::MatrixXd& dpsi_db) c
   out.constraints.resize(functionalCount(), nx);
   for (Eigen::Index i = 0; i < variableCount(); ++i)
     out.constraints.col(i) = dpsi_db.col(i) * problem_.design.variables[static_cast<std::size_t>(i)].scale;
-  out.constraints.col(nx - 1) = artificialColumn(problem_, functionals_, response_);
-  out.values = DesignValues{response_.cost, response_.constraints};
+  out.constraints.col(nx - 1) = artificialColumn(problem_, functionals_, response());
+  out.values = DesignValues{response().cost, response().constraints};
   return out;
 }
 

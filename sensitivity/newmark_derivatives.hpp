@@ -47,7 +47,8 @@ struct ResponseSeeds {
 
 class TrajectoryDerivatives {
  public:
-  /// Simulates at x, unless `simulated` is that simulation (then copied); throws
+  /// Simulates at x, unless `simulated` is that simulation: then it is read where it is (not copied),
+  /// and must outlive this object and its copies. Throws
   /// std::invalid_argument for cut joints closed at acceleration level. When it simulates with
   /// jobs ≥ 2, the simulation runs on a thread of its own while jobs − 1 threads evaluate the time
   /// points' derivatives, each as soon as its step is stored, from point 1 on (at most kEarlyBytes of
@@ -63,8 +64,8 @@ class TrajectoryDerivatives {
   /// less any whose evaluation threw (evaluated again, and the error raised, when a sweep asks).
   Eigen::Index earlyPoints() const { return early_.count; }
 
-  Eigen::Index timePoints() const { return response_.trajectory.time.size(); }
-  double time(Eigen::Index k) const { return response_.trajectory.time[k]; }
+  Eigen::Index timePoints() const { return response().trajectory.time.size(); }
+  double time(Eigen::Index k) const { return response().trajectory.time[k]; }
   Eigen::Index freeCount() const { return static_cast<Eigen::Index>(model_.freeCoordinates().size()); }
   Eigen::Index variableCount() const { return static_cast<Eigen::Index>(parameters_.size()); }
   Eigen::Index functionalCount() const { return static_cast<Eigen::Index>(functionals_.size()); }
@@ -103,7 +104,9 @@ class TrajectoryDerivatives {
   const std::vector<ConstraintFunctional>& functionals_;
   Eigen::VectorXd x_;
   Model model_;
-  DesignResponse response_;
+  const DesignResponse* simulated_;  ///< the caller's simulation at x, or null
+  DesignResponse simulation_;        ///< this object's own, without one
+  const DesignResponse& response() const { return simulated_ ? *simulated_ : simulation_; }
   std::vector<std::string> parameters_;
   std::vector<ParameterIndex> parameter_indices_;  ///< their indices in model_
   /// Per design variable, its direction among the AD passes' parameters, or −1 when f is linear in
@@ -198,7 +201,7 @@ class TrajectoryDerivatives {
   static bool packPoint(const PointDerivatives& point, const std::vector<ResponseJacobian>& sensors, double* out,
                         const double* end);
   void unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const;
-  /// Simulates into response_ on a thread of its own while this thread and jobs − 2 more evaluate
+  /// Simulates into simulation_ on a thread of its own while this thread and jobs − 2 more evaluate
   /// the points already stored into the early store.
   void simulateWhileEvaluating(int jobs);
   /// Point k as evaluated during the simulation, its seeds formed, into `out` (`sensors`: a buffer

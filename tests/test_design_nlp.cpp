@@ -8,6 +8,7 @@
 
 #include "problems/scene_file.hpp"
 #include "problems/design_nlp.hpp"
+#include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/gradient_method.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
@@ -73,6 +74,37 @@ TEST(DesignNlp, KeepsTheFirstPointAndTheMostRecentOnes) {
   EXPECT_EQ(nlp.keptSimulation(points[1]), nullptr);  // pushed out by the newer ones
   for (std::size_t k = 2; k < points.size(); ++k) EXPECT_NE(nlp.keptSimulation(points[k]), nullptr) << k;
   EXPECT_GT(nlp.simulationSeconds(), 0.0);
+}
+
+// Once kKeptSimulations points are kept, each new simulation is written into the buffers of the one
+// it pushes out (DesignNlp::recycled). Every kept simulation must still be the one of its own point,
+// the same to the bit as a fresh evaluation of that point: trajectory, sensors, and the measures.
+TEST(DesignNlp, ASimulationWrittenIntoAForgottenOnesBuffersIsThatOfItsOwnPoint) {
+  DesignNlp nlp(chain(), "adjoint");
+  const Eigen::VectorXd start = nlp.start();
+  NlpEvaluation out;
+  std::vector<Eigen::VectorXd> points;
+  for (std::size_t k = 0; k < 2 * DesignNlp::kKeptSimulations + 2; ++k) {
+    points.push_back((1.0 + 0.01 * static_cast<double>(k)) * start);
+    nlp.evaluate(points.back(), false, out);
+  }
+  for (std::size_t k = points.size() - DesignNlp::kKeptSimulations; k < points.size(); ++k) {
+    const DesignResponse* kept = nlp.keptSimulation(points[k]);
+    ASSERT_NE(kept, nullptr) << k;
+    const DesignResponse fresh = evaluateDesign(nlp.problem(), nlp.functionals(), points[k]);
+    EXPECT_EQ(kept->cost, fresh.cost) << k;
+    EXPECT_EQ(kept->constraints, fresh.constraints) << k;
+    EXPECT_EQ(kept->trajectory.time, fresh.trajectory.time) << k;
+    EXPECT_EQ(kept->trajectory.q, fresh.trajectory.q) << k;
+    EXPECT_EQ(kept->trajectory.v, fresh.trajectory.v) << k;
+    EXPECT_EQ(kept->trajectory.a, fresh.trajectory.a) << k;
+    EXPECT_EQ(kept->trajectory.sensors, fresh.trajectory.sensors) << k;
+    ASSERT_EQ(kept->functionals.size(), fresh.functionals.size()) << k;
+    for (std::size_t j = 0; j < fresh.functionals.size(); ++j) {
+      EXPECT_EQ(kept->functionals[j].value, fresh.functionals[j].value) << k;
+      EXPECT_EQ(kept->functionals[j].gradient, fresh.functionals[j].gradient) << k;
+    }
+  }
 }
 
 // A point anticipated with two jobs is simulated on another thread while this one evaluates
