@@ -4,6 +4,7 @@
 
 #include "dynamics/dot_product.hpp"
 #include "dynamics/lu_factors.hpp"
+#include "dynamics/small_products.hpp"
 
 namespace mbsopt {
 
@@ -47,63 +48,14 @@ const Eigen::MatrixXd& SvdPartition::freeDirections() const {
 
 namespace {
 
-// The products of the partition, on raw column-major data: the matrices have a few rows and
-// columns, where Eigen's dynamic-size product kernels and expressions spend more on choosing and
-// peeling their loops than on the arithmetic (perf on BM_TramwaySimulation); for the large chains
-// the inner loops run down contiguous columns, which the compiler vectorises.
-
-/// C = A B or C += A B, with the row count a constant when Rows > 0 (its inner loops unrolled), the
-/// runtime `rows` when Rows = 0: the same operations in the same order either way.
-template <int Rows>
-void multiplyRows(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index runtime_rows,
-                  Eigen::Index inner, Eigen::Index cols, bool accumulate) {
-  const Eigen::Index rows = Rows > 0 ? Rows : runtime_rows;
-  for (Eigen::Index j = 0; j < cols; ++j) {
-    double* cj = c + j * rows;
-    if (!accumulate)
-      for (Eigen::Index i = 0; i < rows; ++i) cj[i] = 0.0;
-    for (Eigen::Index k = 0; k < inner; ++k) {
-      const double* ak = a + k * rows;
-      const double bkj = b[k + j * inner];
-      for (Eigen::Index i = 0; i < rows; ++i) cj[i] += ak[i] * bkj;
-    }
-  }
-}
-
-/// C = A B (A rows × inner, B inner × cols), or C += A B when `accumulate`. Up to 8 rows (the tram's
-/// 5 coordinates and 3 closure rows) with the rows a constant, where the loops over a few rows cost
-/// more in their control than in their products (callgrind on BM_TramwaySimulation). Each column of
-/// C gets the same operations whatever the number of columns.
-void multiply(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index rows, Eigen::Index inner, Eigen::Index cols,
-              bool accumulate) {
-  switch (rows) {
-    case 1: return multiplyRows<1>(a, b, c, rows, inner, cols, accumulate);
-    case 2: return multiplyRows<2>(a, b, c, rows, inner, cols, accumulate);
-    case 3: return multiplyRows<3>(a, b, c, rows, inner, cols, accumulate);
-    case 4: return multiplyRows<4>(a, b, c, rows, inner, cols, accumulate);
-    case 5: return multiplyRows<5>(a, b, c, rows, inner, cols, accumulate);
-    case 6: return multiplyRows<6>(a, b, c, rows, inner, cols, accumulate);
-    case 7: return multiplyRows<7>(a, b, c, rows, inner, cols, accumulate);
-    case 8: return multiplyRows<8>(a, b, c, rows, inner, cols, accumulate);
-    default: return multiplyRows<0>(a, b, c, rows, inner, cols, accumulate);
-  }
-}
-
-/// C = Aᵀ B (A inner × rows, B inner × cols): a dot product down two columns per coefficient.
-void multiplyTransposed(const double* __restrict a, const double* __restrict b, double* __restrict c, Eigen::Index rows, Eigen::Index inner,
-                        Eigen::Index cols) {
-  for (Eigen::Index j = 0; j < cols; ++j)
-    for (Eigen::Index i = 0; i < rows; ++i) c[i + j * rows] = dotProduct(a + i * inner, b + j * inner, inner);
-}
-
 /// y = A x, or y += A x when `accumulate`.
 void multiply(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
-  multiply(a.data(), x.data(), y.data(), a.rows(), a.cols(), 1, accumulate);
+  mbsopt::multiply(a.data(), x.data(), y.data(), a.rows(), a.cols(), 1, accumulate ? Accumulate::Add : Accumulate::Assign);
 }
 
 /// y = Aᵀ x.
 void multiplyTransposed(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  multiplyTransposed(a.data(), x.data(), y.data(), a.cols(), a.rows(), 1);
+  mbsopt::multiplyTransposed(a.data(), x.data(), y.data(), a.cols(), a.rows(), 1);
 }
 
 }  // namespace
@@ -119,7 +71,7 @@ bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   } else if (n <= kReflectorsFrom) {
     j_v2_.resize(n, free);
     reduced_matrix_.resize(free, free);
-    multiply(J.data(), v2_.data(), j_v2_.data(), n, n, free, false);
+    multiply(J.data(), v2_.data(), j_v2_.data(), n, n, free, Accumulate::Assign);
     multiplyTransposed(v2_.data(), j_v2_.data(), reduced_matrix_.data(), free, n, free);
   } else {
     // V₂ᵀ J V₂, the last n − r rows and columns of Qᵀ J Q, by the r reflectors on either side.
@@ -185,17 +137,17 @@ void SvdPartition::rangeCoordinates(const double* g, Eigen::Index p, double* x_r
 
 void SvdPartition::partitionIncrement(const double* r, const double* x_r, Eigen::Index p, double* dx) const {
   const Eigen::Index n = v1_.rows(), free = v2_.cols();
-  multiply(v1_.data(), x_r, dx, n, rank_, p, false);  // V₁ X_r (zero without constraints: V₁ is n × 0)
+  multiply(v1_.data(), x_r, dx, n, rank_, p, Accumulate::Assign);  // V₁ X_r (zero without constraints: V₁ is n × 0)
   if (free == 0) return;
   work_block_.resize(n, p);
   if (r) std::copy(r, r + n * p, work_block_.data());
-  multiply(J_.data(), dx, work_block_.data(), n, n, p, r != nullptr);  // R + J V₁ X_r
+  multiply(J_.data(), dx, work_block_.data(), n, n, p, r ? Accumulate::Add : Accumulate::Assign);  // R + J V₁ X_r
   reduced_block_.resize(free, p);
   multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
   for (Eigen::Index j = 0; j < p; ++j) {
     reduced_rhs_ = -reduced_block_.col(j);
     luSolve(reduced_, reduced_rhs_, x_n_);
-    multiply(v2_.data(), x_n_.data(), dx + j * n, n, free, 1, true);
+    multiply(v2_.data(), x_n_.data(), dx + j * n, n, free, 1, Accumulate::Add);
   }
 }
 
@@ -203,12 +155,12 @@ void SvdPartition::partitionMultipliers(const double* r, const double* dx, Eigen
   const Eigen::Index n = v1_.rows(), m = u1_.rows();
   work_block_.resize(n, p);
   std::copy(r, r + n * p, work_block_.data());
-  multiply(J_.data(), dx, work_block_.data(), n, n, p, true);  // R + J ΔX
+  multiply(J_.data(), dx, work_block_.data(), n, n, p, Accumulate::Add);  // R + J ΔX
   multiplier_block_.resize(rank_, p);
   multiplyTransposed(v1_.data(), work_block_.data(), multiplier_block_.data(), rank_, n, p);
   for (Eigen::Index j = 0; j < p; ++j)
     for (Eigen::Index i = 0; i < rank_; ++i) multiplier_block_(i, j) *= inverse_s1_[i];
-  multiply(u1_.data(), multiplier_block_.data(), dmu, m, rank_, p, false);
+  multiply(u1_.data(), multiplier_block_.data(), dmu, m, rank_, p, Accumulate::Assign);
   for (Eigen::Index i = 0; i < m * p; ++i) dmu[i] = -dmu[i];
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "dynamics/small_products.hpp"
 #include "sensitivity/augmented_solve.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
@@ -20,9 +21,9 @@ struct ForwardStep {
 /// dΨ/db += ∂Ψ/∂q S_q + ∂Ψ/∂q̇ S_v + ∂Ψ/∂q̈ S_a; nothing at a point without seeds.
 void accumulate(const ResponseSeeds& seeds, ForwardStep& step, Eigen::MatrixXd& dpsi_db) {
   if (seeds.position.isZero(0.0) && seeds.velocity.isZero(0.0) && seeds.acceleration.isZero(0.0)) return;
-  step.seeded.noalias() = seeds.position * step.q;
-  step.seeded.noalias() += seeds.velocity * step.v;
-  step.seeded.noalias() += seeds.acceleration * step.a;
+  multiply(seeds.position, step.q, step.seeded);
+  multiply(seeds.velocity, step.v, step.seeded, Accumulate::Add);
+  multiply(seeds.acceleration, step.a, step.seeded, Accumulate::Add);
   dpsi_db += step.seeded;
 }
 
@@ -61,9 +62,9 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
     solver.setMatrix(step.iteration);
     step.top = s.parameters;
-    step.top.noalias() += s.stiffness * step.q_pred;
-    step.top.noalias() += s.damping * step.v_pred;
-    step.bottom.noalias() = c.jacobian * step.q_pred;
+    multiply(s.stiffness, step.q_pred, step.top, Accumulate::Add);
+    multiply(s.damping, step.v_pred, step.top, Accumulate::Add);
+    multiply(c.jacobian, step.q_pred, step.bottom);
     solver.solve(-step.top, -step.bottom / (beta * h * h), step.a_newton);
     step.q = step.q_pred + beta * h * h * step.a_newton;
     step.v = step.v_pred + gamma * h * step.a_newton;
@@ -72,16 +73,16 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
       // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q], then the same for q̈ with
       // ∂b̈/∂(q, q̇).
       solver.setMatrix(s.mass);
-      step.top.noalias() = s.mass * step.v;
-      step.top.noalias() -= c.velocity_projection * step.q;
+      multiply(s.mass, step.v, step.top);
+      multiply(c.velocity_projection, step.q, step.top, Accumulate::Subtract);
       step.top -= c.velocity_projection_parameters;
-      step.bottom.noalias() = c.velocity_q * step.q;
+      multiply(c.velocity_q, step.q, step.bottom);
       solver.solve(step.top, -step.bottom, step.v);
-      step.top.noalias() = s.mass * step.a_newton;
-      step.top.noalias() -= c.acceleration_projection * step.q;
+      multiply(s.mass, step.a_newton, step.top);
+      multiply(c.acceleration_projection, step.q, step.top, Accumulate::Subtract);
       step.top -= c.acceleration_projection_parameters;
-      step.bottom.noalias() = c.acceleration_q * step.q;
-      step.bottom.noalias() += c.acceleration_v * step.v;
+      multiply(c.acceleration_q, step.q, step.bottom);
+      multiply(c.acceleration_v, step.v, step.bottom, Accumulate::Add);
       solver.solve(step.top, -step.bottom, step.a);
     } else {
       step.a.swap(step.a_newton);

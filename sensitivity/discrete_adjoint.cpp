@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "dynamics/small_products.hpp"
 #include "sensitivity/augmented_solve.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
@@ -53,17 +54,17 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
                                            const Eigen::MatrixXd& closure_q, const Eigen::MatrixXd& P,
                                            Eigen::MatrixXd& newton) {
       solver.solveTransposed(xbar, out.tbar, out.bbar);
-      newton.noalias() = out.tbar * s.mass;
-      out.product.noalias() = out.tbar * G;
-      out.product.noalias() += out.bbar * closure_q;
+      multiply(out.tbar, s.mass, newton);
+      multiply(out.tbar, G, out.product);
+      multiply(out.bbar, closure_q, out.product, Accumulate::Add);
       out.q_pred -= out.product;
-      out.dpsi_db.noalias() -= out.tbar * P;
+      multiply(out.tbar, P, out.dpsi_db, Accumulate::Subtract);
     };
     solver.setTransposedMatrix(s.mass);
     backThroughProjection(bar.acceleration, c.acceleration_projection, c.acceleration_q,
                           c.acceleration_projection_parameters, out.a_newton);
     out.v_total = bar.velocity;
-    out.v_total.noalias() -= out.bbar * c.acceleration_v;
+    multiply(out.bbar, c.acceleration_v, out.v_total, Accumulate::Subtract);
     backThroughProjection(out.v_total, c.velocity_projection, c.velocity_q, c.velocity_projection_parameters,
                           out.v_pred);
   }
@@ -73,13 +74,13 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
   out.iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
   solver.setTransposedMatrix(out.iteration);
   solver.solveTransposed(out.a_total, out.tbar, out.bbar);
-  out.dpsi_db.noalias() -= out.tbar * s.parameters;
-  out.q_pred.noalias() -= out.tbar * s.stiffness;
+  multiply(out.tbar, s.parameters, out.dpsi_db, Accumulate::Subtract);
+  multiply(out.tbar, s.stiffness, out.q_pred, Accumulate::Subtract);
   if (loops) {
-    out.product.noalias() = out.bbar * c.jacobian;
+    multiply(out.bbar, c.jacobian, out.product);
     out.q_pred -= out.product / (beta * h * h);
   }
-  out.v_pred.noalias() -= out.tbar * s.damping;
+  multiply(out.tbar, s.damping, out.v_pred, Accumulate::Subtract);
 }
 
 /// The rows `rows` of bar, into `out` (reusing its storage).

@@ -4,7 +4,8 @@
 // many (from the Householder reflectors of V₁). The residuals must vanish to round-off; and so
 // must those of the projection, the system with r = 0 solved without its multipliers. With a
 // dependent row the multipliers are not unique: the partition's must be those of minimum norm.
-// Several right-hand sides at once give what one solve per column gives, to the bit.
+// Several right-hand sides at once give what one solve per column gives, to the bit. The small
+// products it is built from (dynamics/small_products.hpp) against Eigen's.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -15,9 +16,11 @@
 #include "dynamics/articulated_body.hpp"
 #include "dynamics/kinematics.hpp"
 #include "dynamics/mass_matrix.hpp"
+#include "dynamics/small_products.hpp"
 #include "dynamics/svd_partition.hpp"
 #include "dynamics/tangent.hpp"
 #include "problems/chain_scenes.hpp"
+#include "tests/random_matrices.hpp"
 
 namespace mbsopt {
 namespace {
@@ -186,6 +189,44 @@ TEST(SvdPartition, RangeSpaceSolveWithTheArticulatedMassEqualsThePartitions) {
     expectColumnsAsSolves(range, R, G);
     expectColumnsAsSolves(dense, R, G);
   }
+}
+
+// C = A B, C += A B, C −= A B and Aᵀ B against Eigen's products, for every row count of the unrolled
+// kernels (1-8) and beyond (the loop), with empty inner dimensions and no columns. Each coefficient is
+// a dot product of `inner` terms summed in some order: it may differ from Eigen's by at most
+// 2·inner·ε·Σ|aᵢₖ||bₖⱼ| (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1, for both
+// sums, with inner·ε below 1/2), plus ε|c| for the update of C.
+TEST(SmallProducts, EqualEigensProductsToRoundoff) {
+  std::mt19937 generator(11);
+  using test_support::kEpsilon;
+  using test_support::randomMatrix;
+  for (Eigen::Index rows : {1, 2, 3, 4, 5, 6, 7, 8, 9, 13})
+    for (Eigen::Index inner : {0, 1, 3, 5, 11})
+      for (Eigen::Index cols : {0, 1, 4}) {
+        const Eigen::MatrixXd a = randomMatrix(rows, inner, generator), b = randomMatrix(inner, cols, generator);
+        const Eigen::MatrixXd c0 = randomMatrix(rows, cols, generator);
+        const Eigen::MatrixXd bound =
+            2.0 * static_cast<double>(inner) * kEpsilon * (a.cwiseAbs() * b.cwiseAbs()) + kEpsilon * c0.cwiseAbs();
+        const auto expectNear = [&](const Eigen::MatrixXd& got, const Eigen::MatrixXd& want, const char* what) {
+          ASSERT_EQ(got.rows(), want.rows()) << what;
+          ASSERT_EQ(got.cols(), want.cols()) << what;
+          EXPECT_TRUE(((got - want).cwiseAbs().array() <= bound.array()).all())
+              << what << " rows " << rows << " inner " << inner << " cols " << cols;
+        };
+        Eigen::MatrixXd c = c0;  // overwritten, resized
+        multiply(a, b, c);
+        expectNear(c, a * b, "C = A B");
+        c = c0;
+        multiply(a, b, c, Accumulate::Add);
+        expectNear(c, c0 + a * b, "C += A B");
+        c = c0;
+        multiply(a, b, c, Accumulate::Subtract);
+        expectNear(c, c0 - a * b, "C -= A B");
+        const Eigen::MatrixXd at = a.transpose();  // inner × rows
+        Eigen::MatrixXd ct(rows, cols);
+        multiplyTransposed(at.data(), b.data(), ct.data(), rows, inner, cols);
+        expectNear(ct, at.transpose() * b, "C = A' B");
+      }
 }
 
 // Without constraints the partition is J itself.
