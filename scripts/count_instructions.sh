@@ -25,7 +25,7 @@ fi
 out=build/portable/callgrind.tramway.out
 valgrind --tool=callgrind --callgrind-out-file="$out" \
   --toggle-collect='mbsopt::NewmarkIntegrator::simulate(*mbsopt::Trajectory&, std::function<void (long)> const&)' \
-  build/portable/bench/bench_dynamics --benchmark_filter='TramwaySimulation/accept_by_rate:0' \
+  build/portable/bench/bench_dynamics --benchmark_filter='TramwaySimulation/accept_by_rate:0/kept_buffers:1' \
   --benchmark_min_time=0.01 2> build/portable/callgrind.log > build/portable/callgrind.bench.txt
 # Under valgrind one simulation takes seconds, far above the minimum time: one iteration is run.
 iterations=$(awk '/^BM_TramwaySimulation/ {print $6}' build/portable/callgrind.bench.txt)
