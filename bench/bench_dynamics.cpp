@@ -137,7 +137,7 @@ BENCHMARK(BM_TramwayNewmarkStep);
 /// measured contraction rate (NewmarkSettings::accept_by_contraction_rate). kept_buffers 0: a new
 /// Trajectory per run, whose pages the kernel maps and zeroes as the run first writes them; 1: the
 /// run writes into the last run's Trajectory (simulate's output argument), as the optimizers'
-/// evaluations do (DesignNlp::recycled).
+/// evaluations do (DesignNlp's spare buffers).
 void BM_TramwaySimulation(benchmark::State& bench) {
   const Scene& scene = tramwayState().scene;  // 12 s at h = 1 ms
   NewmarkSettings settings = scene.settings;

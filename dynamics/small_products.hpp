@@ -84,7 +84,7 @@ inline void multiply(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, Eigen::
   assert(a.cols() == b.rows());
   if (mode == Accumulate::Assign) c.resize(a.rows(), b.cols());
   assert(c.rows() == a.rows() && c.cols() == b.cols());
-  assert(c.data() != a.data() && c.data() != b.data());
+  assert(c.size() == 0 || (c.data() != a.data() && c.data() != b.data()));  // empty matrices' data may all be null
   multiply(a.data(), b.data(), c.data(), a.rows(), a.cols(), b.cols(), mode);
 }
 

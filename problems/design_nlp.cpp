@@ -61,15 +61,11 @@ const DesignResponse& DesignNlp::keep(const Eigen::VectorXd& x, DesignResponse r
     return first_->second;
   }
   recent_.emplace_front(x, std::move(response));
-  if (recent_.size() > kKeptSimulations) recent_.pop_back();
+  if (recent_.size() > kKeptSimulations) {
+    spare_ = std::move(recent_.back().second);  // its buffers, for the next simulation
+    recent_.pop_back();
+  }
   return recent_.front().second;
-}
-
-DesignResponse DesignNlp::recycled() {
-  if (!first_ || recent_.size() < kKeptSimulations) return {};
-  DesignResponse oldest = std::move(recent_.back().second);
-  recent_.pop_back();
-  return oldest;
 }
 
 const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x) {
@@ -90,13 +86,12 @@ const DesignResponse& DesignNlp::simulation(const Eigen::VectorXd& x, double& th
     return keep(x, response.get());  // what evaluateDesign threw, it throws here
   }
   startWaiting();
-  DesignResponse response = recycled();
   const auto start_time = std::chrono::steady_clock::now();
-  evaluateDesign(problem_, functionals_, x, response, {});
+  evaluateDesign(problem_, functionals_, x, spare_, {});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   fastest_simulation_s_ = fastest_simulation_s_ > 0.0 ? std::min(fastest_simulation_s_, seconds) : seconds;
   thread_seconds += seconds;
-  return keep(x, std::move(response));
+  return keep(x, std::move(spare_));
 }
 
 void DesignNlp::anticipate(const Eigen::VectorXd& x) {

@@ -86,13 +86,13 @@ class DesignNlp : public NlpProblem {
   /// gradients of a point whose values were asked for first reuse its simulation.
   std::optional<std::pair<Eigen::VectorXd, DesignResponse>> first_;
   std::deque<std::pair<Eigen::VectorXd, DesignResponse>> recent_;
-  /// Keeps a new simulation as the first or the most recent one.
+  /// Keeps a new simulation as the first or the most recent one; the one it pushes out becomes spare_.
   const DesignResponse& keep(const Eigen::VectorXd& x, DesignResponse response);
-  /// The simulation keeping a new one would forget (the oldest recent one, taken out), or an empty
-  /// one: the next simulation is written into its buffers, which then need no new pages (a fresh
-  /// trajectory's first-touch page faults cost 6-9 % of a tram simulation, bench_dynamics:
-  /// BM_TramwaySimulation).
-  DesignResponse recycled();
+  /// The buffers of the last simulation pushed out (empty before the first): the next simulation on
+  /// this thread is written into them, and its trajectory then needs no new pages (a new
+  /// trajectory's first-touch page faults cost about 6 % of a tram simulation, bench_dynamics:
+  /// BM_TramwaySimulation). A simulation that fails leaves the kept ones as they were.
+  DesignResponse spare_;
   /// simulation(x), adding to `thread_seconds` the wall time of a simulation run on this thread.
   const DesignResponse& simulation(const Eigen::VectorXd& x, double& thread_seconds);
 

@@ -192,10 +192,11 @@ TEST(SvdPartition, RangeSpaceSolveWithTheArticulatedMassEqualsThePartitions) {
 }
 
 // C = A B, C += A B, C −= A B and Aᵀ B against Eigen's products, for every row count of the unrolled
-// kernels (1-8) and beyond (the loop), with empty inner dimensions and no columns. Each coefficient is
-// a dot product of `inner` terms summed in some order: it may differ from Eigen's by at most
-// 2·inner·ε·Σ|aᵢₖ||bₖⱼ| (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1, for both
-// sums, with inner·ε below 1/2), plus ε|c| for the update of C.
+// kernels (1-8) and beyond (the loop), with empty inner dimensions and no columns; C = A B into a
+// matrix of another size (resized). Each coefficient sums c₀ (when updated) and `inner` products in
+// some order: both results are within γ_{inner+1}(|c₀| + Σ|aᵢₖ||bₖⱼ|) of the exact value, γₙ = nε/(1 − nε)
+// (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1), so they differ by at most
+// 2(inner + 2)ε(|c₀| + Σ|aᵢₖ||bₖⱼ|) for inner ≤ 11.
 TEST(SmallProducts, EqualEigensProductsToRoundoff) {
   std::mt19937 generator(11);
   using test_support::kEpsilon;
@@ -205,27 +206,29 @@ TEST(SmallProducts, EqualEigensProductsToRoundoff) {
       for (Eigen::Index cols : {0, 1, 4}) {
         const Eigen::MatrixXd a = randomMatrix(rows, inner, generator), b = randomMatrix(inner, cols, generator);
         const Eigen::MatrixXd c0 = randomMatrix(rows, cols, generator);
-        const Eigen::MatrixXd bound =
-            2.0 * static_cast<double>(inner) * kEpsilon * (a.cwiseAbs() * b.cwiseAbs()) + kEpsilon * c0.cwiseAbs();
-        const auto expectNear = [&](const Eigen::MatrixXd& got, const Eigen::MatrixXd& want, const char* what) {
+        const Eigen::MatrixXd products = a.cwiseAbs() * b.cwiseAbs();
+        const double factor = 2.0 * static_cast<double>(inner + 2) * kEpsilon;
+        const auto expectNear = [&](const Eigen::MatrixXd& got, const Eigen::MatrixXd& want, bool updated,
+                                    const char* what) {
           ASSERT_EQ(got.rows(), want.rows()) << what;
           ASSERT_EQ(got.cols(), want.cols()) << what;
+          const Eigen::MatrixXd bound = factor * (updated ? Eigen::MatrixXd(products + c0.cwiseAbs()) : products);
           EXPECT_TRUE(((got - want).cwiseAbs().array() <= bound.array()).all())
               << what << " rows " << rows << " inner " << inner << " cols " << cols;
         };
-        Eigen::MatrixXd c = c0;  // overwritten, resized
+        Eigen::MatrixXd c(rows + 1, cols + 2);  // another size: C = A B resizes it
         multiply(a, b, c);
-        expectNear(c, a * b, "C = A B");
+        expectNear(c, a * b, false, "C = A B");
         c = c0;
         multiply(a, b, c, Accumulate::Add);
-        expectNear(c, c0 + a * b, "C += A B");
+        expectNear(c, c0 + a * b, true, "C += A B");
         c = c0;
         multiply(a, b, c, Accumulate::Subtract);
-        expectNear(c, c0 - a * b, "C -= A B");
+        expectNear(c, c0 - a * b, true, "C -= A B");
         const Eigen::MatrixXd at = a.transpose();  // inner × rows
         Eigen::MatrixXd ct(rows, cols);
         multiplyTransposed(at.data(), b.data(), ct.data(), rows, inner, cols);
-        expectNear(ct, at.transpose() * b, "C = A' B");
+        expectNear(ct, at.transpose() * b, false, "C = A' B");
       }
 }
 
