@@ -1,6 +1,7 @@
 #include "dynamics/newmark.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -87,11 +88,27 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
   return {};
 }
 
-double trajectoryBytes(const Model& model, const NewmarkSettings& settings) {
+bool formsStepMatrices(const Model& model, const NewmarkSettings& settings) {
+  return settings.closure == ClosureLevel::Position && model.constraintCount() > 0 &&
+         static_cast<int>(model.freeCoordinates().size()) < settings.articulated_mass_from;
+}
+
+namespace {
+
+/// The entries of one time point's M and B (Trajectory::step_matrices).
+Eigen::Index stepMatrixEntries(const Model& model) {
+  const auto nf = static_cast<Eigen::Index>(model.freeCoordinates().size());
+  return nf * nf + model.constraintCount() * nf;
+}
+
+}  // namespace
+
+double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool step_matrices) {
   const double points = std::ceil(settings.end_time / settings.step) + 1.0;
-  const double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
-                           static_cast<double>(model.constraintCount()) + static_cast<double>(model.sensors().size()) +
-                           2.0 + 0.5;  // the count is an int
+  double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
+                     static_cast<double>(model.constraintCount()) + static_cast<double>(model.sensors().size()) +
+                     2.0 + 0.5;  // the count is an int
+  if (step_matrices && formsStepMatrices(model, settings)) per_point += static_cast<double>(stepMatrixEntries(model));
   return points * per_point * sizeof(double);
 }
 
@@ -526,7 +543,7 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
                                  const std::function<void(long)>& stored) {
   // Enough steps to cover [0, end_time]: the last time point is end_time, or the first grid point
   // after it when end_time is not a whole number of steps.
-  if (const double bytes = trajectoryBytes(model_, settings_); !(bytes <= kMaxTrajectoryBytes))
+  if (const double bytes = trajectoryBytes(model_, settings_, keep_step_matrices_); !(bytes <= kMaxTrajectoryBytes))
     throw std::length_error("the trajectory would take " + std::to_string(bytes / (1 << 30)) +
                             " GiB, more than the limit of 4 GiB (kMaxTrajectoryBytes)");
   const long steps = std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
@@ -542,6 +559,10 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
   out.sensors.resize(steps + 1, static_cast<Eigen::Index>(model_.sensors().size()));
   out.closure_error.resize(steps + 1);
   out.newton_iterations.resize(steps + 1);
+  // M and B at qₖ, as the projections used them (M dense: formsStepMatrices).
+  const bool keep_matrices = keep_step_matrices_ && formsStepMatrices(model_, settings_);
+  const auto nf = static_cast<Eigen::Index>(free_.size());
+  out.step_matrices.resize(keep_matrices ? stepMatrixEntries(model_) : 0, keep_matrices ? steps + 1 : 0);
   auto store = [&](long k, int iterations) {
     out.time[k] = t_;
     out.q.col(k) = q_;
@@ -552,6 +573,11 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
     out.a_unprojected.col(k) = a_unprojected_;
     out.closure_error[k] = closure_error_;
     out.newton_iterations[k] = iterations;
+    if (keep_matrices) {
+      double* column = out.step_matrices.col(k).data();
+      std::copy(mass_.data(), mass_.data() + nf * nf, column);
+      std::copy(B_free_.data(), B_free_.data() + B_free_.size(), column + nf * nf);
+    }
     if (out.sensors.cols() > 0) evaluateSensors(out.sensors.row(k));
     if (stored) stored(k);
   };

@@ -99,8 +99,12 @@ struct SettingsDefect {
 };
 SettingsDefect settingsDefect(const NewmarkSettings& settings);
 /// The memory NewmarkIntegrator::simulate takes for its Trajectory: per time point t, q, q̇, q̈, λ,
-/// the unprojected q̇ and q̈, the closure error and the iteration count.
-double trajectoryBytes(const Model& model, const NewmarkSettings& settings);
+/// the unprojected q̇ and q̈, the closure error and the iteration count; with `step_matrices`, M and
+/// B where the run forms them (formsStepMatrices).
+double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool step_matrices = false);
+/// Whether a run of `model` with `settings` forms M and B at every step, so that
+/// NewmarkIntegrator::keepStepMatrices keeps them.
+bool formsStepMatrices(const Model& model, const NewmarkSettings& settings);
 /// settings.closure_tolerance, or the default of its closure level when it is 0.
 double closureTolerance(const NewmarkSettings& settings);
 
@@ -143,6 +147,10 @@ struct Trajectory {
   Eigen::MatrixXd sensors;
   Eigen::VectorXd closure_error;          ///< ‖b(q)‖∞ per time point
   Eigen::VectorXi newton_iterations;      ///< per time point (0 at t₀)
+  /// When kept (NewmarkIntegrator::keepStepMatrices): per time point, the matrices its projections
+  /// used, M(q) on the free coordinates (column-major) then B(q) (closure rows × free coordinates),
+  /// in one column of nf² + m·nf entries; no rows otherwise.
+  Eigen::MatrixXd step_matrices;
   IntegratorStatistics statistics;
 };
 
@@ -169,6 +177,12 @@ class NewmarkIntegrator {
   /// already stored moves or changes.
   void simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, Trajectory& out,
                 const std::function<void(long)>& stored);
+
+  /// Whether simulate() stores each time point's M(q) and B(q) (Trajectory::step_matrices), which the
+  /// exact gradients would otherwise compute again at every point. Kept only where they are formed:
+  /// cut joints closed at position level, M dense (fewer free coordinates than
+  /// NewmarkSettings::articulated_mass_from). Off by default.
+  void keepStepMatrices(bool keep) { keep_step_matrices_ = keep; }
 
   double time() const { return t_; }
   long stepCount() const { return step_count_; }
@@ -245,6 +259,7 @@ class NewmarkIntegrator {
   Eigen::VectorXd position_closure_;  ///< b(q) at the last accepted q (or at q₀)
   Eigen::MatrixXd B_free_;
   bool reduced_dirty_ = true;  ///< the partition must factor J again (J or B changed)
+  bool keep_step_matrices_ = false;
   double t0_ = 0.0;
   double closure_error_ = 0.0;
   int last_iterations_ = 0;

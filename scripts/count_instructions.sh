@@ -40,7 +40,7 @@ echo "per function: callgrind_annotate --inclusive=yes $out"
 # callgrind recorded (one per evaluation).
 out=build/portable/callgrind.evaluation.out
 valgrind --tool=callgrind --callgrind-out-file="$out" \
-  --toggle-collect='mbsopt::evaluateDesign(*mbsopt::DesignResponse&, std::function<void (long)> const&)' \
+  --toggle-collect='mbsopt::evaluateDesign(*mbsopt::DesignResponse&, std::function<void (long)> const&, bool)' \
   build/portable/bench/bench_gradients --benchmark_filter='TramwaySimulation' \
   --benchmark_min_time=0.01 2> build/portable/callgrind.evaluation.log > /dev/null
 count=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' build/portable/callgrind.evaluation.log)

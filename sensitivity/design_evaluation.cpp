@@ -25,11 +25,14 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
 }
 
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                    const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored) {
+                    const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
+                    bool keep_step_matrices) {
   const Scene& scene = problem.scene;
   Model model = scene.model;
   out.cost = applyDesign(problem, x, model);
-  NewmarkIntegrator(model, scene.settings).simulate(scene.q0, scene.v0, out.trajectory, stored);
+  NewmarkIntegrator integrator(model, scene.settings);
+  integrator.keepStepMatrices(keep_step_matrices);
+  integrator.simulate(scene.q0, scene.v0, out.trajectory, stored);
   out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
   out.functionals.clear();
   for (std::size_t j = 0; j < functionals.size(); ++j) {

@@ -27,9 +27,11 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
                               const Eigen::VectorXd& x);
 /// The same into `out`, its trajectory written in place: `stored(k)` is called as soon as time
 /// point k of out.trajectory is complete (NewmarkIntegrator::simulate), before the constraints are
-/// measured.
+/// measured. `keep_step_matrices`: the trajectory keeps each point's M and B where the integrator
+/// forms them (NewmarkIntegrator::keepStepMatrices), for the exact gradients.
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                    const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored);
+                    const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
+                    bool keep_step_matrices = false);
 
 /// The cost and the constraints at one point (DesignResponse without the histories).
 struct DesignValues {

@@ -94,7 +94,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   collectSensors(model_, functionals_, [](Eigen::Index) { return true; }, functional_sensor_slot_, functional_sensors_);
   if (simulated) return;
   if (jobs >= 2) simulateWhileEvaluating(jobs);
-  else evaluateDesign(problem_, functionals_, x_, simulation_, {});
+  else evaluateDesign(problem_, functionals_, x_, simulation_, {}, true);
 }
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
@@ -112,14 +112,22 @@ void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::
 
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   if (k == s.geometry_point) return;
-  s.q = response().trajectory.q.col(k);
-  if (model_.constraintCount() > 0) {  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
-    mbsopt::constraintJacobian(model_, s.plain_ws, s.q, model_.freeCoordinates(), s.closure, s.jacobian);
-  } else {
+  const Trajectory& tr = response().trajectory;
+  s.q = tr.q.col(k);
+  const Eigen::Index nf = freeCount(), m = model_.constraintCount();
+  if (tr.step_matrices.cols() > k) {  // M and B as the simulation formed them at q_k: the same values
     frameGeometry(model_, s.plain_ws, s.q);
-    s.jacobian.resize(0, freeCount());
+    s.mass = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data(), nf, nf);
+    s.jacobian = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data() + nf * nf, m, nf);
+  } else {
+    if (m > 0) {  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
+      mbsopt::constraintJacobian(model_, s.plain_ws, s.q, model_.freeCoordinates(), s.closure, s.jacobian);
+    } else {
+      frameGeometry(model_, s.plain_ws, s.q);
+      s.jacobian.resize(0, nf);
+    }
+    massMatrix(model_, s.plain_ws, model_.freeCoordinates(), s.mass);
   }
-  massMatrix(model_, s.plain_ws, model_.freeCoordinates(), s.mass);
   s.geometry_point = k;
 }
 

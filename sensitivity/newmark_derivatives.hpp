@@ -47,8 +47,9 @@ struct ResponseSeeds {
 
 class TrajectoryDerivatives {
  public:
-  /// Simulates at x, unless `simulated` is that simulation: then it is read where it is (not copied),
-  /// and must outlive this object and its copies. Throws
+  /// Simulates at x, keeping each time point's M and B (Trajectory::step_matrices), unless
+  /// `simulated` is that simulation: then it is read where it is (not copied), and must outlive this
+  /// object and its copies; its M and B are read when it kept them, computed again otherwise. Throws
   /// std::invalid_argument for cut joints closed at acceleration level. When it simulates with
   /// jobs ≥ 2, the simulation runs on a thread of its own while jobs − 1 threads evaluate the time
   /// points' derivatives, each as soon as its step is stored, from point 1 on (at most kEarlyBytes of

@@ -10,6 +10,9 @@
 #include <sstream>
 #include <string>
 
+#include "dynamics/mass_matrix.hpp"
+#include "dynamics/tangent.hpp"
+#include "dynamics/newmark.hpp"
 #include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
 #include "sensitivity/continuous_adjoint.hpp"
@@ -195,6 +198,56 @@ std::string pinnedChainProblem(int links) {
     << "  cost: {sensor: middle_angle, of: max_abs}\n  artificial: {initial: 0.05, lower: 0, upper: 1}\n"
     << "  constraints:\n    - {sensor: quarter_angle, of: max_abs, bound: 0.05}\n";
   return s.str();
+}
+
+// A simulation may keep each time point's M(q) and B(q) (NewmarkIntegrator::keepStepMatrices), and the
+// exact methods then read them instead of computing them again. Kept, they must be those of their
+// own time point, in their layout (M column-major, then B): computed again at q_k on a workspace of
+// their own, they are the same to the bit. An open chain forms no B and keeps none.
+TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
+  SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
+  source.text += test::kFourBarDesign;
+  const DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.2}});
+  const Model& model = problem.scene.model;
+  NewmarkIntegrator integrator(model, problem.scene.settings);
+  integrator.keepStepMatrices(true);
+  Trajectory trajectory;
+  integrator.simulate(problem.scene.q0, problem.scene.v0, trajectory, {});
+  const Eigen::Index nf = static_cast<Eigen::Index>(model.freeCoordinates().size()), m = model.constraintCount();
+  ASSERT_EQ(trajectory.step_matrices.rows(), nf * nf + m * nf);
+  ASSERT_EQ(trajectory.step_matrices.cols(), trajectory.time.size());
+  Workspace<double> ws(model);
+  Eigen::VectorXd b;
+  Eigen::MatrixXd B, M;
+  for (const Eigen::Index k : {Eigen::Index{0}, Eigen::Index{1}, trajectory.time.size() / 2, trajectory.time.size() - 1}) {
+    const Eigen::VectorXd q = trajectory.q.col(k);
+    constraintJacobian(model, ws, q, model.freeCoordinates(), b, B);
+    massMatrix(model, ws, model.freeCoordinates(), M);
+    EXPECT_EQ(Eigen::Map<const Eigen::MatrixXd>(trajectory.step_matrices.col(k).data(), nf, nf), M) << k;
+    EXPECT_EQ(Eigen::Map<const Eigen::MatrixXd>(trajectory.step_matrices.col(k).data() + nf * nf, m, nf), B) << k;
+  }
+  const DesignProblem chain = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
+  EXPECT_FALSE(formsStepMatrices(chain.scene.model, chain.scene.settings));
+  EXPECT_EQ(evaluateDesign(chain, transcribe(chain), initialPoint(chain)).trajectory.step_matrices.size(), 0);
+}
+
+// The exact methods on a simulation that kept its step matrices and on one that did not: the same
+// gradients to the bit, the matrices being the same values.
+TEST(ExactGradients, GradientsDoNotDependOnWhetherTheSimulationKeptItsStepMatrices) {
+  SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
+  source.text += test::kFourBarDesign;
+  const DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.5}});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  DesignResponse plain, kept;
+  evaluateDesign(problem, functionals, x, plain, {}, false);
+  evaluateDesign(problem, functionals, x, kept, {}, true);
+  ASSERT_EQ(plain.trajectory.step_matrices.size(), 0);
+  ASSERT_GT(kept.trajectory.step_matrices.size(), 0);
+  EXPECT_EQ(adjointGradient(problem, functionals, x, &plain).constraints,
+            adjointGradient(problem, functionals, x, &kept).constraints);
+  EXPECT_EQ(directGradient(problem, functionals, x, &plain).constraints,
+            directGradient(problem, functionals, x, &kept).constraints);
 }
 
 // The pinned chain of 24 links simulates on the articulated-body path (M by recursion, range-space
