@@ -88,4 +88,20 @@ inline void multiply(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, Eigen::
   multiply(a.data(), b.data(), c.data(), a.rows(), a.cols(), b.cols(), mode);
 }
 
+/// The same on Eigen vectors: y = A x (y resized), y += A x or y −= A x (y of A's rows).
+inline void multiply(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                     Accumulate mode = Accumulate::Assign) {
+  assert(a.cols() == x.size());
+  if (mode == Accumulate::Assign) y.resize(a.rows());
+  assert(y.size() == a.rows());
+  multiply(a.data(), x.data(), y.data(), a.rows(), a.cols(), 1, mode);
+}
+
+/// y = Aᵀ x (y resized).
+inline void multiplyTransposed(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  assert(a.rows() == x.size());
+  y.resize(a.cols());
+  multiplyTransposed(a.data(), x.data(), y.data(), a.cols(), a.rows(), 1);
+}
+
 }  // namespace mbsopt

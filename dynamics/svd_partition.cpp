@@ -46,20 +46,6 @@ const Eigen::MatrixXd& SvdPartition::freeDirections() const {
   return v2_;
 }
 
-namespace {
-
-/// y = A x, or y += A x when `accumulate`.
-void multiply(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y, bool accumulate) {
-  mbsopt::multiply(a.data(), x.data(), y.data(), a.rows(), a.cols(), 1, accumulate ? Accumulate::Add : Accumulate::Assign);
-}
-
-/// y = Aᵀ x.
-void multiplyTransposed(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  mbsopt::multiplyTransposed(a.data(), x.data(), y.data(), a.cols(), a.rows(), 1);
-}
-
-}  // namespace
-
 bool SvdPartition::setIterationMatrix(const Eigen::MatrixXd& J) {
   inverse_ = nullptr;
   J_ = J;
@@ -124,7 +110,7 @@ void SvdPartition::rangeSpaceIncrement(const Eigen::VectorXd* r, Eigen::VectorXd
   if (rank_ > 0) {
     schur_.solveInPlace(nu_);
     nu_ = -nu_;
-    multiply(inverse_v1_, nu_, dx, true);
+    multiply(inverse_v1_, nu_, dx, Accumulate::Add);
   }
   dx = -dx;
 }
@@ -182,7 +168,7 @@ void SvdPartition::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& g, Eig
   dmu.resize(u1_.rows());
   if (inverse_) {  // Δμ = U₁ S₁⁻¹ ν
     for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] = nu_[i] * inverse_s1_[i];
-    multiply(u1_, x_r_, dmu, false);
+    multiply(u1_, x_r_, dmu);
     return;
   }
   partitionMultipliers(r.data(), dx.data(), 1, dmu.data());
@@ -219,7 +205,7 @@ void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) 
   dx.resize(v1_.rows());
   multiplyTransposed(u1_, c, x_r_);
   for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= inverse_s1_[i];
-  multiply(v1_, x_r_, dx, false);
+  multiply(v1_, x_r_, dx);
 }
 
 }  // namespace mbsopt

@@ -132,7 +132,7 @@ void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {
           const bool wake = waiting > 0 && batchStored();
           lock.unlock();
           if (wake) changed.notify_all();
-        }, true);
+        }, /*keep_step_matrices=*/true);
       } catch (...) {
         failure = std::current_exception();
       }

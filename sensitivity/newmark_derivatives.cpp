@@ -94,7 +94,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   collectSensors(model_, functionals_, [](Eigen::Index) { return true; }, functional_sensor_slot_, functional_sensors_);
   if (simulated) return;
   if (jobs >= 2) simulateWhileEvaluating(jobs);
-  else evaluateDesign(problem_, functionals_, x_, simulation_, {}, true);
+  else evaluateDesign(problem_, functionals_, x_, simulation_, {}, /*keep_step_matrices=*/true);
 }
 
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
