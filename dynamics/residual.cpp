@@ -235,57 +235,65 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
 
 namespace {
 
-void setConstant(double from, AdScalar& to) {
-  to.value() = from;
-  to.derivatives().setZero();
-}
-template <int Rows, int Cols>
-void setConstant(const Eigen::Matrix<double, Rows, Cols>& from, Eigen::Matrix<AdScalar, Rows, Cols>& to) {
-  for (Eigen::Index i = 0; i < from.size(); ++i) setConstant(from(i), to(i));
-}
-void setConstant(const SliderTrack<double>& from, SliderTrack<AdScalar>& to) {
-  setConstant(from.cos_heading, to.cos_heading);
-  setConstant(from.sin_heading, to.sin_heading);
-  setConstant(from.curvature, to.curvature);
-}
-template <class From, class To>
-void setConstant(const std::vector<From>& from, std::vector<To>& to) {
-  for (std::size_t i = 0; i < from.size(); ++i) setConstant(from[i], to[i]);
+/// Calls apply(from's entry, to's entry) on every entry of the geometry stage's results that
+/// constantGeometry makes constants of an AD pass (see there), from and to alike shaped.
+template <class From, class Apply>
+void forEachGeometryEntry(const Model& model, From& from, Workspace<AdScalar>& to, Apply apply) {
+  const auto each = [&apply](auto& x, auto& y) {
+    for (Eigen::Index i = 0; i < x.size(); ++i) apply(x(i), y(i));
+  };
+  const auto track = [&apply](auto& x, SliderTrack<AdScalar>& y) {
+    apply(x.cos_heading, y.cos_heading);
+    apply(x.sin_heading, y.sin_heading);
+    apply(x.curvature, y.curvature);
+  };
+  if (model.planar()) {
+    for (std::size_t k = 0; k < from.rotation.size(); ++k) {
+      for (const auto& [i, j] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+        apply(from.rotation[k](i, j), to.rotation[k](i, j));
+      each(from.position[k], to.position[k]);
+    }
+    for (std::size_t k = 0; k < from.motion_angular.size(); ++k) {
+      apply(from.motion_angular[k].z(), to.motion_angular[k].z());
+      apply(from.bias_angular[k].z(), to.bias_angular[k].z());
+      for (int i = 0; i < 2; ++i) {
+        apply(from.motion_linear[k][i], to.motion_linear[k][i]);
+        apply(from.bias_linear[k][i], to.bias_linear[k][i]);
+      }
+    }
+    for (std::size_t k = 0; k < from.body_centre.size(); ++k) each(from.body_centre[k], to.body_centre[k]);
+    for (std::size_t k = 0; k < from.slider_track.size(); ++k) track(from.slider_track[k], to.slider_track[k]);
+    return;
+  }
+  for (std::size_t k = 0; k < from.rotation.size(); ++k) each(from.rotation[k], to.rotation[k]);
+  for (std::size_t k = 0; k < from.position.size(); ++k) each(from.position[k], to.position[k]);
+  for (std::size_t k = 0; k < from.motion_angular.size(); ++k) {
+    each(from.motion_angular[k], to.motion_angular[k]);
+    each(from.motion_linear[k], to.motion_linear[k]);
+    each(from.bias_angular[k], to.bias_angular[k]);
+    each(from.bias_linear[k], to.bias_linear[k]);
+  }
+  for (std::size_t k = 0; k < from.body_centre.size(); ++k) {
+    each(from.body_centre[k], to.body_centre[k]);
+    each(from.body_inertia[k], to.body_inertia[k]);
+  }
+  for (std::size_t k = 0; k < from.slider_track.size(); ++k) track(from.slider_track[k], to.slider_track[k]);
 }
 
 }  // namespace
 
 void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdScalar>& to) {
   updateBodyAxes(model, from);
-  if (model.planar()) {
-    for (std::size_t k = 0; k < from.rotation.size(); ++k) {
-      for (const auto& [i, j] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
-        setConstant(from.rotation[k](i, j), to.rotation[k](i, j));
-      setConstant(from.position[k], to.position[k]);
-    }
-    for (std::size_t k = 0; k < from.motion_angular.size(); ++k) {
-      setConstant(from.motion_angular[k].z(), to.motion_angular[k].z());
-      setConstant(from.bias_angular[k].z(), to.bias_angular[k].z());
-      for (int i = 0; i < 2; ++i) {
-        setConstant(from.motion_linear[k][i], to.motion_linear[k][i]);
-        setConstant(from.bias_linear[k][i], to.bias_linear[k][i]);
-      }
-    }
-    setConstant(from.body_centre, to.body_centre);
-    setConstant(from.slider_track, to.slider_track);
-    to.body_axes_current = true;
-    return;
-  }
-  setConstant(from.rotation, to.rotation);
-  setConstant(from.position, to.position);
-  setConstant(from.motion_angular, to.motion_angular);
-  setConstant(from.motion_linear, to.motion_linear);
-  setConstant(from.bias_angular, to.bias_angular);
-  setConstant(from.bias_linear, to.bias_linear);
-  setConstant(from.body_centre, to.body_centre);
-  setConstant(from.body_inertia, to.body_inertia);
-  setConstant(from.slider_track, to.slider_track);
+  forEachGeometryEntry(model, from, to, [](double x, AdScalar& y) {
+    y.value() = x;
+    y.derivatives().setZero();
+  });
   to.body_axes_current = true;
+}
+
+void dropGeometryDerivatives(const Model& model, Workspace<AdScalar>& ws) {
+  updateBodyAxes(model, ws);
+  forEachGeometryEntry(model, ws, ws, [](AdScalar&, AdScalar& y) { y.derivatives().setZero(); });
 }
 
 namespace {

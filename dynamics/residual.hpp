@@ -49,6 +49,11 @@ void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& 
 /// which the planar recursions do not read): the other entries are constants of the model that no
 /// stage ever changes in any workspace of it (1 and 0 in the rotations, 0 out of the plane).
 void constantGeometry(const Model& model, Workspace<double>& from, Workspace<AdScalar>& to);
+/// The same constants in place: `ws` holds the geometry stage's results at q from an earlier pass
+/// that seeded q or a parameter (forwardKinematics), and keeps their values with zero derivatives,
+/// its body axes computed first if stale. A pass of velocities after one of positions at the same q
+/// then needs no geometry in double.
+void dropGeometryDerivatives(const Model& model, Workspace<AdScalar>& ws);
 /// Whether the parameter p is the stiffness or the damping of a joint spring-damper, a point
 /// spring-damper or a track guidance: f is then linear in it, through that element alone.
 bool isLinearForceParameter(const Model& model, ParameterIndex p);

@@ -100,8 +100,11 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
 void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s,
                                                    Eigen::MatrixXd& parameters) {
   if (ad_parameter_indices_.size() == parameter_indices_.size()) return;  // every variable has an AD direction
-  if (linear_columns_read_kinematics_)
+  s.q = response().trajectory.q.col(k);
+  if (linear_columns_read_kinematics_) {
+    plainGeometryAt(k, s);
     frameRates(model_, s.plain_ws, v, v, KinematicsLevel::Velocity);  // (q̈ is not read at velocity level)
+  }
   for (std::size_t j = 0; j < ad_parameter_.size(); ++j) {
     if (ad_parameter_[j] >= 0) continue;
     linearForceParameterColumn(model_, s.plain_ws, s.q, v, time(k), parameter_indices_[j], s.column);
@@ -113,22 +116,29 @@ void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   if (k == s.geometry_point) return;
   const Trajectory& tr = response().trajectory;
-  s.q = tr.q.col(k);
   const Eigen::Index nf = freeCount(), m = model_.constraintCount();
   if (tr.step_matrices.cols() > k) {  // M and B as the simulation formed them at q_k: the same values
-    frameGeometry(model_, s.plain_ws, s.q);
     s.mass = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data(), nf, nf);
     s.jacobian = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data() + nf * nf, m, nf);
   } else {
+    s.q = tr.q.col(k);
     if (m > 0) {  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
       mbsopt::constraintJacobian(model_, s.plain_ws, s.q, model_.freeCoordinates(), s.closure, s.jacobian);
     } else {
       frameGeometry(model_, s.plain_ws, s.q);
       s.jacobian.resize(0, nf);
     }
+    s.plain_geometry_point = k;
     massMatrix(model_, s.plain_ws, model_.freeCoordinates(), s.mass);
   }
   s.geometry_point = k;
+}
+
+void TrajectoryDerivatives::plainGeometryAt(Eigen::Index k, Scratch& s) {
+  if (k == s.plain_geometry_point) return;
+  s.q = response().trajectory.q.col(k);
+  frameGeometry(model_, s.plain_ws, s.q);
+  s.plain_geometry_point = k;
 }
 
 StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
@@ -144,6 +154,7 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
     const Eigen::VectorXd q = tr.q.col(k), v = tr.v.col(k), a = tr.a.col(k);
     Eigen::VectorXd f;
     residual(model_, scratch_.plain_ws, q, v, a, lambda, tr.time[k], f);
+    scratch_.plain_geometry_point = -1;  // (it holds q_k's geometry, but no longer as plainGeometryAt left it)
     const Eigen::MatrixXd transposed = constraintJacobian(k).transpose();
     lambda = transposed.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(-f(model_.freeCoordinates()));
   }
@@ -244,12 +255,19 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   Eigen::MatrixXd& d = s.pass_jacobian;
   d.resize(rows, static_cast<Eigen::Index>(inputs.size()));
   VectorX<AdScalar>& g = s.ws.seeded_f;
+  bool geometry_in_ws = false;  // q_k's geometry in s.ws, from a pass seeded in q or a parameter
   const auto evaluate = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
     g.resize(rows);
     if (first < velocities) {
       forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
-    } else {  // q and the parameters are constants of this pass: q_k's geometry from geometryAt, in double
-      constantGeometry(model_, s.plain_ws, s.ws);
+      geometry_in_ws = true;
+    } else {  // q and the parameters are constants of this pass: q_k's geometry without derivatives
+      if (geometry_in_ws) {
+        dropGeometryDerivatives(model_, s.ws);
+      } else {
+        plainGeometryAt(k, s);
+        constantGeometry(model_, s.plain_ws, s.ws);
+      }
       frameRates(model_, s.ws, state.v, state.a, KinematicsLevel::Acceleration);
     }
     residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);

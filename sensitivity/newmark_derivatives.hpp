@@ -135,7 +135,8 @@ class TrajectoryDerivatives {
     explicit Scratch(const Model& model) : ws(model), plain_ws(model) {}
     Workspace<AdScalar> ws;
     Workspace<double> plain_ws;  ///< for what needs no AD: M (composite rigid bodies) and B (velocity passes)
-    Eigen::Index geometry_point = -1;
+    Eigen::Index geometry_point = -1;        ///< the point whose M and B are in mass and jacobian
+    Eigen::Index plain_geometry_point = -1;  ///< the point whose geometry is in plain_ws (-1: none)
     Eigen::MatrixXd mass, jacobian;
     // The constants and intermediate results of pointAt's AD passes.
     VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, correction_v, correction_a;
@@ -209,9 +210,14 @@ class TrajectoryDerivatives {
   /// for the sensors' Jacobians); false when it was not, or was handed out already.
   bool takeEarly(Eigen::Index k, PointDerivatives& out, std::vector<ResponseJacobian>& sensors);
 
+  /// M(q_k) and B(q_k) into s.mass and s.jacobian: from the trajectory where the simulation kept
+  /// them (then no geometry is computed), else computed on s.plain_ws.
   void geometryAt(Eigen::Index k, Scratch& s);
-  /// The columns of ∂f/∂b (free rows) of the design variables f is linear in, at (q_k, v) with
-  /// the geometry of q_k in s.plain_ws (geometryAt), into `parameters`; the other columns untouched.
+  /// The geometry of q_k in s.plain_ws, unless it is there already.
+  void plainGeometryAt(Eigen::Index k, Scratch& s);
+  /// The columns of ∂f/∂b (free rows) of the design variables f is linear in, at (q_k, v), into
+  /// `parameters`; the other columns untouched. Computes the geometry of q_k in s.plain_ws when a
+  /// column reads it.
   void linearParameterColumns(Eigen::Index k, const Eigen::VectorXd& v, Scratch& s, Eigen::MatrixXd& parameters);
   /// step(k), closure(k) (with cut joints) and seeds(k) together, the AD passes of the first two
   /// shared; into `out`, reusing the storage of its matrices.
