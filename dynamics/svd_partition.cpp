@@ -38,6 +38,20 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   x_r_.resize(rank_);
 }
 
+void SvdPartition::copyConstraintFactors(const SvdPartition& other) {
+  threshold_ = other.threshold_;
+  rank_ = other.rank_;
+  singular_values_ = other.singular_values_;
+  u1_ = other.u1_;
+  v1_ = other.v1_;
+  inverse_s1_ = other.inverse_s1_;
+  complement_ = other.complement_;
+  v2_stale_ = other.v2_stale_;
+  if (!v2_stale_) v2_ = other.v2_;
+  x_r_.resize(rank_);
+  inverse_ = nullptr;
+}
+
 const Eigen::MatrixXd& SvdPartition::freeDirections() const {
   if (v2_stale_) {
     complement_.complement(v2_);
@@ -200,6 +214,12 @@ void SvdPartition::solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd&
 }
 
 void SvdPartition::project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const { increment(nullptr, g, dx); }
+
+void SvdPartition::transposedPseudoInverse(const Eigen::VectorXd& w, Eigen::VectorXd& mu) const {
+  multiplyTransposed(v1_, w, x_r_);
+  for (Eigen::Index i = 0; i < rank_; ++i) x_r_[i] *= inverse_s1_[i];
+  multiply(u1_, x_r_, mu);
+}
 
 void SvdPartition::pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const {
   dx.resize(v1_.rows());

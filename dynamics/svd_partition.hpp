@@ -33,6 +33,12 @@ class SvdPartition {
 
   /// SVD of B (m × n, m may be 0), V₁ and V₂. Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
+  /// The partition of B as `other` holds it after its setConstraintJacobian(B): its factors copied,
+  /// the same to the bit as setConstraintJacobian(B) here at `other`'s threshold. Forgets the
+  /// factored matrix. Allocates nothing once the buffers have `other`'s sizes.
+  void copyConstraintFactors(const SvdPartition& other);
+  /// The relative threshold of the next setConstraintJacobian.
+  void setThreshold(double relative_threshold) { threshold_ = relative_threshold; }
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition
   /// number in the 1-norm, as Hager and Higham's O(n²) estimator gives it (condition_estimate.hpp),
   /// below kSingular (1e-13), or not finite. The estimate is skipped when a cheaper lower bound of the
@@ -56,6 +62,9 @@ class SvdPartition {
   void project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
   /// Minimum-norm least-squares solution of B Δx = c: Δx = V₁ S₁⁻¹ U₁ᵀ c (= B⁺c).
   void pseudoInverse(const Eigen::VectorXd& c, Eigen::VectorXd& dx) const;
+  /// Minimum-norm least-squares solution of Bᵀ μ = w: μ = U₁ S₁⁻¹ V₁ᵀ w (= (Bᵀ)⁺w), the singular
+  /// values below the threshold dropped.
+  void transposedPseudoInverse(const Eigen::VectorXd& w, Eigen::VectorXd& mu) const;
 
   int rank() const { return rank_; }
   int constraintRows() const { return static_cast<int>(u1_.rows()); }

@@ -16,6 +16,12 @@ void AugmentedSolver::setConstraintJacobian(const Eigen::MatrixXd& B) {
   partition_.setConstraintJacobian(B);
 }
 
+void AugmentedSolver::setConstraintPartition(const SvdPartition& partition) {
+  factored_ = Factored::None;
+  constraints_ = partition.constraintRows();
+  partition_.copyConstraintFactors(partition);
+}
+
 void AugmentedSolver::setMatrix(const Eigen::MatrixXd& J) {
   factored_ = Factored::None;
   if (!partition_.setIterationMatrix(J)) throw std::runtime_error("exact gradients: singular step matrix");

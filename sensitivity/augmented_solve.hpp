@@ -22,6 +22,9 @@ class AugmentedSolver {
   AugmentedSolver(const Eigen::MatrixXd& B, double threshold);
   /// B's SVD, for the steps of another time point; forgets the factored matrix.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
+  /// B's SVD as `partition` holds it (SvdPartition::copyConstraintFactors), the same to the bit as
+  /// setConstraintJacobian(B) at its threshold; forgets the factored matrix.
+  void setConstraintPartition(const SvdPartition& partition);
 
   /// Factors J for solve(); throws std::runtime_error when it is singular on B's null space.
   void setMatrix(const Eigen::MatrixXd& J);

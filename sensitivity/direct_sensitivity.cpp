@@ -59,7 +59,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     const StepDerivatives& s = point.step;
     const ClosureDerivatives& c = point.closure;
     step.iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
-    solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
+    solver.setConstraintPartition(c.partition);  // B's SVD, the point's, for the three solves
     solver.setMatrix(step.iteration);
     step.top = s.parameters;
     multiply(s.stiffness, step.q_pred, step.top, Accumulate::Add);

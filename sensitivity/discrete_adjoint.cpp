@@ -45,7 +45,7 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
   out.a_newton = bar.acceleration;
   out.v_pred = bar.velocity;
   out.dpsi_db.setZero(bar.position.rows(), d.variableCount());
-  solver.setConstraintJacobian(c.jacobian);  // B's SVD once for the three solves
+  solver.setConstraintPartition(c.partition);  // B's SVD, the point's, for the three solves
   if (loops) {
     // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
     // q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ). Each hands the adjoint of its x* to `newton`, adds

@@ -218,24 +218,25 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     J.velocity.resize(nf);
     J.acceleration.resize(nf);
   }
-  // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), B's
-  // rank decided as the integrator's partition decided it (the settings' SVD threshold).
+  // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), from
+  // B's partition at the settings' threshold, whose rank decision is the integrator's; the sweeps'
+  // solves at this point take the same partition.
   s.plain_correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
   s.plain_correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
   s.plain_mu_v.resize(m);
   s.plain_mu_a.resize(m);
+  SvdPartition& partition = out.closure.partition;
+  partition.setThreshold(settings().svd_threshold);
+  partition.setConstraintJacobian(s.jacobian);
   if (m > 0) {
-    s.jacobian_transposed = s.jacobian.transpose();
-    s.transposed_svd.compute(s.jacobian_transposed);
-    const double threshold = settings().svd_threshold;
     gather(s.plain_correction_v, free, s.free_rows);
     s.plain_f.noalias() = s.mass * s.free_rows;
     s.plain_f = -s.plain_f;
-    s.transposed_svd.solveLeastSquares(s.plain_f, threshold, s.plain_mu_v, s.svd_work);
+    partition.transposedPseudoInverse(s.plain_f, s.plain_mu_v);
     gather(s.plain_correction_a, free, s.free_rows);
     s.plain_f.noalias() = s.mass * s.free_rows;
     s.plain_f = -s.plain_f;
-    s.transposed_svd.solveLeastSquares(s.plain_f, threshold, s.plain_mu_a, s.svd_work);
+    partition.transposedPseudoInverse(s.plain_f, s.plain_mu_a);
   }
   // The constants of the passes.
   seedVector(tr.lambda.col(k), 0, 0, 0, s.lambda);

@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "dynamics/one_sided_jacobi.hpp"
+#include "dynamics/svd_partition.hpp"
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/forward_ad.hpp"
 #include "sensitivity/response_jacobian.hpp"
@@ -38,6 +38,9 @@ struct ClosureDerivatives {
   Eigen::MatrixXd acceleration_q, acceleration_v;  ///< ∂b̈/∂q, ∂b̈/∂q̇ at (q_k, q̇_k, q̈_k)
   Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
   Eigen::MatrixXd velocity_projection_parameters, acceleration_projection_parameters;  ///< P of each
+  /// B's SVD partition at the integrator's threshold, as the projections' multipliers were computed
+  /// with it: the sweeps' solves at this point take it (AugmentedSolver::setConstraintPartition).
+  SvdPartition partition;
 };
 
 /// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates.
@@ -146,9 +149,7 @@ class TrajectoryDerivatives {
     // their Jacobians.
     Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column,
         free_rows;
-    Eigen::MatrixXd jacobian_transposed, pass_jacobian;
-    OneSidedJacobiSvd transposed_svd;
-    Eigen::VectorXd svd_work;
+    Eigen::MatrixXd pass_jacobian;
     std::vector<int> sensor_slot;
     std::vector<const Sensor*> sensors;
     std::vector<ResponseJacobian> sensor_jacobians;

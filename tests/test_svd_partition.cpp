@@ -4,12 +4,14 @@
 // many (from the Householder reflectors of V₁). The residuals must vanish to round-off; and so
 // must those of the projection, the system with r = 0 solved without its multipliers. With a
 // dependent row the multipliers are not unique: the partition's must be those of minimum norm.
-// Several right-hand sides at once give what one solve per column gives, to the bit. The small
+// Several right-hand sides at once give what one solve per column gives, to the bit, and copied
+// factors what the partition that computed them gives. The small
 // products it is built from (dynamics/small_products.hpp) against Eigen's.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <limits>
 #include <random>
 
@@ -136,6 +138,47 @@ TEST(SvdPartition, SolvesColumnsBitForBitAsItSolvesEachColumn) {
       EXPECT_EQ(none_dx.rows(), c.n);
       EXPECT_EQ(none_dx.cols(), 0);
       EXPECT_EQ(none_dmu.rows(), c.m);
+    }
+}
+
+// A partition copied from another (copyConstraintFactors, as the exact gradients' sweeps take the one
+// each time point computed) solves as the one that factored B itself, to the bit: the same factors.
+// Its transposed pseudo-inverse is the minimum-norm least-squares solution of Bᵀμ = w, which the
+// normal equations of B's rows characterise independently: μ lies in the range of B (μ = B z) and
+// B(Bᵀμ − w) = 0. With a dependent row the solution is not unique and any other solution is longer.
+TEST(SvdPartition, CopiedFactorsSolveAsTheirOriginAndTheTransposedPseudoInverseIsMinimumNorm) {
+  for (const bool dependent : {false, true})
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+      const System s = randomSystem(7, 4, dependent, seed);
+      SvdPartition original(1e-8), copy(0.5);  // the copy's own threshold must not matter
+      original.setConstraintJacobian(s.B);
+      copy.setConstraintJacobian(randomSystem(5, 2, false, seed + 50).B);  // other sizes before
+      copy.copyConstraintFactors(original);
+      ASSERT_EQ(copy.rank(), dependent ? 3 : 4);
+      ASSERT_TRUE(original.setIterationMatrix(s.J));
+      ASSERT_TRUE(copy.setIterationMatrix(s.J));
+      Eigen::VectorXd dx, dmu, copy_dx, copy_dmu;
+      original.solve(s.r, s.g, dx, dmu);
+      copy.solve(s.r, s.g, copy_dx, copy_dmu);
+      EXPECT_TRUE(dx == copy_dx);
+      EXPECT_TRUE(dmu == copy_dmu);
+
+      const Eigen::VectorXd w = randomSystem(7, 1, false, seed + 90).r;
+      Eigen::VectorXd mu;
+      copy.transposedPseudoInverse(w, mu);
+      const double scale = s.B.norm() * s.B.norm() * w.norm();
+      EXPECT_LT((s.B * (s.B.transpose() * mu - w)).norm(), 1e-13 * scale);  // least squares
+      // In the range of B: its component along B's null space (left singular vectors of B's zero
+      // singular values) vanishes.
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.B, Eigen::ComputeFullU);
+      const Eigen::Index rank = copy.rank();
+      EXPECT_LT((svd.matrixU().rightCols(4 - rank).transpose() * mu).norm(), 1e-13 * mu.norm() + 1e-300);
+      if (dependent) {  // another solution, along the dependence 0.5 r₀ − 2 r₁ − r₃ = 0, is longer
+        Eigen::VectorXd other = mu;
+        other += 0.1 * Eigen::Vector4d(0.5, -2.0, 0.0, -1.0);
+        EXPECT_LT((s.B.transpose() * (other - mu)).norm(), 1e-14 * scale);
+        EXPECT_GT(other.norm(), mu.norm());
+      }
     }
 }
 
