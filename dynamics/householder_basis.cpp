@@ -40,6 +40,11 @@ void HouseholderBasis::compute(const Eigen::MatrixXd& a) {
   }
 }
 
+void HouseholderBasis::assign(const double* reflectors, const double* tau, Eigen::Index n, Eigen::Index r) {
+  reflectors_ = Eigen::Map<const Eigen::MatrixXd>(reflectors, n, r);
+  tau_ = Eigen::Map<const Eigen::VectorXd>(tau, r);
+}
+
 void HouseholderBasis::complement(Eigen::MatrixXd& out) const {
   const Eigen::Index n = reflectors_.rows(), r = tau_.size();
   out.setZero(n, n - r);

@@ -18,6 +18,11 @@ class HouseholderBasis {
   void compute(const Eigen::MatrixXd& a);
 
   Eigen::Index reflectorCount() const { return tau_.size(); }
+  /// The reflectors (n × r, as compute() leaves them) and their τ (r), e.g. to keep and load again.
+  const Eigen::MatrixXd& reflectors() const { return reflectors_; }
+  const Eigen::VectorXd& tau() const { return tau_; }
+  /// Reflectors and τ that compute() left, from raw column-major data (n × r and r entries).
+  void assign(const double* reflectors, const double* tau, Eigen::Index n, Eigen::Index r);
   /// Q₂, the last n − r columns of Q, into `out` (resized to n × (n − r)).
   void complement(Eigen::MatrixXd& out) const;
   /// x ← Qᵀ x Q for a square x (n × n): its last n − r rows and columns are then Q₂ᵀ x Q₂, in

@@ -37,6 +37,15 @@ class SvdPartition {
   /// the same to the bit as setConstraintJacobian(B) here at `other`'s threshold. Forgets the
   /// factored matrix. Allocates nothing once the buffers have `other`'s sizes.
   void copyConstraintFactors(const SvdPartition& other);
+  /// The entries store() writes for a B of m rows and n columns (the factors at the largest rank,
+  /// min(m, n)).
+  static Eigen::Index storedSize(Eigen::Index m, Eigen::Index n);
+  /// The factors of the last setConstraintJacobian into `out` (storedSize entries), for load().
+  void store(double* out) const;
+  /// The factors store() wrote for a B of m rows and n columns, as if setConstraintJacobian(B) ran
+  /// here at the threshold of the partition that stored them: the same to the bit. Forgets the
+  /// factored matrix.
+  void load(const double* in, Eigen::Index m, Eigen::Index n);
   /// The relative threshold of the next setConstraintJacobian.
   void setThreshold(double relative_threshold) { threshold_ = relative_threshold; }
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition

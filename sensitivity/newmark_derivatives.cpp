@@ -219,15 +219,19 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     J.acceleration.resize(nf);
   }
   // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), from
-  // B's partition at the settings' threshold, whose rank decision is the integrator's; the sweeps'
+  // B's partition at the settings' threshold, the integrator's own where it kept it; the sweeps'
   // solves at this point take the same partition.
   s.plain_correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
   s.plain_correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
   s.plain_mu_v.resize(m);
   s.plain_mu_a.resize(m);
   SvdPartition& partition = out.closure.partition;
-  partition.setThreshold(settings().svd_threshold);
-  partition.setConstraintJacobian(s.jacobian);
+  if (tr.step_matrices.cols() > k) {  // as the simulation computed it at q_k from the same B
+    partition.load(tr.step_matrices.col(k).data() + nf * nf + m * nf, m, nf);
+  } else {
+    partition.setThreshold(settings().svd_threshold);
+    partition.setConstraintJacobian(s.jacobian);
+  }
   if (m > 0) {
     gather(s.plain_correction_v, free, s.free_rows);
     s.plain_f.noalias() = s.mass * s.free_rows;

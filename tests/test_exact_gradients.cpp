@@ -13,6 +13,7 @@
 #include "dynamics/mass_matrix.hpp"
 #include "dynamics/tangent.hpp"
 #include "dynamics/newmark.hpp"
+#include "dynamics/svd_partition.hpp"
 #include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
 #include "sensitivity/continuous_adjoint.hpp"
@@ -200,10 +201,12 @@ std::string pinnedChainProblem(int links) {
   return s.str();
 }
 
-// A simulation may keep each time point's M(q) and B(q) (NewmarkIntegrator::keepStepMatrices), and the
-// exact methods then read them instead of computing them again. Kept, they must be those of their
-// own time point, in their layout (M column-major, then B): computed again at q_k on a workspace of
-// their own, they are the same to the bit. An open chain forms no B and keeps none.
+// A simulation may keep each time point's M(q), B(q) and B's SVD partition
+// (NewmarkIntegrator::keepStepMatrices), and the exact methods then read them instead of computing
+// them again. Kept, they must be those of their own time point, in their layout (M column-major, B,
+// then the partition's factors): computed again at q_k on a workspace of their own, the matrices are
+// the same to the bit, and the loaded partition solves an augmented system with that M exactly as a
+// partition that factored B at the settings' threshold. An open chain forms no B and keeps none.
 TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
   source.text += test::kFourBarDesign;
@@ -214,7 +217,7 @@ TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
   Trajectory trajectory;
   integrator.simulate(problem.scene.q0, problem.scene.v0, trajectory, {});
   const Eigen::Index nf = static_cast<Eigen::Index>(model.freeCoordinates().size()), m = model.constraintCount();
-  ASSERT_EQ(trajectory.step_matrices.rows(), nf * nf + m * nf);
+  ASSERT_EQ(trajectory.step_matrices.rows(), nf * nf + m * nf + SvdPartition::storedSize(m, nf));
   ASSERT_EQ(trajectory.step_matrices.cols(), trajectory.time.size());
   Workspace<double> ws(model);
   Eigen::VectorXd b;
@@ -225,6 +228,16 @@ TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
     massMatrix(model, ws, model.freeCoordinates(), M);
     EXPECT_EQ(Eigen::Map<const Eigen::MatrixXd>(trajectory.step_matrices.col(k).data(), nf, nf), M) << k;
     EXPECT_EQ(Eigen::Map<const Eigen::MatrixXd>(trajectory.step_matrices.col(k).data() + nf * nf, m, nf), B) << k;
+    SvdPartition computed(problem.scene.settings.svd_threshold), loaded(0.5);  // (loaded's threshold unused)
+    computed.setConstraintJacobian(B);
+    loaded.load(trajectory.step_matrices.col(k).data() + nf * nf + m * nf, m, nf);
+    ASSERT_EQ(loaded.rank(), computed.rank()) << k;
+    ASSERT_TRUE(computed.setIterationMatrix(M) && loaded.setIterationMatrix(M)) << k;
+    const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(nf, -1.0, 2.0), g = Eigen::VectorXd::LinSpaced(m, 0.5, -0.5);
+    Eigen::VectorXd dx, dmu, loaded_dx, loaded_dmu;
+    computed.solve(r, g, dx, dmu);
+    loaded.solve(r, g, loaded_dx, loaded_dmu);
+    EXPECT_TRUE(dx == loaded_dx && dmu == loaded_dmu) << k;
   }
   const DesignProblem chain = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
   EXPECT_FALSE(formsStepMatrices(chain.scene.model, chain.scene.settings));
