@@ -32,4 +32,10 @@ void LuFactors::compute(const Eigen::MatrixXd& a) {
   }
 }
 
+void LuFactors::assign(const double* lu, const double* rows, Eigen::Index n) {
+  lu_ = Eigen::Map<const Eigen::MatrixXd>(lu, n, n);
+  rows_.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) rows_[static_cast<std::size_t>(i)] = static_cast<int>(rows[i]);
+}
+
 }  // namespace mbsopt

@@ -25,6 +25,8 @@ class LuFactors {
   const Eigen::MatrixXd& matrixLU() const { return lu_; }
   /// Row k of P A is row rows()[k] of A.
   const std::vector<int>& rows() const { return rows_; }
+  /// Factors compute() left (n × n, column-major, as matrixLU()) and their row order (n entries).
+  void assign(const double* lu, const double* rows, Eigen::Index n);
 
  private:
   Eigen::MatrixXd lu_;

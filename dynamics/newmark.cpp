@@ -95,11 +95,12 @@ bool formsStepMatrices(const Model& model, const NewmarkSettings& settings) {
 
 namespace {
 
-/// The entries of one time point's M, B and B's partition (Trajectory::step_matrices).
+/// The entries of one time point's M, B, B's partition and its factorization of M
+/// (Trajectory::step_matrices).
 Eigen::Index stepMatrixEntries(const Model& model) {
   const auto nf = static_cast<Eigen::Index>(model.freeCoordinates().size());
   const Eigen::Index m = model.constraintCount();
-  return nf * nf + m * nf + SvdPartition::storedSize(m, nf);
+  return nf * nf + m * nf + SvdPartition::storedSize(m, nf) + SvdPartition::storedFactorizationSize(nf);
 }
 
 }  // namespace
@@ -560,7 +561,8 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
   out.sensors.resize(steps + 1, static_cast<Eigen::Index>(model_.sensors().size()));
   out.closure_error.resize(steps + 1);
   out.newton_iterations.resize(steps + 1);
-  // M, B and B's partition at qₖ, as the projections used them (M dense: formsStepMatrices).
+  // M, B, B's partition and its factorization of M at qₖ, as the projections used them (M dense:
+  // formsStepMatrices).
   const bool keep_matrices = keep_step_matrices_ && formsStepMatrices(model_, settings_);
   const auto nf = static_cast<Eigen::Index>(free_.size());
   out.step_matrices.resize(keep_matrices ? stepMatrixEntries(model_) : 0, keep_matrices ? steps + 1 : 0);
@@ -578,7 +580,8 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
       double* column = out.step_matrices.col(k).data();
       std::copy(mass_.data(), mass_.data() + nf * nf, column);
       std::copy(B_free_.data(), B_free_.data() + B_free_.size(), column + nf * nf);
-      partition_.store(column + nf * nf + B_free_.size());
+      partition_.store(column + nf * nf + B_free_.size());  // factored with M(qₖ) for the projections
+      partition_.storeFactorization(column + nf * nf + B_free_.size() + SvdPartition::storedSize(B_free_.rows(), nf));
     }
     if (out.sensors.cols() > 0) evaluateSensors(out.sensors.row(k));
     if (stored) stored(k);

@@ -148,9 +148,10 @@ struct Trajectory {
   Eigen::VectorXd closure_error;          ///< ‖b(q)‖∞ per time point
   Eigen::VectorXi newton_iterations;      ///< per time point (0 at t₀)
   /// When kept (NewmarkIntegrator::keepStepMatrices): per time point, the matrices its projections
-  /// used, M(q) on the free coordinates (column-major), B(q) (closure rows × free coordinates), then
-  /// B's SVD partition (SvdPartition::store), in one column of nf² + m·nf +
-  /// SvdPartition::storedSize(m, nf) entries; no rows otherwise.
+  /// used, M(q) on the free coordinates (column-major), B(q) (closure rows × free coordinates), B's
+  /// SVD partition (SvdPartition::store), then the partition's factorization of M
+  /// (SvdPartition::storeFactorization), in one column of nf² + m·nf + SvdPartition::storedSize(m,
+  /// nf) + SvdPartition::storedFactorizationSize(nf) entries; no rows otherwise.
   Eigen::MatrixXd step_matrices;
   IntegratorStatistics statistics;
 };
@@ -179,8 +180,8 @@ class NewmarkIntegrator {
   void simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, Trajectory& out,
                 const std::function<void(long)>& stored);
 
-  /// Whether simulate() stores each time point's M(q), B(q) and B's partition
-  /// (Trajectory::step_matrices), which the exact gradients would otherwise compute again at every
+  /// Whether simulate() stores each time point's M(q), B(q), B's partition and its factorization of
+  /// M (Trajectory::step_matrices), which the exact gradients would otherwise compute again at every
   /// point. Kept only where they are formed:
   /// cut joints closed at position level, M dense (fewer free coordinates than
   /// NewmarkSettings::articulated_mass_from). Off by default.

@@ -46,6 +46,17 @@ class SvdPartition {
   /// here at the threshold of the partition that stored them: the same to the bit. Forgets the
   /// factored matrix.
   void load(const double* in, Eigen::Index m, Eigen::Index n);
+  /// The entries storeFactorization() writes for n columns (V₂ and the LU factors of V₂ᵀJV₂, sized
+  /// for rank 0, their largest).
+  static Eigen::Index storedFactorizationSize(Eigen::Index n) { return 2 * n * n + n; }
+  /// V₂ and the LU factors of V₂ᵀJV₂ from the last setIterationMatrix(J) with a dense J into `out`
+  /// (storedFactorizationSize entries), for loadFactorization().
+  void storeFactorization(double* out) const;
+  /// What storeFactorization() wrote, J being the matrix it factored, after load() of the same
+  /// partition: as if setIterationMatrix(J) had returned true here, the same to the bit.
+  void loadFactorization(const double* in, const Eigen::MatrixXd& J);
+  /// copyConstraintFactors, and the dense matrix `other` factored last (J, V₂, the LU factors).
+  void copyFactorization(const SvdPartition& other);
   /// The relative threshold of the next setConstraintJacobian.
   void setThreshold(double relative_threshold) { threshold_ = relative_threshold; }
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition

@@ -22,6 +22,12 @@ void AugmentedSolver::setConstraintPartition(const SvdPartition& partition) {
   partition_.copyConstraintFactors(partition);
 }
 
+void AugmentedSolver::setFactoredSymmetricMatrix(const SvdPartition& partition) {
+  constraints_ = partition.constraintRows();
+  partition_.copyFactorization(partition);
+  factored_ = Factored::Symmetric;
+}
+
 void AugmentedSolver::setMatrix(const Eigen::MatrixXd& J) {
   factored_ = Factored::None;
   if (!partition_.setIterationMatrix(J)) throw std::runtime_error("exact gradients: singular step matrix");
@@ -42,7 +48,8 @@ Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::
 }
 
 void AugmentedSolver::solveColumns(Eigen::MatrixXd& X) const {
-  if (factored_ != Factored::Matrix) throw std::logic_error("AugmentedSolver::solve needs setMatrix");
+  if (factored_ != Factored::Matrix && factored_ != Factored::Symmetric)
+    throw std::logic_error("AugmentedSolver::solve needs setMatrix");
   partition_.solveColumns(top_rhs_, bottom_rhs_, X, nullptr);
 }
 
@@ -50,7 +57,7 @@ void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::Matrix
   // With X = V₁S₁⁻¹U₁ᵀ bottom + V₂R⁻¹V₂ᵀ(top − J V₁S₁⁻¹U₁ᵀ bottom), R = V₂ᵀJV₂, the transpose is
   // t̄ = x̄ V₂R⁻¹V₂ᵀ and b̄ = (x̄ − t̄ J) V₁S₁⁻¹U₁ᵀ: exactly the partition's solution of the system
   // with Jᵀ, right-hand side [x̄ᵀ; 0], its Δx being t̄ᵀ and its minimum-norm Δμ being b̄ᵀ.
-  if (factored_ != Factored::Transposed)
+  if (factored_ != Factored::Transposed && factored_ != Factored::Symmetric)
     throw std::logic_error("AugmentedSolver::solveTransposed needs setTransposedMatrix");
   // Solved as the columns of the transposes, one per row of x̄.
   top_rhs_ = -xbar.transpose();

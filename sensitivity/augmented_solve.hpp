@@ -26,6 +26,10 @@ class AugmentedSolver {
   /// setConstraintJacobian(B) at its threshold; forgets the factored matrix.
   void setConstraintPartition(const SvdPartition& partition);
 
+  /// B's partition and the symmetric J = Jᵀ it factored last (SvdPartition::copyFactorization), for
+  /// solve() and solveTransposed() alike: the same to the bit as setConstraintJacobian(B) and
+  /// setMatrix(J) or setTransposedMatrix(J).
+  void setFactoredSymmetricMatrix(const SvdPartition& partition);
   /// Factors J for solve(); throws std::runtime_error when it is singular on B's null space.
   void setMatrix(const Eigen::MatrixXd& J);
   /// Factors Jᵀ for solveTransposed(); throws std::runtime_error when it is singular.
@@ -44,7 +48,7 @@ class AugmentedSolver {
   void solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const;
 
  private:
-  enum class Factored { None, Matrix, Transposed };
+  enum class Factored { None, Matrix, Transposed, Symmetric };
   /// X from the right-hand sides in top_rhs_, bottom_rhs_ (negated: the partition solves for
   /// −[r; g]), all columns in one SvdPartition::solveColumns. Needs setMatrix.
   void solveColumns(Eigen::MatrixXd& X) const;

@@ -57,9 +57,8 @@ bool TrajectoryDerivatives::packPoint(const PointDerivatives& point, const std::
 
 void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const {
   forEachMatrix(point, [&](Eigen::MatrixXd& m) { unpackMatrix(in, m); });
-  // B's partition is not packed: computed again from B, the same to the bit as at the evaluation.
-  point.closure.partition.setThreshold(settings().svd_threshold);
-  point.closure.partition.setConstraintJacobian(point.closure.jacobian);
+  // B's partition is not packed: computed again from B and M, the same to the bit as at the evaluation.
+  partitionWithMass(point.closure.jacobian, point.step.mass, point.closure.partition);
   sensors.resize(functional_sensors_.size());
   for (ResponseJacobian& J : sensors) {
     J.value = *in++;

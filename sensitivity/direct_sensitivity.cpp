@@ -72,7 +72,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
       // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
       // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q], then the same for q̈ with
       // ∂b̈/∂(q, q̇).
-      solver.setMatrix(s.mass);
+      solver.setFactoredSymmetricMatrix(c.partition);  // M as the point factored it
       multiply(s.mass, step.v, step.top);
       multiply(c.velocity_projection, step.q, step.top, Accumulate::Subtract);
       step.top -= c.velocity_projection_parameters;

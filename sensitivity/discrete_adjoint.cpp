@@ -60,7 +60,7 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
       out.q_pred -= out.product;
       multiply(out.tbar, P, out.dpsi_db, Accumulate::Subtract);
     };
-    solver.setTransposedMatrix(s.mass);
+    solver.setFactoredSymmetricMatrix(c.partition);  // M = Mᵀ as the point factored it
     backThroughProjection(bar.acceleration, c.acceleration_projection, c.acceleration_q,
                           c.acceleration_projection_parameters, out.a_newton);
     out.v_total = bar.velocity;

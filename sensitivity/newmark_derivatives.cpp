@@ -113,6 +113,15 @@ void TrajectoryDerivatives::linearParameterColumns(Eigen::Index k, const Eigen::
   }
 }
 
+void TrajectoryDerivatives::partitionWithMass(const Eigen::MatrixXd& B, const Eigen::MatrixXd& M,
+                                              SvdPartition& partition) const {
+  partition.setThreshold(settings().svd_threshold);
+  partition.setConstraintJacobian(B);
+  // Without cut joints there are no projections, and no solve with M.
+  if (B.rows() > 0 && !partition.setIterationMatrix(M))
+    throw std::runtime_error("exact gradients: singular step matrix");
+}
+
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   if (k == s.geometry_point) return;
   const Trajectory& tr = response().trajectory;
@@ -219,18 +228,19 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     J.acceleration.resize(nf);
   }
   // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), from
-  // B's partition at the settings' threshold, the integrator's own where it kept it; the sweeps'
-  // solves at this point take the same partition.
+  // B's partition at the settings' threshold with M factored, the integrator's own where it kept
+  // them; the sweeps' solves at this point take the same partition.
   s.plain_correction_v = tr.v.col(k) - tr.v_unprojected.col(k);
   s.plain_correction_a = tr.a.col(k) - tr.a_unprojected.col(k);
   s.plain_mu_v.resize(m);
   s.plain_mu_a.resize(m);
   SvdPartition& partition = out.closure.partition;
-  if (tr.step_matrices.cols() > k) {  // as the simulation computed it at q_k from the same B
-    partition.load(tr.step_matrices.col(k).data() + nf * nf + m * nf, m, nf);
+  if (tr.step_matrices.cols() > k) {  // as the simulation computed them at q_k from the same B and M
+    const double* stored = tr.step_matrices.col(k).data() + nf * nf + m * nf;
+    partition.load(stored, m, nf);
+    partition.loadFactorization(stored + SvdPartition::storedSize(m, nf), s.mass);
   } else {
-    partition.setThreshold(settings().svd_threshold);
-    partition.setConstraintJacobian(s.jacobian);
+    partitionWithMass(s.jacobian, s.mass, partition);
   }
   if (m > 0) {
     gather(s.plain_correction_v, free, s.free_rows);

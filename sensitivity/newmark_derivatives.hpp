@@ -38,8 +38,9 @@ struct ClosureDerivatives {
   Eigen::MatrixXd acceleration_q, acceleration_v;  ///< ∂b̈/∂q, ∂b̈/∂q̇ at (q_k, q̇_k, q̈_k)
   Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
   Eigen::MatrixXd velocity_projection_parameters, acceleration_projection_parameters;  ///< P of each
-  /// B's SVD partition at the integrator's threshold, as the projections' multipliers were computed
-  /// with it: the sweeps' solves at this point take it (AugmentedSolver::setConstraintPartition).
+  /// B's SVD partition at the integrator's threshold with M factored (with cut joints), as the
+  /// projections' multipliers were computed with it: the sweeps' solves at this point take it
+  /// (AugmentedSolver::setConstraintPartition, setFactoredSymmetricMatrix).
   SvdPartition partition;
 };
 
@@ -214,6 +215,9 @@ class TrajectoryDerivatives {
   /// M(q_k) and B(q_k) into s.mass and s.jacobian: from the trajectory where the simulation kept
   /// them (then no geometry is computed), else computed on s.plain_ws.
   void geometryAt(Eigen::Index k, Scratch& s);
+  /// B's partition at the settings' threshold into `partition`, with M factored when B has rows;
+  /// throws std::runtime_error when M is singular on B's null space.
+  void partitionWithMass(const Eigen::MatrixXd& B, const Eigen::MatrixXd& M, SvdPartition& partition) const;
   /// The geometry of q_k in s.plain_ws, unless it is there already.
   void plainGeometryAt(Eigen::Index k, Scratch& s);
   /// The columns of ∂f/∂b (free rows) of the design variables f is linear in, at (q_k, v), into

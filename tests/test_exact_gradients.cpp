@@ -201,12 +201,13 @@ std::string pinnedChainProblem(int links) {
   return s.str();
 }
 
-// A simulation may keep each time point's M(q), B(q) and B's SVD partition
+// A simulation may keep each time point's M(q), B(q), B's SVD partition and its factorization of M
 // (NewmarkIntegrator::keepStepMatrices), and the exact methods then read them instead of computing
 // them again. Kept, they must be those of their own time point, in their layout (M column-major, B,
-// then the partition's factors): computed again at q_k on a workspace of their own, the matrices are
-// the same to the bit, and the loaded partition solves an augmented system with that M exactly as a
-// partition that factored B at the settings' threshold. An open chain forms no B and keeps none.
+// the partition's factors, its factorization of M): computed again at q_k on a workspace of their
+// own, the matrices are the same to the bit, and the loaded partition and factorization solve an
+// augmented system with that M exactly as a partition that factored B at the settings' threshold and
+// then M. An open chain forms no B and keeps none.
 TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
   SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/four_bar.yaml");
   source.text += test::kFourBarDesign;
@@ -217,7 +218,8 @@ TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
   Trajectory trajectory;
   integrator.simulate(problem.scene.q0, problem.scene.v0, trajectory, {});
   const Eigen::Index nf = static_cast<Eigen::Index>(model.freeCoordinates().size()), m = model.constraintCount();
-  ASSERT_EQ(trajectory.step_matrices.rows(), nf * nf + m * nf + SvdPartition::storedSize(m, nf));
+  ASSERT_EQ(trajectory.step_matrices.rows(),
+            nf * nf + m * nf + SvdPartition::storedSize(m, nf) + SvdPartition::storedFactorizationSize(nf));
   ASSERT_EQ(trajectory.step_matrices.cols(), trajectory.time.size());
   Workspace<double> ws(model);
   Eigen::VectorXd b;
@@ -230,9 +232,11 @@ TEST(ExactGradients, KeptStepMatricesAreThoseOfTheirTimePoint) {
     EXPECT_EQ(Eigen::Map<const Eigen::MatrixXd>(trajectory.step_matrices.col(k).data() + nf * nf, m, nf), B) << k;
     SvdPartition computed(problem.scene.settings.svd_threshold), loaded(0.5);  // (loaded's threshold unused)
     computed.setConstraintJacobian(B);
-    loaded.load(trajectory.step_matrices.col(k).data() + nf * nf + m * nf, m, nf);
+    const double* stored = trajectory.step_matrices.col(k).data() + nf * nf + m * nf;
+    loaded.load(stored, m, nf);
     ASSERT_EQ(loaded.rank(), computed.rank()) << k;
-    ASSERT_TRUE(computed.setIterationMatrix(M) && loaded.setIterationMatrix(M)) << k;
+    ASSERT_TRUE(computed.setIterationMatrix(M)) << k;
+    loaded.loadFactorization(stored + SvdPartition::storedSize(m, nf), M);
     const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(nf, -1.0, 2.0), g = Eigen::VectorXd::LinSpaced(m, 0.5, -0.5);
     Eigen::VectorXd dx, dmu, loaded_dx, loaded_dmu;
     computed.solve(r, g, dx, dmu);
