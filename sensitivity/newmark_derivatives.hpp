@@ -200,11 +200,13 @@ class TrajectoryDerivatives {
 
   /// An upper bound of the doubles packPoint writes for a point of this problem.
   Eigen::Index packedPointSize() const;
-  /// A point without its seeds and the Jacobians of the functional sensors, at out … end; false when
-  /// they do not fit.
+  /// A point without its seeds, the Jacobians of the functional sensors, and B's partition with its
+  /// factorization of M, at out … end; false when they do not fit.
   static bool packPoint(const PointDerivatives& point, const std::vector<ResponseJacobian>& sensors, double* out,
                         const double* end);
   void unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const;
+  /// The entries packPoint writes for B's partition (m rows, nf columns) and its factorization of M.
+  static Eigen::Index partitionPackedSize(Eigen::Index m, Eigen::Index nf);
   /// Simulates into simulation_ on a thread of its own while this thread and jobs − 2 more evaluate
   /// the points already stored into the early store.
   void simulateWhileEvaluating(int jobs);
