@@ -146,8 +146,7 @@ class TrajectoryDerivatives {
     VectorX<AdScalar> lambda, mu_v, mu_a, projected_v, projected_a, correction_v, correction_a;
     VectorX<AdScalar> f, closure_rates;
     // pointAt's buffers in double: the projections' corrections and multipliers, a vector's free
-    // rows, Bᵀ and its SVD, the Jacobian of the AD pass; the sensors selected at a time point and
-    // their Jacobians.
+    // rows, the Jacobian of the AD passes; the sensors selected at a time point and their Jacobians.
     Eigen::VectorXd q, v, closure, plain_correction_v, plain_correction_a, plain_mu_v, plain_mu_a, plain_f, column,
         free_rows;
     Eigen::MatrixXd pass_jacobian;
