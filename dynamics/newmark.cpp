@@ -95,12 +95,8 @@ bool formsStepMatrices(const Model& model, const NewmarkSettings& settings) {
 
 namespace {
 
-/// The entries of one time point's M, B, B's partition and its factorization of M
-/// (Trajectory::step_matrices).
-Eigen::Index stepMatrixEntries(const Model& model) {
-  const auto nf = static_cast<Eigen::Index>(model.freeCoordinates().size());
-  const Eigen::Index m = model.constraintCount();
-  return nf * nf + m * nf + SvdPartition::storedSize(m, nf) + SvdPartition::storedFactorizationSize(nf);
+StepMatrixLayout stepMatrixLayout(const Model& model) {
+  return {static_cast<Eigen::Index>(model.freeCoordinates().size()), model.constraintCount()};
 }
 
 }  // namespace
@@ -110,7 +106,7 @@ double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool
   double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
                      static_cast<double>(model.constraintCount()) + static_cast<double>(model.sensors().size()) +
                      2.0 + 0.5;  // the count is an int
-  if (step_matrices && formsStepMatrices(model, settings)) per_point += static_cast<double>(stepMatrixEntries(model));
+  if (step_matrices && formsStepMatrices(model, settings)) per_point += static_cast<double>(stepMatrixLayout(model).size);
   return points * per_point * sizeof(double);
 }
 
@@ -564,8 +560,8 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
   // M, B, B's partition and its factorization of M at qₖ, as the projections used them (M dense:
   // formsStepMatrices).
   const bool keep_matrices = keep_step_matrices_ && formsStepMatrices(model_, settings_);
-  const auto nf = static_cast<Eigen::Index>(free_.size());
-  out.step_matrices.resize(keep_matrices ? stepMatrixEntries(model_) : 0, keep_matrices ? steps + 1 : 0);
+  const StepMatrixLayout layout = stepMatrixLayout(model_);
+  out.step_matrices.resize(keep_matrices ? layout.size : 0, keep_matrices ? steps + 1 : 0);
   auto store = [&](long k, int iterations) {
     out.time[k] = t_;
     out.q.col(k) = q_;
@@ -578,10 +574,10 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
     out.newton_iterations[k] = iterations;
     if (keep_matrices) {
       double* column = out.step_matrices.col(k).data();
-      std::copy(mass_.data(), mass_.data() + nf * nf, column);
-      std::copy(B_free_.data(), B_free_.data() + B_free_.size(), column + nf * nf);
-      partition_.store(column + nf * nf + B_free_.size());  // factored with M(qₖ) for the projections
-      partition_.storeFactorization(column + nf * nf + B_free_.size() + SvdPartition::storedSize(B_free_.rows(), nf));
+      std::copy(mass_.data(), mass_.data() + mass_.size(), column + layout.mass);
+      std::copy(B_free_.data(), B_free_.data() + B_free_.size(), column + layout.jacobian);
+      partition_.store(column + layout.partition);  // factored with M(qₖ) for the projections
+      partition_.storeFactorization(column + layout.factorization);
     }
     if (out.sensors.cols() > 0) evaluateSensors(out.sensors.row(k));
     if (stored) stored(k);

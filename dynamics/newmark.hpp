@@ -105,6 +105,20 @@ double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool
 /// Whether a run of `model` with `settings` forms M and B at every step, so that
 /// NewmarkIntegrator::keepStepMatrices keeps them.
 bool formsStepMatrices(const Model& model, const NewmarkSettings& settings);
+/// Where each part of a time point's column of Trajectory::step_matrices starts, for `free` free
+/// coordinates and `constraints` closure rows, and the column's length.
+struct StepMatrixLayout {
+  StepMatrixLayout(Eigen::Index free, Eigen::Index constraints)
+      : jacobian(free * free),
+        partition(jacobian + constraints * free),
+        factorization(partition + SvdPartition::storedSize(constraints, free)),
+        size(factorization + SvdPartition::storedFactorizationSize(free)) {}
+  Eigen::Index mass = 0;      ///< M (free × free, column-major)
+  Eigen::Index jacobian;      ///< B (constraints × free)
+  Eigen::Index partition;     ///< B's partition (SvdPartition::store)
+  Eigen::Index factorization; ///< its factorization of M (SvdPartition::storeFactorization)
+  Eigen::Index size;
+};
 /// settings.closure_tolerance, or the default of its closure level when it is 0.
 double closureTolerance(const NewmarkSettings& settings);
 
@@ -150,8 +164,8 @@ struct Trajectory {
   /// When kept (NewmarkIntegrator::keepStepMatrices): per time point, the matrices its projections
   /// used, M(q) on the free coordinates (column-major), B(q) (closure rows × free coordinates), B's
   /// SVD partition (SvdPartition::store), then the partition's factorization of M
-  /// (SvdPartition::storeFactorization), in one column of nf² + m·nf + SvdPartition::storedSize(m,
-  /// nf) + SvdPartition::storedFactorizationSize(nf) entries; no rows otherwise.
+  /// (SvdPartition::storeFactorization), in one column laid out as StepMatrixLayout says; no rows
+  /// otherwise.
   Eigen::MatrixXd step_matrices;
   IntegratorStatistics statistics;
 };

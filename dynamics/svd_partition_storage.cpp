@@ -91,10 +91,9 @@ void SvdPartition::loadFactorization(const double* in, const Eigen::MatrixXd& J)
 }
 
 void SvdPartition::copyFactorization(const SvdPartition& other) {
+  other.freeDirections();  // formed (its factorization did), so that V₂ is copied with the factors
   copyConstraintFactors(other);
   J_ = other.J_;
-  v2_ = other.freeDirections();
-  v2_stale_ = false;
   reduced_ = other.reduced_;
 }
 

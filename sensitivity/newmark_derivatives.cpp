@@ -127,8 +127,9 @@ void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   const Trajectory& tr = response().trajectory;
   const Eigen::Index nf = freeCount(), m = model_.constraintCount();
   if (tr.step_matrices.cols() > k) {  // M and B as the simulation formed them at q_k: the same values
-    s.mass = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data(), nf, nf);
-    s.jacobian = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data() + nf * nf, m, nf);
+    const StepMatrixLayout layout(nf, m);
+    s.mass = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data() + layout.mass, nf, nf);
+    s.jacobian = Eigen::Map<const Eigen::MatrixXd>(tr.step_matrices.col(k).data() + layout.jacobian, m, nf);
   } else {
     s.q = tr.q.col(k);
     if (m > 0) {  // B's pass leaves the rotations, positions and joint axes at q_k in plain_ws
@@ -236,9 +237,9 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   s.plain_mu_a.resize(m);
   SvdPartition& partition = out.closure.partition;
   if (tr.step_matrices.cols() > k) {  // as the simulation computed them at q_k from the same B and M
-    const double* stored = tr.step_matrices.col(k).data() + nf * nf + m * nf;
-    partition.load(stored, m, nf);
-    partition.loadFactorization(stored + SvdPartition::storedSize(m, nf), s.mass);
+    const StepMatrixLayout layout(nf, m);
+    partition.load(tr.step_matrices.col(k).data() + layout.partition, m, nf);
+    partition.loadFactorization(tr.step_matrices.col(k).data() + layout.factorization, s.mass);
   } else {
     partitionWithMass(s.jacobian, s.mass, partition);
   }
