@@ -199,6 +199,29 @@ void SvdPartition::solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd&
   if (dmu) partitionMultipliers(R.data(), dx.data(), p, dmu->data());
 }
 
+void SvdPartition::solveColumns(const Eigen::MatrixXd& R, Eigen::MatrixXd& dx, Eigen::MatrixXd& dmu) const {
+  const Eigen::Index n = v1_.rows(), p = R.cols(), free = v2_.cols();
+  if (inverse_) {  // the range-space solves take G as it is
+    zero_block_.setZero(u1_.rows(), p);
+    return solveColumns(R, zero_block_, dx, &dmu);
+  }
+  dx.resize(n, p);
+  dmu.resize(u1_.rows(), p);
+  // partitionIncrement with X_r = 0: (V₂ᵀ J V₂) X_n = −V₂ᵀ R, ΔX = V₂ X_n.
+  if (free == 0) {
+    dx.setZero();
+  } else {
+    reduced_block_.resize(free, p);
+    multiplyTransposed(v2_.data(), R.data(), reduced_block_.data(), free, n, p);
+    for (Eigen::Index j = 0; j < p; ++j) {
+      reduced_rhs_ = -reduced_block_.col(j);
+      luSolve(reduced_, reduced_rhs_, x_n_);
+      multiply(v2_.data(), x_n_.data(), dx.data() + j * n, n, free, 1, Accumulate::Assign);
+    }
+  }
+  partitionMultipliers(R.data(), dx.data(), p, dmu.data());
+}
+
 void SvdPartition::project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const { increment(nullptr, g, dx); }
 
 void SvdPartition::transposedPseudoInverse(const Eigen::VectorXd& w, Eigen::VectorXd& mu) const {

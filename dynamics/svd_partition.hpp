@@ -55,8 +55,6 @@ class SvdPartition {
   /// What storeFactorization() wrote, J being the matrix it factored, after load() of the same
   /// partition: as if setIterationMatrix(J) had returned true here, the same to the bit.
   void loadFactorization(const double* in, const Eigen::MatrixXd& J);
-  /// copyConstraintFactors, and the dense matrix `other` factored last (J, V₂, the LU factors).
-  void copyFactorization(const SvdPartition& other);
   /// The relative threshold of the next setConstraintJacobian.
   void setThreshold(double relative_threshold) { threshold_ = relative_threshold; }
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition
@@ -78,6 +76,10 @@ class SvdPartition {
   /// gradients' sweeps solve 4 to 12 columns per step. Allocates nothing once the buffers have
   /// these sizes.
   void solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd& G, Eigen::MatrixXd& dx, Eigen::MatrixXd* dmu) const;
+  /// solveColumns(R, 0, dx, &dmu): the constraint rows' right-hand side zero, as in the adjoint's
+  /// transposed solves (AugmentedSolver::solveTransposed). Then X_r = 0 and ΔX = V₂ X_n alone, and
+  /// the products of X_r, which add exact zeros, are skipped: the same bits.
+  void solveColumns(const Eigen::MatrixXd& R, Eigen::MatrixXd& dx, Eigen::MatrixXd& dmu) const;
   /// Δx of the system with r = 0 (a projection onto the constraints), without the multipliers.
   void project(const Eigen::VectorXd& g, Eigen::VectorXd& dx) const;
   /// Minimum-norm least-squares solution of B Δx = c: Δx = V₁ S₁⁻¹ U₁ᵀ c (= B⁺c).
@@ -124,7 +126,7 @@ class SvdPartition {
   Eigen::VectorXd bound_scratch_;
   mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of the solves: no allocation
   mutable Eigen::VectorXd column_, nu_;                        // buffers of the range-space solves
-  mutable Eigen::MatrixXd x_r_block_, work_block_, reduced_block_, multiplier_block_;  // of the block solves
+  mutable Eigen::MatrixXd x_r_block_, work_block_, reduced_block_, multiplier_block_, zero_block_;  // of the block solves
   mutable Eigen::VectorXd column_r_, column_g_, column_dx_, column_dmu_;  // its range-space columns
 
   /// Δx of (48) into dx, r = 0 when null.

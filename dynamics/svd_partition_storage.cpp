@@ -90,11 +90,4 @@ void SvdPartition::loadFactorization(const double* in, const Eigen::MatrixXd& J)
   if (f > 0) reduced_.assign(in + n * n, in + 2 * n * n, f);
 }
 
-void SvdPartition::copyFactorization(const SvdPartition& other) {
-  other.freeDirections();  // formed (its factorization did), so that V₂ is copied with the factors
-  copyConstraintFactors(other);
-  J_ = other.J_;
-  reduced_ = other.reduced_;
-}
-
 }  // namespace mbsopt

@@ -12,30 +12,31 @@ AugmentedSolver::AugmentedSolver(const Eigen::MatrixXd& B, double threshold) : p
 
 void AugmentedSolver::setConstraintJacobian(const Eigen::MatrixXd& B) {
   factored_ = Factored::None;
-  constraints_ = B.rows();
+  symmetric_ = nullptr;
   partition_.setConstraintJacobian(B);
 }
 
 void AugmentedSolver::setConstraintPartition(const SvdPartition& partition) {
   factored_ = Factored::None;
-  constraints_ = partition.constraintRows();
+  symmetric_ = nullptr;
   partition_.copyConstraintFactors(partition);
 }
 
 void AugmentedSolver::setFactoredSymmetricMatrix(const SvdPartition& partition) {
-  constraints_ = partition.constraintRows();
-  partition_.copyFactorization(partition);
+  symmetric_ = &partition;
   factored_ = Factored::Symmetric;
 }
 
 void AugmentedSolver::setMatrix(const Eigen::MatrixXd& J) {
   factored_ = Factored::None;
+  symmetric_ = nullptr;
   if (!partition_.setIterationMatrix(J)) throw std::runtime_error("exact gradients: singular step matrix");
   factored_ = Factored::Matrix;
 }
 
 void AugmentedSolver::setTransposedMatrix(const Eigen::MatrixXd& J) {
   factored_ = Factored::None;
+  symmetric_ = nullptr;
   transposed_ = J.transpose();
   if (!partition_.setIterationMatrix(transposed_)) throw std::runtime_error("exact gradients: singular step matrix");
   factored_ = Factored::Transposed;
@@ -50,7 +51,7 @@ Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::
 void AugmentedSolver::solveColumns(Eigen::MatrixXd& X) const {
   if (factored_ != Factored::Matrix && factored_ != Factored::Symmetric)
     throw std::logic_error("AugmentedSolver::solve needs setMatrix");
-  partition_.solveColumns(top_rhs_, bottom_rhs_, X, nullptr);
+  factoredPartition().solveColumns(top_rhs_, bottom_rhs_, X, nullptr);
 }
 
 void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const {
@@ -59,10 +60,9 @@ void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::Matrix
   // with Jᵀ, right-hand side [x̄ᵀ; 0], its Δx being t̄ᵀ and its minimum-norm Δμ being b̄ᵀ.
   if (factored_ != Factored::Transposed && factored_ != Factored::Symmetric)
     throw std::logic_error("AugmentedSolver::solveTransposed needs setTransposedMatrix");
-  // Solved as the columns of the transposes, one per row of x̄.
+  // Solved as the columns of the transposes, one per row of x̄, with a zero bottom.
   top_rhs_ = -xbar.transpose();
-  bottom_rhs_.setZero(constraints_, xbar.rows());
-  partition_.solveColumns(top_rhs_, bottom_rhs_, tbar_t_, &bbar_t_);
+  factoredPartition().solveColumns(top_rhs_, tbar_t_, bbar_t_);
   tbar = tbar_t_.transpose();
   bbar = bbar_t_.transpose();
 }

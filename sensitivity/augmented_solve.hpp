@@ -26,9 +26,10 @@ class AugmentedSolver {
   /// setConstraintJacobian(B) at its threshold; forgets the factored matrix.
   void setConstraintPartition(const SvdPartition& partition);
 
-  /// B's partition and the symmetric J = Jᵀ it factored last (SvdPartition::copyFactorization), for
-  /// solve() and solveTransposed() alike: the same to the bit as setConstraintJacobian(B) and
-  /// setMatrix(J) or setTransposedMatrix(J).
+  /// B's partition and the symmetric J = Jᵀ it factored last, for solve() and solveTransposed()
+  /// alike: the same to the bit as setConstraintJacobian(B) and setMatrix(J) or
+  /// setTransposedMatrix(J). The solves read `partition` where it is (nothing is copied): it must
+  /// stay alive and unchanged until the next set… call.
   void setFactoredSymmetricMatrix(const SvdPartition& partition);
   /// Factors J for solve(); throws std::runtime_error when it is singular on B's null space.
   void setMatrix(const Eigen::MatrixXd& J);
@@ -52,10 +53,12 @@ class AugmentedSolver {
   /// X from the right-hand sides in top_rhs_, bottom_rhs_ (negated: the partition solves for
   /// −[r; g]), all columns in one SvdPartition::solveColumns. Needs setMatrix.
   void solveColumns(Eigen::MatrixXd& X) const;
+  /// The partition the solves use: partition_, or the one of setFactoredSymmetricMatrix.
+  const SvdPartition& factoredPartition() const { return symmetric_ ? *symmetric_ : partition_; }
   SvdPartition partition_;
-  Eigen::Index constraints_ = 0;
+  const SvdPartition* symmetric_ = nullptr;  ///< setFactoredSymmetricMatrix's, read in place
   Eigen::MatrixXd transposed_;  ///< Jᵀ for setTransposedMatrix
-  mutable Eigen::MatrixXd top_rhs_, bottom_rhs_;  ///< the right-hand sides, negated
+  mutable Eigen::MatrixXd top_rhs_, bottom_rhs_;  ///< the right-hand sides, negated (solveTransposed: no bottom)
   mutable Eigen::MatrixXd tbar_t_, bbar_t_;  ///< solveTransposed's results, transposed
   Factored factored_ = Factored::None;
 };

@@ -226,6 +226,7 @@ long TrajectoryDerivatives::PointStream::take() {
 
 void TrajectoryDerivatives::PointStream::evaluate(long n, Scratch& scratch) {
   const std::size_t i = slot(n);
+  if (n + 1 < count_) d_.prefetch(pointOf(begin_ + n + 1));  // most often this thread's next
   try {
     d_.pointAt(pointOf(begin_ + n), scratch, slots_[i]);
     failures_[i] = nullptr;

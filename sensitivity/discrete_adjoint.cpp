@@ -18,9 +18,15 @@ namespace {
 /// round-off (the same operations on fewer rows; Eigen's kernels may sum in another order).
 void nonZeroRows(const ResponseSeeds& bar, std::vector<Eigen::Index>& rows) {
   rows.clear();
-  for (Eigen::Index j = 0; j < bar.position.rows(); ++j)
-    if (!bar.position.row(j).isZero(0.0) || !bar.velocity.row(j).isZero(0.0) || !bar.acceleration.row(j).isZero(0.0))
-      rows.push_back(j);
+  const Eigen::Index r = bar.position.rows(), n = bar.position.cols();
+  const auto nonZero = [&](Eigen::Index j) {  // down row j of the three, column-major
+    for (const Eigen::MatrixXd* m : {&bar.position, &bar.velocity, &bar.acceleration})
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (m->data()[j + i * r] != 0.0) return true;  // (NaN included)
+    return false;
+  };
+  for (Eigen::Index j = 0; j < r; ++j)
+    if (nonZero(j)) rows.push_back(j);
 }
 
 /// What one backward step hands to step k − 1 (the adjoints of the predictors q̃, ṽ of step k, and

@@ -122,6 +122,19 @@ void TrajectoryDerivatives::partitionWithMass(const Eigen::MatrixXd& B, const Ei
     throw std::runtime_error("exact gradients: singular step matrix");
 }
 
+void TrajectoryDerivatives::prefetch(Eigen::Index k) const {
+  const Trajectory& tr = response().trajectory;
+  if (k < 0 || k >= tr.time.size()) return;
+  constexpr Eigen::Index kLine = 64 / sizeof(double);  // doubles per cache line
+  const auto lines = [](const double* data, Eigen::Index size) {
+    for (Eigen::Index i = 0; i < size; i += kLine) __builtin_prefetch(data + i);
+    if (size > 0) __builtin_prefetch(data + size - 1);  // a column need not start on a line
+  };
+  if (tr.step_matrices.cols() > k) lines(tr.step_matrices.col(k).data(), tr.step_matrices.rows());
+  for (const Eigen::MatrixXd* x : {&tr.q, &tr.v, &tr.a, &tr.v_unprojected, &tr.a_unprojected, &tr.lambda})
+    lines(x->col(k).data(), x->rows());
+}
+
 void TrajectoryDerivatives::geometryAt(Eigen::Index k, Scratch& s) {
   if (k == s.geometry_point) return;
   const Trajectory& tr = response().trajectory;

@@ -213,6 +213,11 @@ class TrajectoryDerivatives {
   /// for the sensors' Jacobians); false when it was not, or was handed out already.
   bool takeEarly(Eigen::Index k, PointDerivatives& out, std::vector<ResponseJacobian>& sensors);
 
+  /// Hints the processor to bring time point k's state and kept step matrices into its cache, when
+  /// the trajectory has that point: a sweep asks for point k while it evaluates its neighbour, which
+  /// then finds them there (the first read of a point's matrices otherwise waits for memory: the
+  /// sweeps walk 14 MB of them on the tram).
+  void prefetch(Eigen::Index k) const;
   /// M(q_k) and B(q_k) into s.mass and s.jacobian: from the trajectory where the simulation kept
   /// them (then no geometry is computed), else computed on s.plain_ws.
   void geometryAt(Eigen::Index k, Scratch& s);

@@ -97,8 +97,9 @@ TEST(SvdPartition, SolvesTheAugmentedSystemWithManyCoordinates) {
 }
 
 // Several right-hand sides at once (solveColumns, the exact gradients' sweeps): the same operations
-// in the same order as one solve() per column, so the same bits, with and without the multipliers;
-// on few and many coordinates, with a dependent row, and without constraints.
+// in the same order as one solve() per column, so the same bits, with and without the multipliers,
+// and with G = 0 through its own overload; on few and many coordinates, with a dependent row, and
+// without constraints.
 void expectColumnsAsSolves(const SvdPartition& partition, const Eigen::MatrixXd& R, const Eigen::MatrixXd& G) {
   Eigen::MatrixXd dx, dmu, dx_alone;
   partition.solveColumns(R, G, dx, &dmu);
@@ -112,6 +113,13 @@ void expectColumnsAsSolves(const SvdPartition& partition, const Eigen::MatrixXd&
     EXPECT_TRUE(dx_alone.col(j) == column_dx) << "column " << j << " without multipliers";
     EXPECT_TRUE(dmu.col(j) == column_dmu) << "column " << j;
   }
+  // With G = 0, as in the adjoint's transposed solves: the overload that skips the products of the
+  // range coordinates (zeros) gives the general solve's bits.
+  Eigen::MatrixXd homogeneous_dx, homogeneous_dmu, general_dx, general_dmu;
+  partition.solveColumns(R, homogeneous_dx, homogeneous_dmu);
+  partition.solveColumns(R, Eigen::MatrixXd::Zero(G.rows(), G.cols()), general_dx, &general_dmu);
+  EXPECT_TRUE(homogeneous_dx == general_dx) << R.rows() << " coordinates, G = 0";
+  EXPECT_TRUE(homogeneous_dmu == general_dmu) << R.rows() << " coordinates, G = 0";
 }
 
 TEST(SvdPartition, SolvesColumnsBitForBitAsItSolvesEachColumn) {
