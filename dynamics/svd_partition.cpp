@@ -123,11 +123,14 @@ void SvdPartition::rangeCoordinates(const double* g, Eigen::Index p, double* x_r
 
 void SvdPartition::partitionIncrement(const double* r, const double* x_r, Eigen::Index p, double* dx) const {
   const Eigen::Index n = v1_.rows(), free = v2_.cols();
-  multiply(v1_.data(), x_r, dx, n, rank_, p, Accumulate::Assign);  // V₁ X_r (zero without constraints: V₁ is n × 0)
+  if (x_r)
+    multiply(v1_.data(), x_r, dx, n, rank_, p, Accumulate::Assign);  // V₁ X_r (zero without constraints: V₁ is n × 0)
+  else
+    std::fill(dx, dx + n * p, 0.0);
   if (free == 0) return;
   work_block_.resize(n, p);
   if (r) std::copy(r, r + n * p, work_block_.data());
-  multiply(J_.data(), dx, work_block_.data(), n, n, p, r ? Accumulate::Add : Accumulate::Assign);  // R + J V₁ X_r
+  if (x_r) multiply(J_.data(), dx, work_block_.data(), n, n, p, r ? Accumulate::Add : Accumulate::Assign);  // R + J V₁ X_r
   reduced_block_.resize(free, p);
   multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
   for (Eigen::Index j = 0; j < p; ++j) {
@@ -200,25 +203,14 @@ void SvdPartition::solveColumns(const Eigen::MatrixXd& R, const Eigen::MatrixXd&
 }
 
 void SvdPartition::solveColumns(const Eigen::MatrixXd& R, Eigen::MatrixXd& dx, Eigen::MatrixXd& dmu) const {
-  const Eigen::Index n = v1_.rows(), p = R.cols(), free = v2_.cols();
+  const Eigen::Index n = v1_.rows(), p = R.cols();
   if (inverse_) {  // the range-space solves take G as it is
     zero_block_.setZero(u1_.rows(), p);
     return solveColumns(R, zero_block_, dx, &dmu);
   }
   dx.resize(n, p);
   dmu.resize(u1_.rows(), p);
-  // partitionIncrement with X_r = 0: (V₂ᵀ J V₂) X_n = −V₂ᵀ R, ΔX = V₂ X_n.
-  if (free == 0) {
-    dx.setZero();
-  } else {
-    reduced_block_.resize(free, p);
-    multiplyTransposed(v2_.data(), R.data(), reduced_block_.data(), free, n, p);
-    for (Eigen::Index j = 0; j < p; ++j) {
-      reduced_rhs_ = -reduced_block_.col(j);
-      luSolve(reduced_, reduced_rhs_, x_n_);
-      multiply(v2_.data(), x_n_.data(), dx.data() + j * n, n, free, 1, Accumulate::Assign);
-    }
-  }
+  partitionIncrement(R.data(), nullptr, p, dx.data());
   partitionMultipliers(R.data(), dx.data(), p, dmu.data());
 }
 

@@ -135,7 +135,8 @@ class SvdPartition {
   // of a block:
   /// X_r = −S₁⁻¹ U₁ᵀ G (third row) into x_r (rank × p).
   void rangeCoordinates(const double* g, Eigen::Index p, double* x_r) const;
-  /// ΔX = V₁ X_r + V₂ X_n with (V₂ᵀ J V₂) X_n = −V₂ᵀ (R + J V₁ X_r) (second row), R = 0 when null.
+  /// ΔX = V₁ X_r + V₂ X_n with (V₂ᵀ J V₂) X_n = −V₂ᵀ (R + J V₁ X_r) (second row), R = 0 when null,
+  /// X_r = 0 when null (its products, exact zeros, skipped: the same bits). Needs R or X_r.
   void partitionIncrement(const double* r, const double* x_r, Eigen::Index p, double* dx) const;
   /// The minimum-norm multipliers ΔM = −U₁ S₁⁻¹ V₁ᵀ (R + J ΔX) (first row).
   void partitionMultipliers(const double* r, const double* dx, Eigen::Index p, double* dmu) const;
