@@ -576,8 +576,7 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
       double* column = out.step_matrices.col(k).data();
       std::copy(mass_.data(), mass_.data() + mass_.size(), column + layout.mass);
       std::copy(B_free_.data(), B_free_.data() + B_free_.size(), column + layout.jacobian);
-      partition_.store(column + layout.partition);  // factored with M(qₖ) for the projections
-      partition_.storeFactorization(column + layout.factorization);
+      partition_.storeFactored(column + layout.partition);  // factored with M(qₖ) for the projections
     }
     if (out.sensors.cols() > 0) evaluateSensors(out.sensors.row(k));
     if (stored) stored(k);

@@ -111,12 +111,10 @@ struct StepMatrixLayout {
   StepMatrixLayout(Eigen::Index free, Eigen::Index constraints)
       : jacobian(free * free),
         partition(jacobian + constraints * free),
-        factorization(partition + SvdPartition::storedSize(constraints, free)),
-        size(factorization + SvdPartition::storedFactorizationSize(free)) {}
-  Eigen::Index mass = 0;      ///< M (free × free, column-major)
-  Eigen::Index jacobian;      ///< B (constraints × free)
-  Eigen::Index partition;     ///< B's partition (SvdPartition::store)
-  Eigen::Index factorization; ///< its factorization of M (SvdPartition::storeFactorization)
+        size(partition + SvdPartition::storedFactoredSize(constraints, free)) {}
+  Eigen::Index mass = 0;   ///< M (free × free, column-major)
+  Eigen::Index jacobian;   ///< B (constraints × free)
+  Eigen::Index partition;  ///< B's partition with its factorization of M (SvdPartition::storeFactored)
   Eigen::Index size;
 };
 /// settings.closure_tolerance, or the default of its closure level when it is 0.

@@ -55,6 +55,15 @@ class SvdPartition {
   /// What storeFactorization() wrote, J being the matrix it factored, after load() of the same
   /// partition: as if setIterationMatrix(J) had returned true here, the same to the bit.
   void loadFactorization(const double* in, const Eigen::MatrixXd& J);
+  /// The entries storeFactored() writes for a B of m rows and n columns: the partition, and when B
+  /// has rows its factorization.
+  static Eigen::Index storedFactoredSize(Eigen::Index m, Eigen::Index n);
+  /// store(), followed when B has rows by storeFactorization() (the projections' solves need the
+  /// factorization only with rows).
+  void storeFactored(double* out) const;
+  /// What storeFactored() wrote for a B of m rows and n columns, J the matrix it factored (not read
+  /// without rows): load() and loadFactorization().
+  void loadFactored(const double* in, Eigen::Index m, Eigen::Index n, const Eigen::MatrixXd& J);
   /// The relative threshold of the next setConstraintJacobian.
   void setThreshold(double relative_threshold) { threshold_ = relative_threshold; }
   /// Factor the reduced matrix V₂ᵀ J V₂. Returns false when it is singular: its reciprocal condition

@@ -90,4 +90,19 @@ void SvdPartition::loadFactorization(const double* in, const Eigen::MatrixXd& J)
   if (f > 0) reduced_.assign(in + n * n, in + 2 * n * n, f);
 }
 
+Eigen::Index SvdPartition::storedFactoredSize(Eigen::Index m, Eigen::Index n) {
+  return storedSize(m, n) + (m > 0 ? storedFactorizationSize(n) : 0);
+}
+
+void SvdPartition::storeFactored(double* out) const {
+  const Eigen::Index m = u1_.rows(), n = v1_.rows();
+  store(out);
+  if (m > 0) storeFactorization(out + storedSize(m, n));
+}
+
+void SvdPartition::loadFactored(const double* in, Eigen::Index m, Eigen::Index n, const Eigen::MatrixXd& J) {
+  load(in, m, n);
+  if (m > 0) loadFactorization(in + storedSize(m, n), J);
+}
+
 }  // namespace mbsopt

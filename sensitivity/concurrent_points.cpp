@@ -54,14 +54,9 @@ bool TrajectoryDerivatives::packPoint(const PointDerivatives& point, const std::
   }
   // B's partition, with M factored when B has rows: the sweep copies it instead of computing it.
   const Eigen::Index m = point.closure.jacobian.rows(), nf = point.step.mass.rows();
-  if (!fits || end - out < partitionPackedSize(m, nf)) return false;
-  point.closure.partition.store(out);
-  if (m > 0) point.closure.partition.storeFactorization(out + SvdPartition::storedSize(m, nf));
+  if (!fits || end - out < SvdPartition::storedFactoredSize(m, nf)) return false;
+  point.closure.partition.storeFactored(out);
   return true;
-}
-
-Eigen::Index TrajectoryDerivatives::partitionPackedSize(Eigen::Index m, Eigen::Index nf) {
-  return SvdPartition::storedSize(m, nf) + (m > 0 ? SvdPartition::storedFactorizationSize(nf) : 0);
 }
 
 void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const {
@@ -74,19 +69,18 @@ void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& poin
     unpackMatrix(in, J.acceleration);
   }
   const Eigen::Index m = point.closure.jacobian.rows(), nf = point.step.mass.rows();
-  point.closure.partition.load(in, m, nf);
-  if (m > 0) point.closure.partition.loadFactorization(in + SvdPartition::storedSize(m, nf), point.step.mass);
+  point.closure.partition.loadFactored(in, m, nf, point.step.mass);
 }
 
 Eigen::Index TrajectoryDerivatives::packedPointSize() const {
   // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q, ∂b̈/∂q̇ (m nf); per
   // sensor its value and three rows of nf; and two numbers for the shape of each of those matrices
   // (forEachMatrix's 12, three per sensor); then B's partition and its factorization of M
-  // (partitionPackedSize). packPoint refuses a point that would not fit.
+  // (SvdPartition::storedFactoredSize). packPoint refuses a point that would not fit.
   const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
   const auto sensors = static_cast<Eigen::Index>(functional_sensors_.size());
   return 5 * nf * nf + 3 * nf * p + 4 * m * nf + sensors * (1 + 3 * nf) + 2 * (12 + 3 * sensors) +
-         partitionPackedSize(m, nf);
+         SvdPartition::storedFactoredSize(m, nf);
 }
 
 void TrajectoryDerivatives::simulateWhileEvaluating(int jobs) {

@@ -251,8 +251,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   SvdPartition& partition = out.closure.partition;
   if (tr.step_matrices.cols() > k) {  // as the simulation computed them at q_k from the same B and M
     const StepMatrixLayout layout(nf, m);
-    partition.load(tr.step_matrices.col(k).data() + layout.partition, m, nf);
-    partition.loadFactorization(tr.step_matrices.col(k).data() + layout.factorization, s.mass);
+    partition.loadFactored(tr.step_matrices.col(k).data() + layout.partition, m, nf, s.mass);
   } else {
     partitionWithMass(s.jacobian, s.mass, partition);
   }

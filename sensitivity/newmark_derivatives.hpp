@@ -204,8 +204,6 @@ class TrajectoryDerivatives {
   static bool packPoint(const PointDerivatives& point, const std::vector<ResponseJacobian>& sensors, double* out,
                         const double* end);
   void unpackPoint(const double* in, PointDerivatives& point, std::vector<ResponseJacobian>& sensors) const;
-  /// The entries packPoint writes for B's partition (m rows, nf columns) and its factorization of M.
-  static Eigen::Index partitionPackedSize(Eigen::Index m, Eigen::Index nf);
   /// Simulates into simulation_ on a thread of its own while this thread and jobs − 2 more evaluate
   /// the points already stored into the early store.
   void simulateWhileEvaluating(int jobs);
