@@ -17,7 +17,7 @@ void forEachMatrix(Point& point, F&& f) {
   auto& s = point.step;
   auto& c = point.closure;
   for (auto* matrix : {&s.mass, &s.damping, &s.stiffness, &s.parameters, &c.jacobian, &c.velocity_q, &c.acceleration_q,
-                       &c.acceleration_v, &c.velocity_projection, &c.acceleration_projection,
+                       &c.velocity_projection, &c.acceleration_projection,
                        &c.velocity_projection_parameters, &c.acceleration_projection_parameters})
     f(*matrix);
 }
@@ -73,13 +73,13 @@ void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& poin
 }
 
 Eigen::Index TrajectoryDerivatives::packedPointSize() const {
-  // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q, ∂b̈/∂q̇ (m nf); per
-  // sensor its value and three rows of nf; and two numbers for the shape of each of those matrices
-  // (forEachMatrix's 12, three per sensor); then B's partition and its factorization of M
+  // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q (m nf); per sensor
+  // its value and three rows of nf; and two numbers for the shape of each of those matrices
+  // (forEachMatrix's 11, three per sensor); then B's partition and its factorization of M
   // (SvdPartition::storedFactoredSize). packPoint refuses a point that would not fit.
   const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
   const auto sensors = static_cast<Eigen::Index>(functional_sensors_.size());
-  return 5 * nf * nf + 3 * nf * p + 4 * m * nf + sensors * (1 + 3 * nf) + 2 * (12 + 3 * sensors) +
+  return 5 * nf * nf + 3 * nf * p + 3 * m * nf + sensors * (1 + 3 * nf) + 2 * (11 + 3 * sensors) +
          SvdPartition::storedFactoredSize(m, nf);
 }
 

@@ -32,7 +32,7 @@ HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, co
     if (d.constraintCount() > 0) {
       const ClosureDerivatives c = d.closure(k);
       seeds.position -= bbar * c.acceleration_q;
-      seeds.velocity -= bbar * c.acceleration_v;
+      seeds.velocity -= 2.0 * bbar * c.velocity_q;  // ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives)
     }
     dpsi_db -= tbar * s.parameters;
   }

@@ -81,8 +81,9 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
       multiply(s.mass, step.a_newton, step.top);
       multiply(c.acceleration_projection, step.q, step.top, Accumulate::Subtract);
       step.top -= c.acceleration_projection_parameters;
-      multiply(c.acceleration_q, step.q, step.bottom);
-      multiply(c.acceleration_v, step.v, step.bottom, Accumulate::Add);
+      multiply(c.velocity_q, step.v, step.bottom);
+      step.bottom *= 2.0;  // ∂b̈/∂q̇ S_v = 2 ∂ḃ/∂q S_v (ClosureDerivatives)
+      multiply(c.acceleration_q, step.q, step.bottom, Accumulate::Add);
       solver.solve(step.top, -step.bottom, step.a);
     } else {
       step.a.swap(step.a_newton);

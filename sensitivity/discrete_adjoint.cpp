@@ -70,7 +70,8 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
     backThroughProjection(bar.acceleration, c.acceleration_projection, c.acceleration_q,
                           c.acceleration_projection_parameters, out.a_newton);
     out.v_total = bar.velocity;
-    multiply(out.bbar, c.acceleration_v, out.v_total, Accumulate::Subtract);
+    out.bbar *= 2.0;  // ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives); b̄ is solved for again below
+    multiply(out.bbar, c.velocity_q, out.v_total, Accumulate::Subtract);
     backThroughProjection(out.v_total, c.velocity_projection, c.velocity_q, c.velocity_projection_parameters,
                           out.v_pred);
   }

@@ -274,19 +274,31 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   // One evaluation per pass over the step's inputs (free q, the design parameters, free q̇) shares
   // the geometry at q_k between four functions of it, in rows [f; ḃ; b̈; f_v; f_a]: f at the state
   // Newton converged to (K_T, ∂f/∂b, C_T); the closure rates at the projected state, q̇ seeded the
-  // same way (∂ḃ/∂q, ∂b̈/∂(q, q̇)); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P). A
-  // pass of velocities alone evaluates f and b̈ only: ḃ's derivative in q̇ is not used, and
-  // M(q)Δ + B(q)ᵀμ does not depend on q̇ (its rows get zero derivatives). With sensors to
-  // differentiate, free q̈ is seeded last, and each sensor is evaluated at the projected state.
+  // same way (∂ḃ/∂q, ∂b̈/∂q); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P). A pass
+  // of velocities alone evaluates f only, and writes only its rows: ∂b̈/∂q̇ = 2 ∂ḃ/∂q comes from the
+  // passes over q (ClosureDerivatives), ḃ's derivative in q̇ is B, and M(q)Δ + B(q)ᵀμ does not depend
+  // on q̇. With sensors to differentiate, free q̈ is seeded last, and each sensor is evaluated at the
+  // projected state.
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
   const Eigen::Index velocities = firstVelocityInput();
   Eigen::MatrixXd& d = s.pass_jacobian;
   d.resize(rows, static_cast<Eigen::Index>(inputs.size()));
   VectorX<AdScalar>& g = s.ws.seeded_f;
   bool geometry_in_ws = false;  // q_k's geometry in s.ws, from a pass seeded in q or a parameter
+  const auto projectedRates = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
+    s.projected_v = state.v;  // the pass's derivative lanes at the projected values
+    s.projected_a = state.a;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      s.projected_v[i].value() = tr.v(i, k);
+      s.projected_a[i].value() = tr.a(i, k);
+    }
+    frameRates(model_, s.ws, s.projected_v, s.projected_a, KinematicsLevel::Acceleration);
+    if (sensed) sensorDerivatives(s, state.q, s.projected_v, s.projected_a, first, count);
+  };
   const auto evaluate = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
     g.resize(rows);
-    if (first < velocities) {
+    const bool seeds_geometry = first < velocities;  // the pass seeds some q or parameter
+    if (seeds_geometry) {
       forwardKinematics(model_, s.ws, state.q, state.v, state.a, KinematicsLevel::Acceleration);
       geometry_in_ws = true;
     } else {  // q and the parameters are constants of this pass: q_k's geometry without derivatives
@@ -302,32 +314,23 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     g.head(n) = s.f;
     if (m == 0) {  // no projections: the state Newton converged to is the trajectory's
       if (sensed) sensorDerivatives(s, state.q, state.v, state.a, first, count);
-    } else {
-      s.projected_v = state.v;
-      s.projected_a = state.a;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        s.projected_v[i].value() = tr.v(i, k);
-        s.projected_a[i].value() = tr.a(i, k);
-      }
-      frameRates(model_, s.ws, s.projected_v, s.projected_a, KinematicsLevel::Acceleration);
-      if (sensed) sensorDerivatives(s, state.q, s.projected_v, s.projected_a, first, count);
+    } else if (seeds_geometry) {
+      projectedRates(state, first, count);
       closureEquations(model_, s.ws, Derivative::Acceleration, s.closure_rates);
       g.segment(n + m, m) = s.closure_rates;
-      if (first < velocities) {  // the pass seeds some q or parameter
-        closureEquations(model_, s.ws, Derivative::Velocity, s.closure_rates);
-        g.segment(n, m) = s.closure_rates;
-        frameAccelerationsAtRest(model_, s.ws, s.correction_v);
-        inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_v, s.f);
-        g.segment(n + 2 * m, n) = s.f;
-        frameAccelerationsAtRest(model_, s.ws, s.correction_a);
-        inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
-        g.tail(n) = s.f;
-      } else {
-        for (Eigen::Index i = n; i < n + m; ++i) g[i].derivatives().setZero();
-        for (Eigen::Index i = n + 2 * m; i < rows; ++i) g[i].derivatives().setZero();
-      }
+      closureEquations(model_, s.ws, Derivative::Velocity, s.closure_rates);
+      g.segment(n, m) = s.closure_rates;
+      frameAccelerationsAtRest(model_, s.ws, s.correction_v);
+      inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_v, s.f);
+      g.segment(n + 2 * m, n) = s.f;
+      frameAccelerationsAtRest(model_, s.ws, s.correction_a);
+      inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
+      g.tail(n) = s.f;
+    } else if (sensed) {  // only the sensors read the projected state
+      projectedRates(state, first, count);
     }
-    for (Eigen::Index i = 0; i < rows; ++i) d.row(i).segment(first, count) = g[i].derivatives().head(count);
+    const Eigen::Index written = seeds_geometry ? rows : n;
+    for (Eigen::Index i = 0; i < written; ++i) d.row(i).segment(first, count) = g[i].derivatives().head(count);
   };
   forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), inputs, ad_parameter_indices_,
                 evaluate);
@@ -345,7 +348,6 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   if (m == 0) return;
   c.velocity_q = d.block(n, 0, m, nf);
   c.acceleration_q = d.block(n + m, 0, m, nf);
-  c.acceleration_v = d.block(n + m, velocities, m, nf);
   copyRows(d, free, n + 2 * m, 0, nf, c.velocity_projection);
   copyParameterRows(d, free, n + 2 * m, nf, ad_parameter_, c.velocity_projection_parameters);
   copyRows(d, free, 2 * n + 2 * m, 0, nf, c.acceleration_projection);

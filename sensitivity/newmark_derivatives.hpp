@@ -34,8 +34,11 @@ struct StepDerivatives {
 /// design variables through M and B.
 struct ClosureDerivatives {
   Eigen::MatrixXd jacobian;                        ///< B; without cut joints it has no rows and the rest is empty
-  Eigen::MatrixXd velocity_q;                      ///< ∂ḃ/∂q at (q_k, q̇_k)
-  Eigen::MatrixXd acceleration_q, acceleration_v;  ///< ∂b̈/∂q, ∂b̈/∂q̇ at (q_k, q̇_k, q̈_k)
+  /// ∂ḃ/∂q at (q_k, q̇_k). It also gives ∂b̈/∂q̇ = 2 ∂ḃ/∂q: b depends on the coordinates alone, so
+  /// with ḃ = B q̇ and b̈ = B q̈ + Ḃ q̇, column j of ∂b̈/∂q̇ is Ḃ e_j + (∂B/∂q_j) q̇, and both terms
+  /// equal ∂ḃ/∂q_j = (∂B/∂q_j) q̇ because b's second derivatives are symmetric.
+  Eigen::MatrixXd velocity_q;
+  Eigen::MatrixXd acceleration_q;  ///< ∂b̈/∂q at (q_k, q̇_k, q̈_k)
   Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
   Eigen::MatrixXd velocity_projection_parameters, acceleration_projection_parameters;  ///< P of each
   /// B's SVD partition at the integrator's threshold with M factored (with cut joints), as the

@@ -14,6 +14,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -223,6 +224,24 @@ class TangentMatricesTest : public ::testing::Test {
     return B;
   }
 
+  /// ∂(the closure rows at `level`)/∂q, or ∂/∂q̇ with `velocities`, at (q_, v_, a_): forward AD in
+  /// passes of kMaxAdDirections, independently of the gradients' passes.
+  Eigen::MatrixXd closureDerivative(Derivative level, bool velocities) {
+    const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount();
+    Eigen::MatrixXd out(m, n);
+    VectorX<AdScalar> q, v, a, b;
+    for (Eigen::Index first = 0; first < n; first += kMaxAdDirections) {
+      const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, n - first);
+      seedVector(q_, 0, first, velocities ? 0 : count, q);
+      seedVector(v_, 0, first, velocities ? count : 0, v);
+      seedVector(a_, 0, 0, 0, a);
+      forwardKinematics(model_, ad_ws_, q, v, a, KinematicsLevel::Acceleration);
+      closureEquations(model_, ad_ws_, level, b);
+      for (Eigen::Index i = 0; i < m; ++i) out.row(i).segment(first, count) = b[i].derivatives().head(count);
+    }
+    return out;
+  }
+
   TangentMatrices exactTangents() {
     TangentMatrices t;
     tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, kTime, t);
@@ -337,6 +356,15 @@ TEST_F(TangentMatricesTest, AccelerationClosureIsJacobianTimesAccelerationPlusIt
   const Eigen::MatrixXd B_rate = (jacobianAt(path(tau)) - jacobianAt(path(-tau))) / (2.0 * tau);
   const Eigen::VectorXd expected = jacobianAt(q_) * a_ + B_rate * v_;
   expectRelativelyClose(closureAt(q_, Derivative::Acceleration), expected, kFdTolerance, "b̈ vs B q̈ + Ḃ q̇");
+}
+
+TEST_F(TangentMatricesTest, AccelerationClosureRateDerivativeIsTwiceTheVelocityClosurePositionDerivative) {
+  // b depends on q alone: ḃ = B q̇, b̈ = B q̈ + Ḃ q̇, so ∂b̈/∂q̇_j = Ḃ e_j + (∂B/∂q_j) q̇, and both terms are
+  // ∂ḃ/∂q_j because b's second derivatives are symmetric. The gradients use ∂b̈/∂q̇ = 2 ∂ḃ/∂q
+  // (ClosureDerivatives); here both sides by AD, through different rows of the closure.
+  const Eigen::MatrixXd rate_derivative = closureDerivative(Derivative::Acceleration, /*velocities=*/true);
+  const Eigen::MatrixXd twice_position_derivative = 2.0 * closureDerivative(Derivative::Velocity, false);
+  expectRelativelyClose(rate_derivative, twice_position_derivative, kIdentityTolerance, "∂b̈/∂q̇ vs 2 ∂ḃ/∂q");
 }
 
 TEST_F(TangentMatricesTest, CompositeRigidBodyMassMatrixEqualsTheAdMass) {
