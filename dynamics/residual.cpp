@@ -102,7 +102,6 @@ void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Work
 template <class Scalar>
 void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scalar>& ws, const VectorX<Scalar>& v,
                       VectorX<Scalar>& f, const Scalar& stiffness, const Scalar& damping) {
-  using std::atan2;
   const auto element = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(g.slider_coordinate)].element);
   const KinematicElement& slider = model.elements()[element];
   const auto base = static_cast<std::size_t>(slider.entry), frame = static_cast<std::size_t>(g.frame);
@@ -126,7 +125,7 @@ void addTrackGuidance(const Model& model, const TrackGuidance& g, Workspace<Scal
     y = heading.y();
     relative_rate = (ws.angular_velocity[frame] - ws.angular_velocity[base]).dot(Rb.col(2));
   }
-  const Scalar deviation = atan2(c * y - s * x, c * x + s * y);  // Δ, wrapped to (−π, π]
+  const Scalar deviation = atan2Of(Scalar(c * y - s * x), Scalar(c * x + s * y));  // Δ, wrapped to (−π, π]
   const Scalar deviation_rate = relative_rate - curvature * v[i];
   const Scalar torque = -stiffness * deviation - damping * deviation_rate;
   if (planar) {

@@ -28,6 +28,16 @@ using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;
 inline double valueOf(double x) { return x; }
 inline double valueOf(const AdScalar& x) { return x.value(); }
 
+/// atan2(y, x) of the recursions' scalars. Eigen 3.4's atan2 of two AD scalars returns its
+/// derivatives in a vector of dynamic size, allocated on the heap at every call; this one keeps the
+/// kMaxAdDirections lanes on the stack, with Eigen's formula d atan2(y, x) = (x dy − y dx)/(x² + y²).
+inline double atan2Of(double y, double x) { return std::atan2(y, x); }
+inline AdScalar atan2Of(const AdScalar& y, const AdScalar& x) {
+  const double squared_hypot = y.value() * y.value() + x.value() * x.value();
+  return AdScalar(std::atan2(y.value(), x.value()),
+                  (y.derivatives() * x.value() - y.value() * x.derivatives()) / squared_hypot);
+}
+
 /// x = 0 in place (for an AD scalar its value and every derivative lane, without a temporary).
 inline void setZero(double& x) { x = 0.0; }
 inline void setZero(AdScalar& x) {

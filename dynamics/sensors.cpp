@@ -63,12 +63,11 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
           },
           [&](const RelativeAngleSensor& s) -> Scalar {
             // Twist of R_aᵀR_b about the axis: angle of the image of a perpendicular e in the plane (e, axis×e).
-            using std::atan2;
             const auto [e, f] = perpendicularPair(s.axis);
             const Matrix3<Scalar> relative =
                 ws.rotation[static_cast<std::size_t>(s.frame_a)].transpose() * ws.rotation[static_cast<std::size_t>(s.frame_b)];
             const Vector3<Scalar> image = relative * e.template cast<Scalar>();
-            return atan2(image.dot(f.template cast<Scalar>()), image.dot(e.template cast<Scalar>()));
+            return atan2Of(Scalar(image.dot(f.template cast<Scalar>())), Scalar(image.dot(e.template cast<Scalar>())));
           },
           [&](const EnergySensor&) -> Scalar { return notAStateSensor<Scalar>(sensor); },
           [&](const CutReactionSensor&) -> Scalar { return notAStateSensor<Scalar>(sensor); }},

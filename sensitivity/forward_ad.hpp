@@ -38,7 +38,8 @@ struct SeededState {
 /// Runs `evaluate` once per pass of at most kMaxAdDirections inputs: input first + j carries the
 /// unit derivative direction j in the state handed to it (parameters through ws.parameter_seeds,
 /// `parameters` being their indices in the model); evaluate(state, first, count) reads the
-/// derivatives it needs. Leaves no parameter seeded.
+/// derivatives it needs. Leaves no parameter seeded. A caller on a hot path passes its closure as
+/// std::cref(closure): a std::function copies a closure of more than two references to the heap.
 void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                    const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
                    const std::vector<AdInput>& inputs,

@@ -2,6 +2,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 
 #include "dynamics/closure.hpp"
@@ -59,6 +60,7 @@ void collectSensors(const Model& model, const std::vector<ConstraintFunctional>&
                     std::vector<int>& slot, std::vector<const Sensor*>& sensors) {
   slot.assign(model.sensors().size(), -1);
   sensors.clear();
+  sensors.reserve(model.sensors().size());  // (allocates once)
   for (std::size_t j = 0; j < functionals.size(); ++j) {
     const auto sensor = static_cast<std::size_t>(functionals[j].sensor);
     if (slot[sensor] >= 0 || !reads(static_cast<Eigen::Index>(j))) continue;
@@ -235,7 +237,9 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   // The sensors' derivatives come from the same passes (at the projected state, q̈ seeded too).
   const bool sensed = !s.sensors.empty();
   const std::vector<AdInput>& inputs = sensed ? sensed_step_inputs_ : step_inputs_;
-  s.sensor_jacobians.resize(s.sensors.size());
+  // One Jacobian per sensor a functional reads, sized once: a point fills those of its selected
+  // sensors (the first s.sensors.size()), and no point allocates.
+  if (s.sensor_jacobians.size() < functional_sensors_.size()) s.sensor_jacobians.resize(functional_sensors_.size());
   for (ResponseJacobian& J : s.sensor_jacobians) {
     J.position.resize(nf);
     J.velocity.resize(nf);
@@ -282,7 +286,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
   const Eigen::Index velocities = firstVelocityInput();
   Eigen::MatrixXd& d = s.pass_jacobian;
-  d.resize(rows, static_cast<Eigen::Index>(inputs.size()));
+  d.resize(rows, static_cast<Eigen::Index>(sensed_step_inputs_.size()));  // the widest: no reallocation between points
   VectorX<AdScalar>& g = s.ws.seeded_f;
   bool geometry_in_ws = false;  // q_k's geometry in s.ws, from a pass seeded in q or a parameter
   const auto projectedRates = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {
@@ -333,7 +337,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     for (Eigen::Index i = 0; i < written; ++i) d.row(i).segment(first, count) = g[i].derivatives().head(count);
   };
   forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), inputs, ad_parameter_indices_,
-                evaluate);
+                std::cref(evaluate));  // (by reference: no std::function holding a copy on the heap)
   // Columns: free q [0, nf), the AD passes' design parameters [nf, velocities), free q̇ from
   // velocities on; the parameters f is linear in (force elements' stiffness and damping) in double, and with zero
   // columns in the projections (M and B do not depend on them).

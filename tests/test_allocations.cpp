@@ -1,7 +1,8 @@
 // The integrator allocates nothing once it runs: after the first steps have sized every buffer, a
 // Newmark step (Newton iterations, B and its partition, the mass matrix, the projections, a refresh
 // of the AD tangent matrices) takes no memory from the heap, on an open chain and on closed loops
-// small and large. Every allocation of the process is counted: malloc and its relatives are
+// small and large. Nor does a gradient's time point once the stream's slots have their sizes (its
+// AD passes, the projections' multipliers, the copies into the slot). Every allocation of the process is counted: malloc and its relatives are
 // interposed (or, under AddressSanitizer, which owns malloc, counted by its allocation hook), so
 // Eigen's dynamic matrices and operator new are seen alike.
 #include <gtest/gtest.h>
@@ -14,6 +15,8 @@
 #include "dynamics/newmark.hpp"
 #include "problems/chain_scenes.hpp"
 #include "problems/tramway.hpp"
+#include "sensitivity/design_problem.hpp"
+#include "sensitivity/newmark_derivatives.hpp"
 
 namespace {
 std::atomic<long> allocations{0};
@@ -133,6 +136,28 @@ TEST(Allocations, ClosedChainStepsAllocateNothing) {
       EXPECT_EQ(counted.allocations, 0) << links << " links";
       EXPECT_GT(counted.mass_refreshes, 0) << links << " links";  // B, M and the projections ran
     }
+}
+
+TEST(Allocations, GradientTimePointsAllocateNothingOnceTheStreamIsSized) {
+  // The tram's design problem with the artificial variable at 2 m/s² (below max |a_lat|, so the
+  // cost's seeds are non-zero where |a_lat| exceeds it): the points from the end back, as the
+  // adjoint takes them, on one job. The stream holds kAhead slots; after more than that many points
+  // every slot has held a point, with and without sensors to differentiate.
+  DesignProblem problem = tramwayDesignProblem();
+  problem.design.artificial.initial = 2.0;
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  TrajectoryDerivatives derivatives(problem, functionals, initialPoint(problem));
+  const Eigen::Index last = derivatives.timePoints() - 1;
+  TrajectoryDerivatives::PointStream points(derivatives, last, 1, 1);
+  constexpr long kWarmUp = 2 * TrajectoryDerivatives::PointStream::kAhead, kCounted = 4000;
+  ASSERT_GT(last, kWarmUp + kCounted);
+  for (long n = 0; n < kWarmUp; ++n) points.next();
+  const long before = allocations.load();
+  long sensed = 0;
+  for (long n = 0; n < kCounted; ++n) sensed += points.next().seeds.position.cwiseAbs().maxCoeff() > 0.0;
+  EXPECT_EQ(allocations.load() - before, 0);
+  EXPECT_GT(sensed, 0);               // points that differentiate sensors were among them
+  EXPECT_LT(sensed, kCounted);        // and points that do not
 }
 
 }  // namespace
