@@ -188,10 +188,13 @@ TrajectoryDerivatives::PointStream::PointStream(TrajectoryDerivatives& derivativ
   } else {
     count_ = std::clamp<long>(static_cast<long>(from) - early, 0, total_);
   }
-  slots_.resize(static_cast<std::size_t>(std::min(count_, kAhead)));
+  const auto helpers = static_cast<std::size_t>(std::clamp<long>(jobs - 1, 0, std::max(count_ - 1, 0L)));
+  // Alone, the sweep's thread evaluates a run at a time and needs no more slots than a run: fewer
+  // matrices to size (a few hundred allocations instead of ten thousand) and to keep in cache.
+  capacity_ = std::min(count_, helpers > 0 ? kAhead : kRun);
+  slots_.resize(static_cast<std::size_t>(capacity_));
   failures_.resize(slots_.size());
   ready_.assign(slots_.size(), 0);
-  const auto helpers = static_cast<std::size_t>(std::clamp<long>(jobs - 1, 0, std::max(count_ - 1, 0L)));
   if (d_.thread_scratch_.size() < helpers) d_.thread_scratch_.resize(helpers);
   for (std::size_t t = 0; t < helpers; ++t) helpers_.emplace_back([this, t] { help(d_.helperScratch(t)); });
 }
@@ -206,7 +209,7 @@ TrajectoryDerivatives::PointStream::~PointStream() {
 
 long TrajectoryDerivatives::PointStream::freeSlots() const {
   // A slot is free once the sweep has moved past its point: the one handed last may be in use.
-  return std::max(handed_ - 1, 0L) + kAhead - taken_;
+  return std::max(handed_ - 1, 0L) + capacity_ - taken_;
 }
 
 bool TrajectoryDerivatives::PointStream::helpersMayResume() const {

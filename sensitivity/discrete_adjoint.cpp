@@ -121,7 +121,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   std::vector<Eigen::Index> rows;
   // Nothing flows back before the first step with a non-zero adjoint: no derivative is needed there.
   Eigen::Index k = N;
-  for (nonZeroRows(bar, rows); k >= 1 && rows.empty(); nonZeroRows(bar, rows)) bar = d.seeds(--k);
+  for (nonZeroRows(bar, rows); k >= 1 && rows.empty(); nonZeroRows(bar, rows)) d.seeds(--k, bar);
   if (k >= 1) {
     // From there down, the step derivatives and seeds, which do not depend on the sweep, computed
     // ahead on `jobs` threads while the sweep goes back through the steps.
@@ -137,7 +137,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
         point = &points.next();
         bar = point->seeds;
       } else {
-        bar = d.seeds(0);
+        d.seeds(0, bar);
       }
       for (std::size_t i = 0; i < rows.size(); ++i) {
         const Eigen::Index j = rows[i], r = static_cast<Eigen::Index>(i);

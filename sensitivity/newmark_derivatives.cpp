@@ -366,9 +366,11 @@ ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
 
 ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
   ResponseSeeds out;
-  seedsAt(k, scratch_, out);
+  seeds(k, out);
   return out;
 }
+
+void TrajectoryDerivatives::seeds(Eigen::Index k, ResponseSeeds& out) { seedsAt(k, scratch_, out); }
 
 double TrajectoryDerivatives::seedWeight(Eigen::Index j, Eigen::Index k) const {  // ∂Ψ/∂φ_k ∂φ/∂y
   const auto f = static_cast<std::size_t>(j);

@@ -92,6 +92,8 @@ class TrajectoryDerivatives {
   /// Needs constraintCount() > 0.
   ClosureDerivatives closure(Eigen::Index k);
   ResponseSeeds seeds(Eigen::Index k);
+  /// The same into `out`, reusing its storage.
+  void seeds(Eigen::Index k, ResponseSeeds& out);
 
   /// What the sweeps of `direct` and `adjoint` need at time point k and that does not depend on
   /// the sweep: step(k), with cut joints closure(k), and seeds(k).
@@ -255,9 +257,9 @@ class TrajectoryDerivatives {
 /// at a time in that order: jobs − 1 helper threads compute them ahead while the sweep uses them,
 /// and when the next one is not ready the sweep's own thread computes the next one nobody has
 /// taken, so no thread waits while points remain (the sweep's own work, a few solves a point,
-/// overlaps the helpers'). At most kAhead points are held. Each thread has workspaces of its own, so
-/// the points are the same to the bit whatever the number of threads; a point whose evaluation threw
-/// rethrows when the sweep reaches it, as a serial sweep would. The points evaluated during the
+/// overlaps the helpers'). At most kAhead points are held, kRun on one thread. Each thread has
+/// workspaces of its own, so the points are the same to the bit whatever the number of threads; a
+/// point whose evaluation threw rethrows when the sweep reaches it, as a serial sweep would. The points evaluated during the
 /// simulation (earlyPoints()) are handed out directly on the sweep's thread: passed through the
 /// helpers, each would cost a wake-up of a helper waiting for a free slot.
 class TrajectoryDerivatives::PointStream {
@@ -284,7 +286,7 @@ class TrajectoryDerivatives::PointStream {
   /// Evaluates point number `n` of the stream into its slot (outside the lock).
   void evaluate(long n, Scratch& scratch);
   void help(Scratch& scratch);
-  std::size_t slot(long n) const { return static_cast<std::size_t>(n % kAhead); }
+  std::size_t slot(long n) const { return static_cast<std::size_t>(n % capacity_); }
   /// The time point at `position` in the stream.
   Eigen::Index pointOf(long position) const { return from_ + direction_ * static_cast<Eigen::Index>(position); }
 
@@ -295,6 +297,7 @@ class TrajectoryDerivatives::PointStream {
   /// The ring: the positions begin_ … begin_ + count_ − 1, numbered from 0 in take(), slot() and
   /// evaluate(); the rest are early points.
   long begin_ = 0, count_ = 0;
+  long capacity_ = 0;  ///< the ring's slots
   PointDerivatives early_point_;  ///< the early point handed last
   std::vector<ResponseJacobian> early_sensors_;
   std::vector<PointDerivatives> slots_;

@@ -16,6 +16,8 @@
 #include "problems/chain_scenes.hpp"
 #include "problems/tramway.hpp"
 #include "sensitivity/design_problem.hpp"
+#include "sensitivity/direct_sensitivity.hpp"
+#include "sensitivity/discrete_adjoint.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
 namespace {
@@ -158,6 +160,28 @@ TEST(Allocations, GradientTimePointsAllocateNothingOnceTheStreamIsSized) {
   EXPECT_EQ(allocations.load() - before, 0);
   EXPECT_GT(sensed, 0);               // points that differentiate sensors were among them
   EXPECT_LT(sensed, kCounted);        // and points that do not
+}
+
+TEST(Allocations, GradientAllocationsDoNotGrowWithTheTimePoints) {
+  // The tram's problem over 6 s and over 12 s, one job: 6000 more time points. An allocation per
+  // point or per backward step would add at least 6000; what may grow is the adjoint's sweep
+  // buffers, resized where the set of active constraints changes, and the seeds it scans.
+  for (const bool adjoint : {true, false}) {
+    long counted[2] = {0, 0};
+    for (const int half : {0, 1}) {
+      DesignProblem problem = tramwayDesignProblem();
+      problem.design.artificial.initial = 2.0;  // below max |a_lat|: the cost's seeds are non-zero
+      problem.scene.settings.end_time = 6.0 * (half + 1);
+      const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+      const Eigen::VectorXd x = initialPoint(problem);
+      const long before = allocations.load();
+      if (adjoint) adjointGradient(problem, functionals, x, nullptr, 1);
+      else directGradient(problem, functionals, x, nullptr, 1);
+      counted[half] = allocations.load() - before;
+    }
+    EXPECT_LT(counted[1] - counted[0], 600) << (adjoint ? "adjoint" : "direct") << ": " << counted[0] << " over 6 s, "
+                                           << counted[1] << " over 12 s";
+  }
 }
 
 }  // namespace
