@@ -67,7 +67,8 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
             const Matrix3<Scalar> relative =
                 ws.rotation[static_cast<std::size_t>(s.frame_a)].transpose() * ws.rotation[static_cast<std::size_t>(s.frame_b)];
             const Vector3<Scalar> image = relative * e.template cast<Scalar>();
-            return atan2Of(Scalar(image.dot(f.template cast<Scalar>())), Scalar(image.dot(e.template cast<Scalar>())));
+            const Scalar sine = image.dot(f.template cast<Scalar>()), cosine = image.dot(e.template cast<Scalar>());
+            return atan2Of(sine, cosine);
           },
           [&](const EnergySensor&) -> Scalar { return notAStateSensor<Scalar>(sensor); },
           [&](const CutReactionSensor&) -> Scalar { return notAStateSensor<Scalar>(sensor); }},

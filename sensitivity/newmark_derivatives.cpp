@@ -286,7 +286,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
   const Eigen::Index velocities = firstVelocityInput();
   Eigen::MatrixXd& d = s.pass_jacobian;
-  d.resize(rows, static_cast<Eigen::Index>(sensed_step_inputs_.size()));  // the widest: no reallocation between points
+  d.resize(rows, static_cast<Eigen::Index>(sensed_step_inputs_.size()));  // the widest pass: sized once
   VectorX<AdScalar>& g = s.ws.seeded_f;
   bool geometry_in_ws = false;  // q_k's geometry in s.ws, from a pass seeded in q or a parameter
   const auto projectedRates = [&](const SeededState& state, Eigen::Index first, Eigen::Index count) {

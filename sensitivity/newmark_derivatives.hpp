@@ -259,9 +259,9 @@ class TrajectoryDerivatives {
 /// taken, so no thread waits while points remain (the sweep's own work, a few solves a point,
 /// overlaps the helpers'). At most kAhead points are held, kRun on one thread. Each thread has
 /// workspaces of its own, so the points are the same to the bit whatever the number of threads; a
-/// point whose evaluation threw rethrows when the sweep reaches it, as a serial sweep would. The points evaluated during the
-/// simulation (earlyPoints()) are handed out directly on the sweep's thread: passed through the
-/// helpers, each would cost a wake-up of a helper waiting for a free slot.
+/// point whose evaluation threw rethrows when the sweep reaches it, as a serial sweep would. The
+/// points evaluated during the simulation (earlyPoints()) are handed out directly on the sweep's
+/// thread: passed through the helpers, each would cost a wake-up of a helper waiting for a free slot.
 class TrajectoryDerivatives::PointStream {
  public:
   /// Points held at once: enough for the helpers to run ahead, little memory (a few kB a point).

@@ -2,9 +2,10 @@
 // Newmark step (Newton iterations, B and its partition, the mass matrix, the projections, a refresh
 // of the AD tangent matrices) takes no memory from the heap, on an open chain and on closed loops
 // small and large. Nor does a gradient's time point once the stream's slots have their sizes (its
-// AD passes, the projections' multipliers, the copies into the slot). Every allocation of the process is counted: malloc and its relatives are
-// interposed (or, under AddressSanitizer, which owns malloc, counted by its allocation hook), so
-// Eigen's dynamic matrices and operator new are seen alike.
+// AD passes, the projections' multipliers, the copies into the slot), and a whole gradient's
+// allocations do not grow with its time points. Every allocation of the process is counted: malloc
+// and its relatives are interposed (or, under AddressSanitizer, which owns malloc, counted by its
+// allocation hook), so Eigen's dynamic matrices and operator new are seen alike.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -143,8 +144,8 @@ TEST(Allocations, ClosedChainStepsAllocateNothing) {
 TEST(Allocations, GradientTimePointsAllocateNothingOnceTheStreamIsSized) {
   // The tram's design problem with the artificial variable at 2 m/s² (below max |a_lat|, so the
   // cost's seeds are non-zero where |a_lat| exceeds it): the points from the end back, as the
-  // adjoint takes them, on one job. The stream holds kAhead slots; after more than that many points
-  // every slot has held a point, with and without sensors to differentiate.
+  // adjoint takes them, on one job. The stream holds at most kAhead slots (kRun on one job); after
+  // twice kAhead points every slot has held a point, with and without sensors to differentiate.
   DesignProblem problem = tramwayDesignProblem();
   problem.design.artificial.initial = 2.0;
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
@@ -158,8 +159,8 @@ TEST(Allocations, GradientTimePointsAllocateNothingOnceTheStreamIsSized) {
   long sensed = 0;
   for (long n = 0; n < kCounted; ++n) sensed += points.next().seeds.position.cwiseAbs().maxCoeff() > 0.0;
   EXPECT_EQ(allocations.load() - before, 0);
-  EXPECT_GT(sensed, 0);               // points that differentiate sensors were among them
-  EXPECT_LT(sensed, kCounted);        // and points that do not
+  EXPECT_GT(sensed, 0);         // points that differentiate sensors were among them
+  EXPECT_LT(sensed, kCounted);  // and points that do not
 }
 
 TEST(Allocations, GradientAllocationsDoNotGrowWithTheTimePoints) {
