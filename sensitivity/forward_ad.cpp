@@ -26,33 +26,27 @@ std::vector<AdInput> adInputs(std::initializer_list<std::vector<AdInput>> parts)
   return out;
 }
 
-void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
-                   const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
-                   const std::vector<AdInput>& inputs,
-                   const std::vector<ParameterIndex>& parameters,
-                   const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate) {
-  const auto total = static_cast<Eigen::Index>(inputs.size());
-  for (Eigen::Index first = 0; first < total; first += kMaxAdDirections) {
-    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, total - first);
-    seedVector(q, 0, 0, 0, ws.seeded_q);
-    seedVector(v, 0, 0, 0, ws.seeded_v);
-    seedVector(a, 0, 0, 0, ws.seeded_a);
-    ws.parameter_seeds.clear();
-    for (Eigen::Index j = 0; j < count; ++j) {
-      const AdInput& input = inputs[static_cast<std::size_t>(first + j)];
-      const auto direction = static_cast<int>(j);
-      switch (input.kind) {
-        case AdInput::Kind::Position: ws.seeded_q[input.index].derivatives()[direction] = 1.0; break;
-        case AdInput::Kind::Velocity: ws.seeded_v[input.index].derivatives()[direction] = 1.0; break;
-        case AdInput::Kind::Acceleration: ws.seeded_a[input.index].derivatives()[direction] = 1.0; break;
-        case AdInput::Kind::Parameter:
-          ws.parameter_seeds.emplace_back(parameters[static_cast<std::size_t>(input.index)], direction);
-          break;
-      }
-    }
-    evaluate(SeededState{ws.seeded_q, ws.seeded_v, ws.seeded_a}, first, count);
-  }
+SeededState seedAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                       const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+                       const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters,
+                       Eigen::Index first, Eigen::Index count) {
+  seedVector(q, 0, 0, 0, ws.seeded_q);
+  seedVector(v, 0, 0, 0, ws.seeded_v);
+  seedVector(a, 0, 0, 0, ws.seeded_a);
   ws.parameter_seeds.clear();
+  for (Eigen::Index j = 0; j < count; ++j) {
+    const AdInput& input = inputs[static_cast<std::size_t>(first + j)];
+    const auto direction = static_cast<int>(j);
+    switch (input.kind) {
+      case AdInput::Kind::Position: ws.seeded_q[input.index].derivatives()[direction] = 1.0; break;
+      case AdInput::Kind::Velocity: ws.seeded_v[input.index].derivatives()[direction] = 1.0; break;
+      case AdInput::Kind::Acceleration: ws.seeded_a[input.index].derivatives()[direction] = 1.0; break;
+      case AdInput::Kind::Parameter:
+        ws.parameter_seeds.emplace_back(parameters[static_cast<std::size_t>(input.index)], direction);
+        break;
+    }
+  }
+  return SeededState{ws.seeded_q, ws.seeded_v, ws.seeded_a};
 }
 
 void adJacobian(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,

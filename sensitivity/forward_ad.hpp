@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <functional>
 #include <initializer_list>
 #include <vector>
@@ -35,16 +36,30 @@ struct SeededState {
   const VectorX<AdScalar>& a;
 };
 
-/// Runs `evaluate` once per pass of at most kMaxAdDirections inputs: input first + j carries the
-/// unit derivative direction j in the state handed to it (parameters through ws.parameter_seeds,
-/// `parameters` being their indices in the model); evaluate(state, first, count) reads the
-/// derivatives it needs. Leaves no parameter seeded. A caller on a hot path passes its closure as
-/// std::cref(closure): a std::function copies a closure of more than two references to the heap.
+/// Seeds the pass over inputs [first, first + count): input first + j carries the unit derivative
+/// direction j in ws.seeded_q, seeded_v, seeded_a (parameters through ws.parameter_seeds,
+/// `parameters` being their indices in the model), every other input a constant.
+SeededState seedAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
+                       const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+                       const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters,
+                       Eigen::Index first, Eigen::Index count);
+
+/// Runs `evaluate` once per pass of at most kMaxAdDirections inputs (seedAdPass);
+/// evaluate(state, first, count) reads the derivatives it needs. Leaves no parameter seeded. A
+/// template over the callable, so that no closure is copied (a std::function copies one of more
+/// than two references to the heap, at every point of a gradient).
+template <class Evaluate>
 void forEachAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                    const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
-                   const std::vector<AdInput>& inputs,
-                   const std::vector<ParameterIndex>& parameters,
-                   const std::function<void(const SeededState&, Eigen::Index, Eigen::Index)>& evaluate);
+                   const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters,
+                   Evaluate&& evaluate) {
+  const auto total = static_cast<Eigen::Index>(inputs.size());
+  for (Eigen::Index first = 0; first < total; first += kMaxAdDirections) {
+    const Eigen::Index count = std::min<Eigen::Index>(kMaxAdDirections, total - first);
+    evaluate(seedAdPass(ws, q, v, a, inputs, parameters, first, count), first, count);
+  }
+  ws.parameter_seeds.clear();
+}
 
 /// ∂g/∂(inputs) of g = evaluate(state) (`rows` entries, evaluate writing them into its second
 /// argument) at (q, q̇, q̈): one column per input, into `out` (reusing its storage).

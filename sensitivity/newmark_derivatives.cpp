@@ -2,7 +2,6 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
-#include <functional>
 #include <stdexcept>
 
 #include "dynamics/closure.hpp"
@@ -337,7 +336,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     for (Eigen::Index i = 0; i < written; ++i) d.row(i).segment(first, count) = g[i].derivatives().head(count);
   };
   forEachAdPass(s.ws, tr.q.col(k), tr.v_unprojected.col(k), tr.a_unprojected.col(k), inputs, ad_parameter_indices_,
-                std::cref(evaluate));  // (by reference: no std::function holding a copy on the heap)
+                evaluate);
   // Columns: free q [0, nf), the AD passes' design parameters [nf, velocities), free q̇ from
   // velocities on; the parameters f is linear in (force elements' stiffness and damping) in double, and with zero
   // columns in the projections (M and B do not depend on them).
