@@ -46,10 +46,13 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
                           settings.svd_threshold);
   accumulate(d.seeds(0), step, dpsi_db);
   AugmentedSolver solver(settings.svd_threshold);
-  // The step derivatives and seeds, which do not depend on the recursion, computed ahead on `jobs`
-  // threads while the recursion goes forward.
-  TrajectoryDerivatives::PointStream points(d, 1, d.timePoints() - 1, jobs);
-  for (Eigen::Index k = 1; k < d.timePoints(); ++k) {
+  // The recursion goes as far as the last point with a seed: beyond it the sensitivities would only
+  // be multiplied by zero seeds. The step derivatives and seeds, which do not depend on the
+  // recursion, computed ahead on `jobs` threads while the recursion goes forward.
+  const Eigen::Index last = d.lastSeededPoint();
+  if (last == 0) return d.gradient(dpsi_db);
+  TrajectoryDerivatives::PointStream points(d, 1, last, jobs);
+  for (Eigen::Index k = 1; k <= last; ++k) {
     const TrajectoryDerivatives::PointDerivatives& point = points.next();
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
     // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],

@@ -111,17 +111,16 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
-  const Eigen::Index N = d.timePoints() - 1;
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), d.variableCount());
   // Adjoints of q_k, q̇_k, q̈_k (one row per constraint): their direct seeds, plus what flows back
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
-  ResponseSeeds bar = d.seeds(N), active;
+  // Nothing flows back from the points after the last one with a seed: the sweep starts there.
+  Eigen::Index k = d.lastSeededPoint();
+  ResponseSeeds bar = d.seeds(k), active;
   AugmentedSolver solver(settings.svd_threshold);
   BackwardStep back;
   std::vector<Eigen::Index> rows;
-  // Nothing flows back before the first step with a non-zero adjoint: no derivative is needed there.
-  Eigen::Index k = N;
-  for (nonZeroRows(bar, rows); k >= 1 && rows.empty(); nonZeroRows(bar, rows)) d.seeds(--k, bar);
+  nonZeroRows(bar, rows);
   if (k >= 1) {
     // From there down, the step derivatives and seeds, which do not depend on the sweep, computed
     // ahead on `jobs` threads while the sweep goes back through the steps.

@@ -371,6 +371,17 @@ ResponseSeeds TrajectoryDerivatives::seeds(Eigen::Index k) {
 
 void TrajectoryDerivatives::seeds(Eigen::Index k, ResponseSeeds& out) { seedsAt(k, scratch_, out); }
 
+Eigen::Index TrajectoryDerivatives::lastSeededPoint() const {
+  Eigen::Index last = 0;
+  for (Eigen::Index j = 0; j < functionalCount(); ++j)
+    for (Eigen::Index k = timePoints() - 1; k > last; --k)
+      if (seedWeight(j, k) != 0.0) {  // (NaN included)
+        last = k;
+        break;
+      }
+  return last;
+}
+
 double TrajectoryDerivatives::seedWeight(Eigen::Index j, Eigen::Index k) const {  // ∂Ψ/∂φ_k ∂φ/∂y
   const auto f = static_cast<std::size_t>(j);
   return functionals_[f].sign * response().functionals[f].gradient[k];

@@ -94,6 +94,10 @@ class TrajectoryDerivatives {
   ResponseSeeds seeds(Eigen::Index k);
   /// The same into `out`, reusing its storage.
   void seeds(Eigen::Index k, ResponseSeeds& out);
+  /// The last time point where some functional has a seed weight that is not zero (it depends on the
+  /// state there), 0 when there is none after t₀. The seeds of every later point are exact zeros, so
+  /// no sweep needs those points: the direct sensitivities stop there, the adjoint starts there.
+  Eigen::Index lastSeededPoint() const;
 
   /// What the sweeps of `direct` and `adjoint` need at time point k and that does not depend on
   /// the sweep: step(k), with cut joints closure(k), and seeds(k).

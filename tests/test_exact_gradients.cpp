@@ -267,6 +267,38 @@ TEST(ExactGradients, GradientsDoNotDependOnWhetherTheSimulationKeptItsStepMatric
             directGradient(problem, functionals, x, &kept).constraints);
 }
 
+// dΨ/db sums the seeds ∂Ψ/∂(q, q̇, q̈) times the state's sensitivities, and on the tram every seed
+// after t = 8.9 s is zero (the curve's a_lat and yaw constraints are inactive on the straight that
+// follows): neither exact method may read a point after the last seed. Its state and kept matrices
+// turned into NaN, the gradients stay the same to the bit (a sweep through them would have NaN or
+// a failed factorization).
+TEST(ExactGradients, NoMethodReadsAPointAfterTheLastSeed) {
+  DesignProblem problem = tramwayDesignProblem();
+  problem.design.artificial.initial = 2.0;  // m/s², below max |a_lat| = 2.54: the a_lat constraints active
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  DesignResponse clean;
+  evaluateDesign(problem, functionals, x, clean, {}, true);
+  Eigen::Index last = 0;  // the last time point where a functional depends on the state
+  for (const auto& functional : clean.functionals)
+    for (Eigen::Index k = functional.gradient.size() - 1; k > last; --k)
+      if (functional.gradient[k] != 0.0) last = k;
+  const Eigen::Index after = clean.trajectory.time.size() - 1 - last;
+  ASSERT_GT(after, 1000);
+  DesignResponse poisoned = clean;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  Trajectory& t = poisoned.trajectory;
+  for (Eigen::MatrixXd* columns : {&t.q, &t.v, &t.a, &t.lambda, &t.v_unprojected, &t.a_unprojected, &t.step_matrices})
+    columns->rightCols(after).setConstant(kNaN);
+  for (const int jobs : {1, 2}) {
+    const DesignGradient direct = directGradient(problem, functionals, x, &clean, jobs);
+    const DesignGradient adjoint = adjointGradient(problem, functionals, x, &clean, jobs);
+    ASSERT_TRUE(direct.constraints.allFinite() && adjoint.constraints.allFinite());
+    EXPECT_EQ(directGradient(problem, functionals, x, &poisoned, jobs).constraints, direct.constraints) << jobs;
+    EXPECT_EQ(adjointGradient(problem, functionals, x, &poisoned, jobs).constraints, adjoint.constraints) << jobs;
+  }
+}
+
 // The pinned chain of 24 links simulates on the articulated-body path (M by recursion, range-space
 // projections: NewmarkSettings::articulated_mass_from), while the exact gradients differentiate the
 // step's equations, whatever solved them: adjoint = direct to round-off, and both = central
