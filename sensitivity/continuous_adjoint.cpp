@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -77,15 +78,17 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   // The trapezoidal rule's weights on the uniform grid: h/2 at both ends, h inside.
   const auto weight = [&](Eigen::Index k) { return k == 0 || k == N ? half : h; };
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(rows, d.variableCount());
-  // At t_{k+1}: w M, h/2 F, p and h/2 (w K + g_q), starting from w(τ) = p(τ) = 0.
+  // At t_{k+1}: w M, h/2 F, p and h/2 (w K + g_q), starting from w(τ) = p(τ) = 0. They stay exact
+  // zeros back to the point after the last seed: the integration starts there.
+  const Eigen::Index start = std::min(d.lastSeededPoint() + 1, N);
   Eigen::MatrixXd momentum = Eigen::MatrixXd::Zero(rows, nf), half_flux, p = Eigen::MatrixXd::Zero(rows, nf);
   Eigen::MatrixXd half_force;
-  Eigen::MatrixXd later_jacobian = d.constraintJacobian(N);
-  StepDerivatives s = d.projectedStep(N);
-  HalfSources g = substituteAccelerations(d, N, s, half / weight(N), dpsi_db);
+  Eigen::MatrixXd later_jacobian = d.constraintJacobian(start);
+  StepDerivatives s = d.projectedStep(start);
+  HalfSources g = substituteAccelerations(d, start, s, half / weight(start), dpsi_db);
   half_flux = g.velocity;
   half_force = g.position;
-  for (Eigen::Index k = N - 1; k >= 0; --k) {
+  for (Eigen::Index k = start - 1; k >= 0; --k) {
     s = d.projectedStep(k);
     g = substituteAccelerations(d, k, s, half / weight(k), dpsi_db);
     const Eigen::MatrixXd A = s.mass + half * s.damping + half * half * s.stiffness;

@@ -269,9 +269,10 @@ TEST(ExactGradients, GradientsDoNotDependOnWhetherTheSimulationKeptItsStepMatric
 
 // dΨ/db sums the seeds ∂Ψ/∂(q, q̇, q̈) times the state's sensitivities, and on the tram every seed
 // after t = 8.9 s is zero (the curve's a_lat and yaw constraints are inactive on the straight that
-// follows): neither exact method may read a point after the last seed. Its state and kept matrices
-// turned into NaN, the gradients stay the same to the bit (a sweep through them would have NaN or
-// a failed factorization).
+// follows): no gradient method may read a point after the last seed (the continuous adjoint the
+// one after it, where its integration starts from zero). Their state and kept matrices turned into
+// NaN, the gradients stay the same to the bit (a sweep through them would have NaN or a failed
+// factorization).
 TEST(ExactGradients, NoMethodReadsAPointAfterTheLastSeed) {
   DesignProblem problem = tramwayDesignProblem();
   problem.design.artificial.initial = 2.0;  // m/s², below max |a_lat| = 2.54: the a_lat constraints active
@@ -290,6 +291,13 @@ TEST(ExactGradients, NoMethodReadsAPointAfterTheLastSeed) {
   Trajectory& t = poisoned.trajectory;
   for (Eigen::MatrixXd* columns : {&t.q, &t.v, &t.a, &t.lambda, &t.v_unprojected, &t.a_unprojected, &t.step_matrices})
     columns->rightCols(after).setConstant(kNaN);
+  DesignResponse poisoned_after_next = clean;  // the continuous adjoint reads the point after the last seed
+  Trajectory& u = poisoned_after_next.trajectory;
+  for (Eigen::MatrixXd* columns : {&u.q, &u.v, &u.a, &u.lambda, &u.v_unprojected, &u.a_unprojected, &u.step_matrices})
+    columns->rightCols(after - 1).setConstant(kNaN);
+  const DesignGradient continuous = continuousAdjointGradient(problem, functionals, x, &clean);
+  ASSERT_TRUE(continuous.constraints.allFinite());
+  EXPECT_EQ(continuousAdjointGradient(problem, functionals, x, &poisoned_after_next).constraints, continuous.constraints);
   for (const int jobs : {1, 2}) {
     const DesignGradient direct = directGradient(problem, functionals, x, &clean, jobs);
     const DesignGradient adjoint = adjointGradient(problem, functionals, x, &clean, jobs);
