@@ -33,24 +33,38 @@ class LuFactors {
   std::vector<int> rows_;
 };
 
-/// x = A⁻¹ b: L U x = P b, forward with the unit lower triangle, then back with the upper one.
-inline void luSolve(const LuFactors& lu, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+/// X = A⁻¹ B for the p columns of B (n × p, column-major) into X (n × p, not B's storage): L U X = P B,
+/// forward with the unit lower triangle, then back with the upper one. Each column gets the
+/// operations of a solve of its own in the same order; they are taken a row at a time across the
+/// columns, so that the columns' divisions overlap instead of each waiting for the last.
+inline void luSolveColumns(const LuFactors& lu, const double* b, Eigen::Index p, double* x) {
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
-  x.resize(n);
-  const int* p = lu.rows().data();
-  double* y = x.data();
-  for (Eigen::Index i = 0; i < n; ++i) y[i] = b[p[i]];  // y = P b
+  const int* rows = lu.rows().data();
+  for (Eigen::Index c = 0; c < p; ++c)
+    for (Eigen::Index i = 0; i < n; ++i) x[i + c * n] = b[rows[i] + c * n];  // Y = P B
   for (Eigen::Index j = 0; j + 1 < n; ++j) {
     const double* l = f.data() + j * n;
-    const double yj = y[j];
-    for (Eigen::Index i = j + 1; i < n; ++i) y[i] -= l[i] * yj;
+    for (Eigen::Index c = 0; c < p; ++c) {
+      double* y = x + c * n;
+      const double yj = y[j];
+      for (Eigen::Index i = j + 1; i < n; ++i) y[i] -= l[i] * yj;
+    }
   }
   for (Eigen::Index j = n; j-- > 0;) {
     const double* u = f.data() + j * n;
-    const double yj = y[j] /= u[j];
-    for (Eigen::Index i = 0; i < j; ++i) y[i] -= u[i] * yj;
+    for (Eigen::Index c = 0; c < p; ++c) {
+      double* y = x + c * n;
+      const double yj = y[j] /= u[j];
+      for (Eigen::Index i = 0; i < j; ++i) y[i] -= u[i] * yj;
+    }
   }
+}
+
+/// x = A⁻¹ b (luSolveColumns on one column).
+inline void luSolve(const LuFactors& lu, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  x.resize(lu.matrixLU().rows());
+  luSolveColumns(lu, b.data(), 1, x.data());
 }
 
 /// x = A⁻ᵀ b: Aᵀ = Uᵀ Lᵀ P, so Uᵀ w = b forward, Lᵀ u = w backward (dot products down the columns of

@@ -133,11 +133,10 @@ void SvdPartition::partitionIncrement(const double* r, const double* x_r, Eigen:
   if (x_r) multiply(J_.data(), dx, work_block_.data(), n, n, p, r ? Accumulate::Add : Accumulate::Assign);  // R + J V₁ X_r
   reduced_block_.resize(free, p);
   multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
-  for (Eigen::Index j = 0; j < p; ++j) {
-    reduced_rhs_ = -reduced_block_.col(j);
-    luSolve(reduced_, reduced_rhs_, x_n_);
-    multiply(v2_.data(), x_n_.data(), dx + j * n, n, free, 1, Accumulate::Add);
-  }
+  reduced_block_ = -reduced_block_;
+  x_n_block_.resize(free, p);
+  luSolveColumns(reduced_, reduced_block_.data(), p, x_n_block_.data());
+  multiply(v2_.data(), x_n_block_.data(), dx, n, free, p, Accumulate::Add);
 }
 
 void SvdPartition::partitionMultipliers(const double* r, const double* dx, Eigen::Index p, double* dmu) const {

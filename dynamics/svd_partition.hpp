@@ -133,9 +133,9 @@ class SvdPartition {
   Eigen::LLT<Eigen::MatrixXd> schur_;                      ///< V₁ᵀ M⁻¹ V₁
   ConditionEstimator condition_;
   Eigen::VectorXd bound_scratch_;
-  mutable Eigen::VectorXd x_r_, x_n_, reduced_rhs_, work_;  // buffers of the solves: no allocation
+  mutable Eigen::VectorXd x_r_, work_;  // buffers of the solves: no allocation
   mutable Eigen::VectorXd column_, nu_;                        // buffers of the range-space solves
-  mutable Eigen::MatrixXd x_r_block_, work_block_, reduced_block_, multiplier_block_, zero_block_;  // of the block solves
+  mutable Eigen::MatrixXd x_r_block_, x_n_block_, work_block_, reduced_block_, multiplier_block_, zero_block_;  // of the block solves
   mutable Eigen::VectorXd column_r_, column_g_, column_dx_, column_dmu_;  // its range-space columns
 
   /// Δx of (48) into dx, r = 0 when null.
