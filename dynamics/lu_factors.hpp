@@ -33,11 +33,14 @@ class LuFactors {
   std::vector<int> rows_;
 };
 
-/// X = A⁻¹ B for the p columns of B (n × p, column-major) into X (n × p, not B's storage): L U X = P B,
-/// forward with the unit lower triangle, then back with the upper one. Each column gets the
-/// operations of a solve of its own in the same order; they are taken a row at a time across the
-/// columns, so that the columns' divisions overlap instead of each waiting for the last.
-inline void luSolveColumns(const LuFactors& lu, const double* b, Eigen::Index p, double* x) {
+namespace detail {
+
+/// luSolveColumns with the column count a constant when Columns > 0 (one column: the loops over the
+/// columns vanish), the runtime `columns` when Columns = 0: the same operations in the same order.
+template <int Columns>
+inline void luSolveColumnsOf(const LuFactors& lu, const double* __restrict b, Eigen::Index columns,
+                             double* __restrict x) {
+  const Eigen::Index p = Columns > 0 ? Columns : columns;
   const Eigen::MatrixXd& f = lu.matrixLU();
   const Eigen::Index n = f.rows();
   const int* rows = lu.rows().data();
@@ -59,6 +62,17 @@ inline void luSolveColumns(const LuFactors& lu, const double* b, Eigen::Index p,
       for (Eigen::Index i = 0; i < j; ++i) y[i] -= u[i] * yj;
     }
   }
+}
+
+}  // namespace detail
+
+/// X = A⁻¹ B for the p columns of B (n × p, column-major) into X (n × p, not B's storage): L U X = P B,
+/// forward with the unit lower triangle, then back with the upper one. Each column gets the
+/// operations of a solve of its own in the same order; they are taken a row at a time across the
+/// columns, so that the columns' divisions overlap instead of each waiting for the last.
+inline void luSolveColumns(const LuFactors& lu, const double* b, Eigen::Index p, double* x) {
+  if (p == 1) detail::luSolveColumnsOf<1>(lu, b, p, x);
+  else detail::luSolveColumnsOf<0>(lu, b, p, x);
 }
 
 /// x = A⁻¹ b (luSolveColumns on one column).

@@ -133,10 +133,11 @@ void SvdPartition::partitionIncrement(const double* r, const double* x_r, Eigen:
   if (x_r) multiply(J_.data(), dx, work_block_.data(), n, n, p, r ? Accumulate::Add : Accumulate::Assign);  // R + J V₁ X_r
   reduced_block_.resize(free, p);
   multiplyTransposed(v2_.data(), work_block_.data(), reduced_block_.data(), free, n, p);
-  reduced_block_ = -reduced_block_;
+  // X_n = −(V₂ᵀJV₂)⁻¹ V₂ᵀ(R + J V₁ X_r), added as dx −= V₂ (V₂ᵀJV₂)⁻¹ V₂ᵀ(…): the same bits, as negating
+  // a right-hand side negates every operation of the solve exactly.
   x_n_block_.resize(free, p);
   luSolveColumns(reduced_, reduced_block_.data(), p, x_n_block_.data());
-  multiply(v2_.data(), x_n_block_.data(), dx, n, free, p, Accumulate::Add);
+  multiply(v2_.data(), x_n_block_.data(), dx, n, free, p, Accumulate::Subtract);
 }
 
 void SvdPartition::partitionMultipliers(const double* r, const double* dx, Eigen::Index p, double* dmu) const {
