@@ -268,9 +268,10 @@ TEST(ExactGradients, GradientsDoNotDependOnWhetherTheSimulationKeptItsStepMatric
 }
 
 // dΨ/db sums the seeds ∂Ψ/∂(q, q̇, q̈) times the state's sensitivities, and on the tram every seed
-// after t = 8.9 s is zero (the curve's a_lat and yaw constraints are inactive on the straight that
-// follows): no gradient method may read a point after the last seed (the continuous adjoint the
-// one after it, where its integration starts from zero). Their state and kept matrices turned into
+// after t = 8.9 s is zero (the rear bogie leaves the curve then; on the straight |a_lat| stays below
+// b5 = 2 m/s², and the yaw constraints are inactive throughout): no gradient method may read a point
+// after the last seed (the continuous adjoint the one after it, where its integration starts from
+// zero). Their state and kept matrices turned into
 // NaN, the gradients stay the same to the bit (a sweep through them would have NaN or a failed
 // factorization).
 TEST(ExactGradients, NoMethodReadsAPointAfterTheLastSeed) {
