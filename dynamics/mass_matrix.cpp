@@ -107,29 +107,16 @@ void subsetPositions(const Model& model, const std::vector<int>& coordinates, st
     position[static_cast<std::size_t>(coordinates[c])] = static_cast<int>(c);
 }
 
-/// For every element, the nearest joint (active element) between it and the ground, not itself;
-/// -1 when there is none. The elements are in topological order: a parent comes before its children.
-void parentJoints(const Model& model, std::vector<int>& parent_joint) {
-  const auto& elements = model.elements();
-  parent_joint.resize(elements.size());
-  for (std::size_t k = 0; k < elements.size(); ++k) {
-    const int parent = model.frames()[static_cast<std::size_t>(elements[k].entry)].element;
-    parent_joint[k] = parent < 0 || elements[static_cast<std::size_t>(parent)].coordinate >= 0
-                          ? parent
-                          : parent_joint[static_cast<std::size_t>(parent)];
-  }
-}
-
 /// Column c of M (the joint of element i) and, by symmetry, row c: S_jᵀ IC_i S_i for the joints j
-/// from element i to the ground whose coordinate is requested (`position` ≥ 0).
+/// from element i to the ground (KinematicElement::parent_joint) whose coordinate is requested
+/// (`position` ≥ 0).
 template <class Inertia>
 void fillColumnAndRow(const Model& model, const Workspace<double>& ws, const std::vector<Inertia>& composites,
-                      const std::vector<int>& position, const std::vector<int>& parent_joint, int i, Eigen::Index c,
-                      Eigen::MatrixXd& M) {
+                      const std::vector<int>& position, int i, Eigen::Index c, Eigen::MatrixXd& M) {
   const auto& elements = model.elements();
   const auto moved = static_cast<std::size_t>(elements[static_cast<std::size_t>(i)].exit);
   const auto wrench = unitAccelerationWrench(composites[moved], ws, static_cast<std::size_t>(i), moved);
-  for (int j = i; j >= 0; j = parent_joint[static_cast<std::size_t>(j)]) {
+  for (int j = i; j >= 0; j = elements[static_cast<std::size_t>(j)].parent_joint) {
     const KinematicElement& joint = elements[static_cast<std::size_t>(j)];
     const int r = position[static_cast<std::size_t>(joint.coordinate)];
     if (r >= 0)
@@ -142,15 +129,13 @@ template <class Inertia>
 void massMatrixBlock(const Model& model, Workspace<double>& ws, const std::vector<int>& coordinates, Eigen::MatrixXd& M) {
   thread_local std::vector<Inertia> composites;
   thread_local std::vector<int> position;  // of each coordinate in `coordinates`, or -1
-  thread_local std::vector<int> parent_joint;
   compositeInertias(model, ws, composites);
   subsetPositions(model, coordinates, position);
-  parentJoints(model, parent_joint);
   const auto n = static_cast<Eigen::Index>(coordinates.size());
   M.setZero(n, n);
   for (Eigen::Index c = 0; c < n; ++c) {
     const int element = model.coordinates()[static_cast<std::size_t>(coordinates[static_cast<std::size_t>(c)])].element;
-    fillColumnAndRow(model, ws, composites, position, parent_joint, element, c, M);
+    fillColumnAndRow(model, ws, composites, position, element, c, M);
   }
 }
 

@@ -61,7 +61,7 @@ std::vector<int> allCoordinates(const Model& model) {
 }
 
 Model::Model() {
-  frames_.push_back({"ground", -1});
+  frames_.push_back({"ground", -1, 0});
   gravity_ = addParameters("gravity.", {"x", "y", "z"}, Eigen::Vector3d::Zero());
 }
 
@@ -153,8 +153,13 @@ FrameIndex Model::addElement(const std::string& name, FrameIndex parent, Element
     coordinates_.push_back({name, element, false, {}});
     free_.push_back(coordinate);
   }
-  elements_.push_back({name, parent, exit, coordinate, std::move(kind)});
-  frames_.push_back({name, element});
+  const Frame& entry = frames_[static_cast<std::size_t>(parent)];
+  const int parent_joint = entry.element < 0 || elements_[static_cast<std::size_t>(entry.element)].coordinate >= 0
+                               ? entry.element
+                               : elements_[static_cast<std::size_t>(entry.element)].parent_joint;
+  const int depth = entry.depth + 1;
+  elements_.push_back({name, parent, exit, coordinate, std::move(kind), parent_joint});
+  frames_.push_back({name, element, depth});
   for (CutFramePath& path : cut_frame_paths_) path.on_path.push_back(0);  // a new element moves no older frame
   return exit;
 }

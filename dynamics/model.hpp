@@ -53,6 +53,8 @@ struct KinematicElement {
   FrameIndex exit;
   int coordinate;  ///< index into q, or -1 for a passive element
   ElementKind kind;
+  /// The nearest active element between this one and the ground, not itself; -1 when there is none.
+  int parent_joint;
 };
 
 /// Three parameters that form a vector (a centre of mass, the moments of an inertia tensor).
@@ -182,6 +184,7 @@ struct Sensor {
 struct Frame {
   std::string name;
   int element;  ///< the element whose exit this frame is; -1 for the ground
+  int depth;    ///< the number of elements on the path from the ground (0 for the ground)
 };
 
 struct Coordinate {

@@ -16,26 +16,24 @@ double ratio(double value, double scale) {
 
 }  // namespace
 
-void frameReach(const Model& model, const Workspace<double>& ws, std::vector<double>& reach, std::vector<double>& depth) {
+void frameReach(const Model& model, const Workspace<double>& ws, std::vector<double>& reach) {
   reach.assign(static_cast<std::size_t>(model.frameCount()), 0.0);
-  depth.assign(reach.size(), 0.0);
   // Elements are stored parents first: each is added after its entry frame exists.
   for (const KinematicElement& element : model.elements()) {
     const auto entry = static_cast<std::size_t>(element.entry), exit = static_cast<std::size_t>(element.exit);
     reach[exit] = reach[entry] + (ws.position[exit] - ws.position[entry]).lpNorm<1>();
-    depth[exit] = depth[entry] + 1.0;
   }
 }
 
-double closureRowScale(const CutJoint& cut, int row, const std::vector<double>& reach, const std::vector<double>& depth) {
+double closureRowScale(const Model& model, const CutJoint& cut, int row, const std::vector<double>& reach) {
   const auto [a, b] = cutFrames(cut.kind);
   const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
-  return row < 3 ? reach[ia] + reach[ib] : depth[ia] + depth[ib] + 1.0;
+  if (row < 3) return reach[ia] + reach[ib];
+  return static_cast<double>(model.frames()[ia].depth) + static_cast<double>(model.frames()[ib].depth) + 1.0;
 }
 
 NewtonRoundoff::NewtonRoundoff(const Model& model)
     : reach_(static_cast<std::size_t>(model.frameCount()), 0.0),
-      depth_(reach_.size(), 0.0),
       force_(reach_.size(), 0.0),
       moment_(reach_.size(), 0.0),
       factor_(std::max(kFactor, static_cast<double>(model.frameCount()))) {
@@ -79,7 +77,7 @@ void NewtonRoundoff::setWrenchMagnitudes(const Model& model, const Workspace<dou
 }
 
 void NewtonRoundoff::measureScales(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda) {
-  frameReach(model, ws, reach_, depth_);
+  frameReach(model, ws, reach_);
   setWrenchMagnitudes(model, ws, lambda);
 }
 
@@ -98,7 +96,7 @@ double NewtonRoundoff::relativeResidual(const Model& model, const Workspace<doub
   for (const CutJoint& cut : model.cuts()) {
     const int rows = equationCount(cut.kind);
     for (int k = 0; k < rows; ++k)
-      largest = std::max(largest, ratio(closure[row + k], closureRowScale(cut, k, reach_, depth_)));
+      largest = std::max(largest, ratio(closure[row + k], closureRowScale(model, cut, k, reach_)));
     row += rows;
   }
   return largest;
@@ -108,7 +106,7 @@ double NewtonRoundoff::closureRoundoff(const Model& model) const {
   double sum = 0.0;
   for (const CutJoint& cut : model.cuts())
     for (int k = 0; k < equationCount(cut.kind); ++k) {
-      const double scale = closureRowScale(cut, k, reach_, depth_);
+      const double scale = closureRowScale(model, cut, k, reach_);
       sum += scale * scale;
     }
   return std::numeric_limits<double>::epsilon() * std::sqrt(sum);

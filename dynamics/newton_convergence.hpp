@@ -27,13 +27,13 @@
 
 namespace mbsopt {
 
-/// Per frame, the reach ρ (length of the path of element translations from the ground, from the
-/// positions in ws) and the depth d (number of elements on that path).
-void frameReach(const Model& model, const Workspace<double>& ws, std::vector<double>& reach, std::vector<double>& depth);
+/// Per frame, the reach ρ: the length of the path of element translations from the ground, from the
+/// positions in ws. (The depth d, the number of elements on that path, is Frame::depth.)
+void frameReach(const Model& model, const Workspace<double>& ws, std::vector<double>& reach);
 
 /// The scale of closure row `row` of cut `cut` (its rows start at 0): ρ_a + ρ_b for a coincidence row,
 /// d_a + d_b + 1 for an orthogonality row.
-double closureRowScale(const CutJoint& cut, int row, const std::vector<double>& reach, const std::vector<double>& depth);
+double closureRowScale(const Model& model, const CutJoint& cut, int row, const std::vector<double>& reach);
 
 /// Round-off levels of the rows of the Newton equations at one state.
 class NewtonRoundoff {
@@ -44,7 +44,7 @@ class NewtonRoundoff {
   /// Reads the bodies' parameters once: `model` must stay unchanged while this is used with it.
   explicit NewtonRoundoff(const Model& model);
 
-  /// Measures the rows' scales (the frames' reach and depth, the running error bounds Sᵢ) at the
+  /// Measures the rows' scales (the frames' reach, the running error bounds Sᵢ) at the
   /// state in ws (kinematics at Acceleration level) with λ the multipliers. The Newton iterates of
   /// one step change these scales (reaches, body wrenches, multipliers) by a relative amount far
   /// below the test's factor 64: the scales of a step's first iterate serve all its iterates.
@@ -73,7 +73,7 @@ class NewtonRoundoff {
  private:
   void setWrenchMagnitudes(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda);
 
-  std::vector<double> reach_, depth_;         ///< per frame
+  std::vector<double> reach_;                 ///< per frame
   std::vector<double> force_, moment_;        ///< per frame: magnitudes of the terms of its wrench
   /// Per body: its mass, |c| (centre of mass from the frame origin) and Σ|I_ij|.
   struct BodyMagnitudes {

@@ -24,7 +24,7 @@ bool conservesEnergy(const Model& model) {
 
 StepDefect ClosureCheck::check(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& closure,
                                double tolerance) {
-  frameReach(model, ws, reach_, depth_);
+  frameReach(model, ws, reach_);
   double worst = 0.0, worst_value = 0.0;
   const CutJoint* where = nullptr;
   Eigen::Index row = 0;
@@ -33,7 +33,7 @@ StepDefect ClosureCheck::check(const Model& model, const Workspace<double>& ws, 
     for (int k = 0; k < rows; ++k) {
       // A coincidence row relative to the reach of its frames (at least 1 m: a loop near the origin is
       // not held to a tighter absolute tolerance than 1 µm); an orthogonality row absolutely.
-      const double scale = k < 3 ? std::max(1.0, closureRowScale(cut, k, reach_, depth_)) : 1.0;
+      const double scale = k < 3 ? std::max(1.0, closureRowScale(model, cut, k, reach_)) : 1.0;
       const double ratio = std::abs(closure[row + k]) / (tolerance * scale);
       if (!(ratio <= worst)) {  // NaN counts as the worst
         worst = ratio;

@@ -39,7 +39,7 @@ class ClosureCheck {
   StepDefect check(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& closure, double tolerance);
 
  private:
-  std::vector<double> reach_, depth_;
+  std::vector<double> reach_;
 };
 
 /// Watches the mechanical energy of a conservative run.
