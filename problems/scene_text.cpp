@@ -89,7 +89,9 @@ std::string suggestion(const std::string& word, const std::vector<std::string>& 
   std::size_t best = std::max<std::size_t>(3, word.size() / 4 + 1);
   for (const std::string& candidate : candidates)
     if (const std::size_t d = editDistance(word, candidate); d < best) best = d, nearest = candidate;
-  return nearest.empty() ? "" : " (did you mean '" + nearest + "'?)";
+  // quoted: a candidate may come from text not validated yet (an override's names are read from the
+  // scene before its entries are checked), and a line break in it would split the message.
+  return nearest.empty() ? "" : " (did you mean " + quoted(nearest) + "?)";
 }
 
 }  // namespace mbsopt

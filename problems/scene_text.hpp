@@ -18,7 +18,8 @@ std::string formatNumber(double value);
 /// `text` in single quotes for a one-line message: control characters escaped, at most 60 characters.
 std::string quoted(const std::string& text);
 
-/// " (did you mean 'x'?)" when one of `candidates` is a plausible typo of `word`, else "".
+/// " (did you mean 'x'?)" when one of `candidates` is a plausible typo of `word`, else "". The candidate
+/// is quoted(): it may come from text not validated yet.
 std::string suggestion(const std::string& word, const std::vector<std::string>& candidates);
 
 }  // namespace mbsopt
