@@ -153,11 +153,11 @@ FrameIndex Model::addElement(const std::string& name, FrameIndex parent, Element
     coordinates_.push_back({name, element, false, {}});
     free_.push_back(coordinate);
   }
-  const Frame& entry = frames_[static_cast<std::size_t>(parent)];
-  const int parent_joint = entry.element < 0 || elements_[static_cast<std::size_t>(entry.element)].coordinate >= 0
-                               ? entry.element
-                               : elements_[static_cast<std::size_t>(entry.element)].parent_joint;
-  const int depth = entry.depth + 1;
+  const int before = frames_[static_cast<std::size_t>(parent)].element;  // the element entering `parent`
+  const int parent_joint = before < 0 || elements_[static_cast<std::size_t>(before)].coordinate >= 0
+                               ? before
+                               : elements_[static_cast<std::size_t>(before)].parent_joint;
+  const int depth = frames_[static_cast<std::size_t>(parent)].depth + 1;
   elements_.push_back({name, parent, exit, coordinate, std::move(kind), parent_joint});
   frames_.push_back({name, element, depth});
   for (CutFramePath& path : cut_frame_paths_) path.on_path.push_back(0);  // a new element moves no older frame

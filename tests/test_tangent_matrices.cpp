@@ -306,6 +306,29 @@ TEST_F(TangentMatricesTest, ConstraintJacobianMatchesFiniteDifferencesOfTheClosu
   expectMatchesFiniteDifference(jacobianAt(q_), fd, "B = ∂b/∂q");
 }
 
+// What the topology fixes, set as elements are added: each element's nearest joint towards the ground
+// (the mass matrix walks these) and each frame's depth (elements from the ground, in the round-off
+// scale of an orthogonality closure row), read off by hand for two branches with offsets between
+// the joints.
+TEST(ModelTopology, ParentJointsAndDepthsFollowThePathsToTheGround) {
+  Model model;
+  const FrameIndex o1 = model.addOffset("o1", Model::ground, {1, 0, 0});  // element 0, passive
+  const FrameIndex r1 = model.addRevolute("r1", o1, {0, 0, 1});            // 1, active
+  const FrameIndex o2 = model.addOffset("o2", r1, {1, 0, 0});              // 2, passive
+  const FrameIndex p1 = model.addPrismatic("p1", o2, {1, 0, 0});           // 3, active
+  const FrameIndex o3 = model.addOffset("o3", p1, {0, 1, 0});              // 4, passive
+  const FrameIndex r2 = model.addRevolute("r2", o3, {0, 0, 1});            // 5, active
+  const FrameIndex r3 = model.addRevolute("r3", Model::ground, {0, 0, 1}); // 6, active
+  const FrameIndex o4 = model.addOffset("o4", r3, {1, 0, 0});              // 7, passive
+  std::vector<int> parent_joints;
+  for (const KinematicElement& element : model.elements()) parent_joints.push_back(element.parent_joint);
+  EXPECT_EQ(parent_joints, (std::vector<int>{-1, -1, 1, 1, 3, 3, -1, 6}));
+  std::vector<int> depths;
+  for (const FrameIndex f : {Model::ground, o1, r1, o2, p1, o3, r2, r3, o4})
+    depths.push_back(model.frames()[static_cast<std::size_t>(f)].depth);
+  EXPECT_EQ(depths, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 1, 2}));
+}
+
 // A model may get joints after a cut joint (the cut frames' paths from the ground are recorded with
 // the cut, Model::cutFramePaths): B's columns of the later joints, one on the path of neither cut
 // frame and one beyond a cut frame's branch, must still be the closure's derivatives.
