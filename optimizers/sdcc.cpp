@@ -183,9 +183,17 @@ class SdccRun {
         return stop(OptimizerStatus::Converged, "a feasible KKT point: " + where);
       if (trial == options_.max_iterations)
         return stop(OptimizerStatus::MaxIterations, std::to_string(trial) + " trial steps, " + where);
-      if (step_bound_ < settings_.min_step_bound)
-        return stop(OptimizerStatus::Failed,
-                    "the step bound ξ fell below " + number(settings_.min_step_bound) + " at no feasible KKT point: " + where);
+      if (step_bound_ < stepFloor()) {
+        // No step longer than the floor lowers the merit (NLopt's xtol_rel for a trust region). At a
+        // feasible point that is the end: where the active constraints' gradients vanish or jump (the
+        // paper's ∫⟨φ⟩dt on its boundary, a grid maximum at a kink) ‖δb₁‖_W need not, and no KKT
+        // point can be certified; at an infeasible one the run failed.
+        const std::string floor = "the step bound ξ fell below " + number(stepFloor()) + " (xtol_rel ‖b‖_W, at least " +
+                                  number(settings_.min_step_bound) + ")";
+        if (violation_ <= options_.feasibility_tolerance)
+          return stop(OptimizerStatus::Converged, floor + " at a feasible point, no shorter step lowering the merit: " + where);
+        return stop(OptimizerStatus::Failed, floor + " at an infeasible point: " + where);
+      }
       tryStep(step);
     }
   }
@@ -230,8 +238,7 @@ class SdccRun {
   /// below its minimum.
   std::optional<Eigen::VectorXd> pointAfterRejection(const Eigen::VectorXd& rejected) const {
     double penalty = penalty_;
-    for (double bound = step_bound_ * settings_.shrink_factor; bound >= settings_.min_step_bound;
-         bound *= settings_.shrink_factor) {
+    for (double bound = step_bound_ * settings_.shrink_factor; bound >= stepFloor(); bound *= settings_.shrink_factor) {
       const SdccStep step = sdccStep(values_.cost_gradient, constraints_, weights_, settings_.active_set_epsilon, bound);
       penalty = raisedPenalty(penalty, step, settings_);
       Trial next = plannedTrial(step, penalty);
@@ -265,6 +272,12 @@ class SdccRun {
       last_failure_ = e.what();
       reject();
     }
+  }
+
+  /// The smallest ξ a trial is made with: options.tolerance (NLopt's xtol_rel) times ‖b‖_W, and at
+  /// least min_step_bound.
+  double stepFloor() const {
+    return std::max(settings_.min_step_bound, options_.tolerance * x_.cwiseProduct(weights_.cwiseSqrt()).norm());
   }
 
   void shrink() { step_bound_ *= settings_.shrink_factor; }

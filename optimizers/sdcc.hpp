@@ -33,7 +33,8 @@ struct SdccSettings {
   double growth_ratio = 0.75;
   /// A step is accepted when its merit decrease is at least this fraction of the predicted one.
   double acceptance_ratio = 0.1;
-  /// The run ends (failed, the point is no KKT point) when ξ falls below this.
+  /// The run ends when ξ falls below options.tolerance × ‖b‖_W (NLopt's xtol_rel) or below this:
+  /// converged at a feasible point (no shorter step lowers the merit), failed at an infeasible one.
   double min_step_bound = 1e-10;
   /// Converged when ‖δb₁‖_W ≤ this × max(1, ‖W^{-1/2} l₀(b₀)‖) and the max violation is within the
   /// options' feasibility tolerance. Relative to the first gradient, so independent of f's units;
