@@ -19,6 +19,7 @@
 #include "sensitivity/continuous_adjoint.hpp"
 #include "sensitivity/direct_sensitivity.hpp"
 #include "sensitivity/discrete_adjoint.hpp"
+#include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -26,10 +27,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-/// max |a − b| relative to the largest entry of b.
-double relativeGap(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
-}
+using test::relativeGap;
 
 /// Both exact methods on a problem with active, non-zero gradients: equal to round-off.
 void expectAdjointEqualsDirect(const DesignProblem& problem, Eigen::Index variables) {
@@ -41,22 +39,13 @@ void expectAdjointEqualsDirect(const DesignProblem& problem, Eigen::Index variab
   EXPECT_LE(relativeGap(adjoint.constraints, direct.constraints), 1e-9);
 }
 
-/// Each row of the adjoint against central differences at the best step of a sweep, to `tolerance`
-/// of the row's largest entry (truncation O(δ²) at large steps, Newton tolerance over δ at small).
-/// Returns the adjoint gradient.
+/// The adjoint against central differences at the best step (test::expectCentralDifferencesAtTheBestStep)
+/// at the problem's start. Returns the adjoint gradient.
 DesignGradient expectAdjointMatchesCentralDifferencesAtTheBestStep(const DesignProblem& problem, double tolerance) {
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
   const Eigen::VectorXd x = initialPoint(problem);
   const DesignGradient adjoint = adjointGradient(problem, functionals, x);
-  std::vector<DesignGradient> sweep;
-  for (const double step : {1e-3, 1e-4, 1e-5, 1e-6}) sweep.push_back(finiteDifferenceGradient(problem, functionals, x, step, true));
-  for (Eigen::Index r = 0; r < adjoint.constraints.rows(); ++r) {
-    const Eigen::VectorXd exact = adjoint.constraints.row(r).transpose();
-    double best = std::numeric_limits<double>::infinity();
-    for (const DesignGradient& fd : sweep)
-      best = std::min(best, (fd.constraints.row(r).transpose() - exact).cwiseAbs().maxCoeff());
-    EXPECT_LE(best, tolerance * std::max(exact.cwiseAbs().maxCoeff(), 1e-300)) << functionals[static_cast<std::size_t>(r)].name;
-  }
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, tolerance);
   return adjoint;
 }
 

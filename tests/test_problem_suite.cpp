@@ -1,0 +1,155 @@
+// The design problems of problems/suite/ (its README): each comes with a reference optimum that
+// mbsopt did not compute, NAME.reference.json, written by the script its "command" names. Every
+// problem loads; the reference was computed from the scene's own numbers; the exact gradients agree
+// with each other to round-off and with central differences; and `mbsopt optimize` with each
+// optimizer that reaches the optimum (kReachedBy) ends there, within what the reference says of its
+// own accuracy.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "problems/scene_file.hpp"
+#include "sensitivity/direct_sensitivity.hpp"
+#include "sensitivity/discrete_adjoint.hpp"
+#include "tests/gradient_checks.hpp"
+
+namespace mbsopt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSuite = fs::path(MBSOPT_SOURCE_DIR) / "problems" / "suite";
+
+/// The optimizers that reach each problem's reference from its start, as the suite's README
+/// reports them. Ipopt is not among them on the shock isolator: it reaches the optimum but runs to
+/// its iteration limit there (the grid maximum's kink, README).
+const std::map<std::string, std::vector<std::string>> kReachedBy = {
+    {"shock_isolator", {"sdcc", "slsqp", "mma", "ccsaq"}},
+};
+
+std::vector<fs::path> suiteScenes() {
+  std::vector<fs::path> scenes;
+  for (const fs::directory_entry& entry : fs::directory_iterator(kSuite))
+    if (entry.path().extension() == ".yaml") scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+nlohmann::json referenceOf(const fs::path& scene) {
+  const fs::path path = kSuite / (scene.stem().string() + ".reference.json");
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("no reference " + path.string());
+  nlohmann::json reference;
+  in >> reference;
+  return reference;
+}
+
+/// A scratch directory of this process.
+fs::path scratch() {
+  const fs::path directory = fs::temp_directory_path() / ("mbsopt_suite_" + std::to_string(::getpid()));
+  fs::create_directories(directory);
+  return directory;
+}
+
+/// Runs `mbsopt ARGUMENTS`, its standard output to `out`; the exit status.
+int mbsopt(const std::string& arguments, const fs::path& out) {
+  return std::system((std::string(MBSOPT_EXECUTABLE) + " " + arguments + " > " + out.string() + " 2>&1").c_str());
+}
+
+TEST(ProblemSuite, EveryProblemLoadsAndItsReferenceUsedTheScenesNumbers) {
+  const std::vector<fs::path> scenes = suiteScenes();
+  ASSERT_FALSE(scenes.empty());
+  for (const fs::path& scene : scenes) {
+    SCOPED_TRACE(scene.filename().string());
+    EXPECT_NO_THROW(loadDesignProblem(readSceneFile(scene.string())));
+    EXPECT_TRUE(kReachedBy.count(scene.stem().string())) << "the test lists no optimizer for it";
+    const nlohmann::json reference = referenceOf(scene);
+    EXPECT_EQ(reference["scene"], "problems/suite/" + scene.filename().string());
+    // `mbsopt parameters` prints every number of the scene by its dotted name: the reference's data
+    // are its inputs, so they must be the scene's numbers exactly.
+    const fs::path listing = scratch() / "parameters.txt";
+    ASSERT_EQ(mbsopt("parameters " + scene.string(), listing), 0);
+    std::map<std::string, double> parameters;
+    std::ifstream in(listing);
+    std::string name;
+    double value = 0.0;
+    while (in >> name >> value) parameters[name] = value;
+    ASSERT_FALSE(reference["data"].empty());
+    for (const auto& [key, number] : reference["data"].items()) {
+      ASSERT_TRUE(parameters.count(key)) << key << " is not a number of the scene";
+      EXPECT_EQ(parameters[key], number.get<double>()) << key;
+    }
+  }
+}
+
+// Both exact methods differentiate the same discrete map: equal to round-off (1e-12 of the largest
+// entry; they take the same solves in another order). Central differences of the simulation agree
+// with them at their best step to 1e-6: O(δ²) truncation, and the Newton tolerance (1e-10
+// relative) over δ, meet near δ = 1e-4 at about 1e-8 to 1e-7 relative (test_exact_gradients.cpp).
+TEST(ProblemSuite, ExactGradientsAgreeWithEachOtherAndWithCentralDifferences) {
+  for (const fs::path& scene : suiteScenes()) {
+    SCOPED_TRACE(scene.filename().string());
+    const DesignProblem problem = loadDesignProblem(readSceneFile(scene.string()));
+    const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+    const Eigen::VectorXd x = initialPoint(problem);
+    const DesignGradient direct = directGradient(problem, functionals, x);
+    const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+    const auto variables = static_cast<Eigen::Index>(problem.design.variables.size());
+    EXPECT_GT(direct.constraints.leftCols(variables).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_LE(test::relativeGap(adjoint.constraints, direct.constraints), 1e-12);
+    test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+  }
+}
+
+// The reference is the continuous-time optimum; mbsopt's is that of the problem on its time grid,
+// which differs by the reference's own estimate ("accuracy": "cost_relative", the Newmark step's
+// period error and the grid's sampling of a peak). The optimizers stop within 1e-6 (relative, on x)
+// of their optimum. So every response agrees to 10 × that estimate, and the design lies in the
+// reference's "design_range": the designs whose cost is within "design_cost_band" of the optimum,
+// wider than the estimate where the cost is flat near its minimum.
+TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
+  const fs::path directory = scratch();
+  for (const fs::path& scene : suiteScenes()) {
+    const std::string name = scene.stem().string();
+    const DesignProblem problem = loadDesignProblem(readSceneFile(scene.string()));
+    const nlohmann::json reference = referenceOf(scene);
+    const nlohmann::json& optimum = reference["optimum"];
+    const double tolerance = 10.0 * reference["accuracy"]["cost_relative"].get<double>();
+    ASSERT_GT(tolerance, 0.0);
+    ASSERT_LT(reference["accuracy"]["design_cost_band"].get<double>(), 1e-2);
+    for (const std::string& optimizer : kReachedBy.at(name)) {
+      SCOPED_TRACE(name + " with " + optimizer);
+      const fs::path json = directory / (name + "-" + optimizer + ".json");
+      ASSERT_EQ(mbsopt("optimize " + scene.string() + " --optimizer " + optimizer + " --json " + json.string(),
+                       directory / "stdout"),
+                0);
+      nlohmann::json result;
+      std::ifstream(json) >> result;
+      EXPECT_EQ(result["status"], "converged") << result["message"];
+      for (const auto& [response, value] : optimum["responses"].items()) {
+        const double expected = value.get<double>();
+        EXPECT_NEAR(result["responses"][response].get<double>(), expected, tolerance * std::abs(expected)) << response;
+      }
+      const auto design = result["design"].get<std::vector<double>>();
+      ASSERT_EQ(design.size(), problem.design.variables.size());
+      for (std::size_t i = 0; i < design.size(); ++i) {
+        const std::string& parameter = problem.design.variables[i].parameter;
+        const nlohmann::json& range = reference["accuracy"]["design_range"][parameter];
+        EXPECT_GE(design[i], range[0].get<double>()) << parameter;
+        EXPECT_LE(design[i], range[1].get<double>()) << parameter;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mbsopt
