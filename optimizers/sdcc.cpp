@@ -188,8 +188,8 @@ class SdccRun {
         // feasible point that is the end: where the active constraints' gradients vanish or jump (the
         // paper's ∫⟨φ⟩dt on its boundary, a grid maximum at a kink) ‖δb₁‖_W need not, and no KKT
         // point can be certified; at an infeasible one the run failed.
-        const std::string floor = "the step bound ξ fell below " + number(stepFloor()) + " (xtol_rel ‖b‖_W, at least " +
-                                  number(settings_.min_step_bound) + ")";
+        const std::string floor = "the step bound ξ fell below " + number(stepFloor()) +
+                                  " (xtol_rel max(1, ‖b‖_W), at least " + number(settings_.min_step_bound) + ")";
         if (violation_ <= options_.feasibility_tolerance)
           return stop(OptimizerStatus::Converged, floor + " at a feasible point, no shorter step lowering the merit: " + where);
         return stop(OptimizerStatus::Failed, floor + " at an infeasible point: " + where);
@@ -274,10 +274,12 @@ class SdccRun {
     }
   }
 
-  /// The smallest ξ a trial is made with: options.tolerance (NLopt's xtol_rel) times ‖b‖_W, and at
-  /// least min_step_bound.
+  /// The smallest ξ a trial is made with: options.tolerance (NLopt's xtol_rel) times max(1, ‖b‖_W),
+  /// the design variables being scaled to order 1 (a relative test alone never ends at b = 0), and
+  /// at least min_step_bound.
   double stepFloor() const {
-    return std::max(settings_.min_step_bound, options_.tolerance * x_.cwiseProduct(weights_.cwiseSqrt()).norm());
+    const double size = std::max(1.0, x_.cwiseProduct(weights_.cwiseSqrt()).norm());
+    return std::max(settings_.min_step_bound, options_.tolerance * size);
   }
 
   void shrink() { step_bound_ *= settings_.shrink_factor; }

@@ -33,7 +33,7 @@ struct SdccSettings {
   double growth_ratio = 0.75;
   /// A step is accepted when its merit decrease is at least this fraction of the predicted one.
   double acceptance_ratio = 0.1;
-  /// The run ends when ξ falls below options.tolerance × ‖b‖_W (NLopt's xtol_rel) or below this:
+  /// The run ends when ξ falls below options.tolerance × max(1, ‖b‖_W) (NLopt's xtol_rel) or this:
   /// converged at a feasible point (no shorter step lowers the merit), failed at an infeasible one.
   double min_step_bound = 1e-10;
   /// Converged when ‖δb₁‖_W ≤ this × max(1, ‖W^{-1/2} l₀(b₀)‖) and the max violation is within the

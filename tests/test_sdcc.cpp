@@ -150,6 +150,68 @@ TEST(Sdcc, CompensatesAViolatedLinearConstraintInOneStep) {
   EXPECT_NEAR(r.x[1], 0.0, 1e-6);
 }
 
+/// min b subject to |x| − b ≤ 0, (x, b) in [−1, 1]²: the optimum (0, 0) lies on the kink of the
+/// constraint, as a grid maximum's optimum may. Away from x = 0 the constraint's gradient is
+/// (sign x, −1), and ∇f + μ∇Ψ = (μ sign x, 1 − μ) never vanishes: no KKT point to certify.
+class KinkedConstraint : public test::RosenbrockInDisc {
+ public:
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    out.cost = x[1];
+    out.constraints = Eigen::VectorXd::Constant(1, std::abs(x[0]) - x[1]);
+    if (gradients) {
+      out.cost_gradient = values({0, 1});
+      out.constraint_jacobian = values({x[0] >= 0 ? 1.0 : -1.0, -1}).transpose();
+    }
+  }
+  Eigen::VectorXd lowerBounds() const override { return values({-1, -1}); }
+  Eigen::VectorXd upperBounds() const override { return values({1, 1}); }
+  Eigen::VectorXd start() const override { return values({0.5, 1}); }
+};
+
+// Without a KKT point SDCC ends when no step longer than its floor, tolerance × max(1, ‖b‖_W),
+// lowers the merit: at a feasible point within a few floors of the optimum. Before, it halved ξ
+// down to 1e-10 (about 20 more evaluations) and reported "failed". The first-order check, which
+// finds no multipliers either, still reports the point as no KKT point: the verdict is "failed",
+// with both reasons.
+TEST(Sdcc, WithoutAKktPointItStopsWhereNoStepAboveItsFloorLowersTheMerit) {
+  KinkedConstraint problem;
+  OptimizerOptions options;
+  options.tolerance = 1e-6;
+  options.max_iterations = 1000;
+  const OptimizerResult r = minimizeWithSdcc(problem, options);
+  EXPECT_NE(r.message.find("fell below 1e-06 (xtol_rel max(1, ‖b‖_W), at least 1e-10) at a feasible point"),
+            std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("not first-order optimal"), std::string::npos) << r.message;
+  EXPECT_EQ(r.status, OptimizerStatus::Failed);
+  EXPECT_LE(r.max_violation, options.feasibility_tolerance);
+  EXPECT_LE(r.x.cwiseAbs().maxCoeff(), 1e-5) << r.x.transpose();
+}
+
+/// min x₀ subject to x₀² + 1 ≤ 0: no feasible point at all.
+class InfeasibleConstraint : public test::RosenbrockInDisc {
+ public:
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    out.cost = x[0];
+    out.constraints = Eigen::VectorXd::Constant(1, x[0] * x[0] + 1);
+    if (gradients) {
+      out.cost_gradient = values({1, 0});
+      out.constraint_jacobian = values({2 * x[0], 0}).transpose();
+    }
+  }
+};
+
+// The same floor at an infeasible point ends the run as failed: the constraint is at its least
+// violation, x₀ = 0, and no step lowers the merit.
+TEST(Sdcc, ItFailsWhereTheStepBoundFallsBelowItsFloorAtAnInfeasiblePoint) {
+  InfeasibleConstraint problem;
+  OptimizerOptions options;
+  options.max_iterations = 1000;
+  const OptimizerResult r = minimizeWithSdcc(problem, options);
+  EXPECT_EQ(r.status, OptimizerStatus::Failed) << r.message;
+  EXPECT_NE(r.message.find("infeasible point"), std::string::npos) << r.message;
+}
+
 /// Rosenbrock's problem in the disc, recording every evaluation and every anticipated point.
 class RecordingRosenbrock : public test::RosenbrockInDisc {
  public:
