@@ -30,6 +30,8 @@ Standard library only. Prints the JSON that problems/suite/shock_isolator.refere
 import json
 import math
 
+from impact import Impact, crossing, minimise, sampled_peak_error
+
 MASS = 1000.0          # kg       vehicle.mass
 SPEED = 2.0            # m/s      stroke.v0 (from stroke.q0 = 0, the spring's rest, no gravity)
 STROKE = 0.2           # m        design.constraints.0.bound, the travel
@@ -37,62 +39,8 @@ END_TIME = 2.0         # s        settings.end_time
 STEP = 1.0e-3          # s        settings.step (for the discretisation estimate only)
 DESIGN_COST_BAND = 1e-4
 
-GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-
-
-def response(k, c, t):
-    """x, x', x'' at time t of m x'' + c x' + k x = 0 with x(0) = 0, x'(0) = SPEED."""
-    omega = math.sqrt(k / MASS)
-    zeta = c / (2.0 * math.sqrt(k * MASS))
-    sigma = zeta * omega
-    if zeta < 1.0:
-        omega_d = omega * math.sqrt(1.0 - zeta * zeta)
-        decay = math.exp(-sigma * t)
-        s, co = math.sin(omega_d * t), math.cos(omega_d * t)
-        x = SPEED / omega_d * decay * s
-        v = SPEED * decay * (co - sigma / omega_d * s)
-    elif zeta == 1.0:
-        decay = math.exp(-omega * t)
-        x = SPEED * t * decay
-        v = SPEED * decay * (1.0 - omega * t)
-    else:
-        root = omega * math.sqrt(zeta * zeta - 1.0)
-        r1, r2 = -sigma + root, -sigma - root
-        e1, e2 = math.exp(r1 * t), math.exp(r2 * t)
-        x = SPEED * (e1 - e2) / (r1 - r2)
-        v = SPEED * (r1 * e1 - r2 * e2) / (r1 - r2)
-    return x, v, -(k * x + c * v) / MASS
-
-
-def golden_argmax(f, lo, hi, iterations):
-    """The point of [lo, hi] where f, unimodal there, is largest, by golden-section search."""
-    a, b = lo, hi
-    for _ in range(iterations):
-        c1, c2 = b - GOLDEN * (b - a), a + GOLDEN * (b - a)
-        if f(c1) > f(c2):
-            b = c2
-        else:
-            a = c1
-    return 0.5 * (a + b)
-
-
-def golden_max(f, lo, hi):
-    """max of f on [lo, hi] for f unimodal there."""
-    return max(f(golden_argmax(f, lo, hi, 80)), f(lo), f(hi))
-
-
-def peak(f, samples=1000):
-    """max over [0, END_TIME] of |f(t)|: the largest sample, refined between its neighbours."""
-    times = [END_TIME * i / samples for i in range(samples + 1)]
-    values = [abs(f(t)) for t in times]
-    i = max(range(samples + 1), key=values.__getitem__)
-    lo, hi = times[max(i - 1, 0)], times[min(i + 1, samples)]
-    return golden_max(lambda t: abs(f(t)), lo, hi)
-
-
-def peaks(k, c):
-    """(max |x|, max |x''|) over [0, END_TIME]."""
-    return peak(lambda t: response(k, c, t)[0]), peak(lambda t: response(k, c, t)[2])
+IMPACT = Impact(MASS, SPEED, END_TIME)
+peaks = IMPACT.peaks
 
 
 def design_at(zeta):
@@ -110,22 +58,6 @@ def design_at(zeta):
 
 def deceleration_at(zeta):
     return peaks(*design_at(zeta))[1]
-
-
-def minimise(f, lo, hi):
-    """The point of [lo, hi] where f, unimodal there, is smallest."""
-    return golden_argmax(lambda z: -f(z), lo, hi, 60)
-
-
-def crossing(f, level, inside, outside, iterations=50):
-    """The point between inside (f < level) and outside (f > level) where f = level, by bisection."""
-    for _ in range(iterations):
-        middle = 0.5 * (inside + outside)
-        if f(middle) < level:
-            inside = middle
-        else:
-            outside = middle
-    return 0.5 * (inside + outside)
 
 
 def main():
@@ -157,7 +89,7 @@ def main():
             "over_limiting_performance": deceleration / (SPEED * SPEED / (2.0 * STROKE)),
         },
         "accuracy": {
-            "cost_relative": (omega * STEP) ** 2 / 8.0,
+            "cost_relative": sampled_peak_error(omega, STEP),
             "design_cost_band": DESIGN_COST_BAND,
             "design_range": {"buffer.k": sorted([low[0], high[0]]), "buffer.c": sorted([low[1], high[1]])},
         },
