@@ -29,10 +29,12 @@ namespace fs = std::filesystem;
 
 const fs::path kSuite = fs::path(MBSOPT_SOURCE_DIR) / "problems" / "suite";
 
-/// The optimizers that reach each problem's reference from its start, as the suite's README
-/// reports them. Ipopt is not among them on the shock isolator: it reaches the optimum but runs to
-/// its iteration limit there (the grid maximum's kink, README).
+/// The optimizers that reach each problem's reference from its start and say so, as the suite's
+/// README reports them. The others reach it too but run to their iteration limits there, where
+/// the grid maximum's peak moves between grid points (README): Ipopt on the shock isolator, CCSAQ
+/// and Ipopt on the parallelogram.
 const std::map<std::string, std::vector<std::string>> kReachedBy = {
+    {"parallelogram_buffer", {"sdcc", "slsqp", "mma"}},
     {"shock_isolator", {"sdcc", "slsqp", "mma", "ccsaq"}},
     {"spring_preload", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
 };
