@@ -54,12 +54,13 @@ double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
   for (const ResponseConstraint& c : problem.design.constraints) {
     const int index = sensorIndex(problem.scene.model, c.sensor);
     const Eigen::VectorXd y = response.trajectory.sensors.col(index);
-    double extreme = 0.0;
-    if (c.of == ResponseMeasure::MaxAbs) extreme = y.cwiseAbs().maxCoeff();
-    else if (c.of == ResponseMeasure::Max) extreme = y.maxCoeff();
+    double over = 0.0;  // how far the extreme lies beyond the bound
+    if (c.of == ResponseMeasure::MaxAbs) over = y.cwiseAbs().maxCoeff() - c.bound;
+    else if (c.of == ResponseMeasure::Max) over = y.maxCoeff() - c.bound;
+    else if (c.of == ResponseMeasure::Min) over = c.bound - y.minCoeff();
     else continue;  // integral and final-value constraints are exact functionals, checked by the optimizer
     const double unit = isAngle(problem.scene.model.sensors()[static_cast<std::size_t>(index)]) ? 180.0 / std::numbers::pi : 1.0;
-    excess = std::max(excess, (extreme - c.bound) * unit);
+    excess = std::max(excess, over * unit);
   }
   return excess;
 }

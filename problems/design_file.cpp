@@ -12,6 +12,7 @@ namespace {
 ResponseMeasure readMeasure(const MapReader& entry, std::initializer_list<const char*> choices) {
   const std::string of = entry.choice("of", choices, "max_abs");
   return of == "max"        ? ResponseMeasure::Max
+         : of == "min"      ? ResponseMeasure::Min
          : of == "integral" ? ResponseMeasure::Integral
          : of == "final"    ? ResponseMeasure::FinalValue
                             : ResponseMeasure::MaxAbs;
@@ -72,9 +73,15 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
 
   for (const YamlNode& node : readList(context, design.node()["constraints"], "design.constraints")) {
     const MapReader c(context, node, "design constraint");
-    c.allowKeys({"sensor", "of", "bound"});
-    out.constraints.push_back(
-        {readSensor(c, model), readMeasure(c, {"max_abs", "max", "integral", "final"}), c.number("bound")});
+    c.allowKeys({"sensor", "of", "bound", "equals"});
+    ResponseConstraint constraint{readSensor(c, model), readMeasure(c, {"max_abs", "max", "min", "integral", "final"})};
+    constraint.equality = c.has("equals");
+    if (constraint.equality && c.has("bound")) c.fail("equals", "a constraint has a bound or 'equals', not both");
+    if (!constraint.equality && !c.has("bound")) c.fail("sensor", "a constraint needs a bound (or 'equals')");
+    if (constraint.equality && constraint.of != ResponseMeasure::Integral && constraint.of != ResponseMeasure::FinalValue)
+      c.fail("equals", "an equality needs an exact functional: of: integral or of: final");
+    constraint.bound = c.number(constraint.equality ? "equals" : "bound");
+    out.constraints.push_back(constraint);
   }
 
   if (design.has("transcription")) {

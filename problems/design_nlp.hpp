@@ -5,6 +5,8 @@
 // sensitivity/ (simulations and gradients of a design problem).
 #pragma once
 
+#include <algorithm>
+
 #include <atomic>
 #include <deque>
 #include <future>
@@ -30,7 +32,13 @@ class DesignNlp : public NlpProblem {
             std::shared_ptr<ThreadBudget> shared_threads = nullptr);
 
   Eigen::Index variableCount() const override { return optimisationSize(problem_); }
-  Eigen::Index inequalityCount() const override { return static_cast<Eigen::Index>(functionals_.size()); }
+  Eigen::Index inequalityCount() const override {
+    return static_cast<Eigen::Index>(functionals_.size()) - equalityCount();
+  }
+  /// transcribe() puts the equalities last, as NlpProblem orders them.
+  Eigen::Index equalityCount() const override {
+    return std::count_if(functionals_.begin(), functionals_.end(), [](const ConstraintFunctional& f) { return f.equality; });
+  }
   Eigen::VectorXd lowerBounds() const override { return scaledBounds(&DesignVariable::lower, &ArtificialVariable::lower); }
   Eigen::VectorXd upperBounds() const override { return scaledBounds(&DesignVariable::upper, &ArtificialVariable::upper); }
   Eigen::VectorXd start() const override { return initialPoint(problem_); }

@@ -39,22 +39,29 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   std::vector<ConstraintFunctional> functionals;
   const Transcription& t = problem.design.transcription;
   const double duration = problem.scene.settings.end_time;
-  const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial) {
+  const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial, bool equality) {
     const int index = sensorIndex(model, sensor);
     if (const std::string defect = designSensorDefect(model.sensors()[static_cast<std::size_t>(index)]); !defect.empty())
       throw std::invalid_argument("design: " + defect);
+    if (equality && of != ResponseMeasure::Integral && of != ResponseMeasure::FinalValue)
+      throw std::invalid_argument("design: an equality on '" + sensor + "' needs an exact functional (integral or final)");
     if (of == ResponseMeasure::Integral) {
-      functionals.push_back({sensor + "_integral", index, 1.0, bound / duration, false, TimeMeasure::Integral, 0.0});
+      functionals.push_back(
+          {sensor + "_integral", index, 1.0, bound / duration, false, TimeMeasure::Integral, 0.0, equality});
     } else if (of == ResponseMeasure::FinalValue) {
-      functionals.push_back({sensor + "_final", index, 1.0, bound, false, TimeMeasure::FinalValue, 0.0});
+      functionals.push_back({sensor + "_final", index, 1.0, bound, false, TimeMeasure::FinalValue, 0.0, equality});
+    } else if (of == ResponseMeasure::Min) {  // min y ≥ bound: −y + bound ≤ 0
+      functionals.push_back({sensor + "_min", index, -1.0, -bound, artificial, t.measure, t.tolerance});
     } else {  // y − bound (− b) ≤ 0, and −y − bound (− b) ≤ 0 for MaxAbs
       functionals.push_back({sensor + "_above", index, 1.0, bound, artificial, t.measure, t.tolerance});
       if (of == ResponseMeasure::MaxAbs)
         functionals.push_back({sensor + "_below", index, -1.0, bound, artificial, t.measure, t.tolerance});
     }
   };
-  add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true);  // (17)-(19): ±y − b_{k+1} ≤ 0
-  for (const ResponseConstraint& c : problem.design.constraints) add(c.sensor, c.of, c.bound, false);
+  add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true, false);  // (17)-(19): ±y − b_{k+1} ≤ 0
+  for (const bool equalities : {false, true})  // NlpProblem's order: the inequalities first
+    for (const ResponseConstraint& c : problem.design.constraints)
+      if (c.equality == equalities) add(c.sensor, c.of, c.bound, false, c.equality);
   return functionals;
 }
 

@@ -28,9 +28,9 @@ struct ArtificialVariable {
 };
 
 /// What of a response over time a cost or constraint is about: its extreme, max |y| or max y (through
-/// the transcription), or, for constraints only, its integral ∫₀^τ y dt or its final value y(τ)
-/// (exact functionals, not transcribed).
-enum class ResponseMeasure { MaxAbs, Max, Integral, FinalValue };
+/// the transcription), or, for constraints only, its minimum min y (transcribed too), its integral
+/// ∫₀^τ y dt or its final value y(τ) (exact functionals, not transcribed).
+enum class ResponseMeasure { MaxAbs, Max, Min, Integral, FinalValue };
 
 /// Minimise the extreme of a sensor over time (MaxAbs or Max).
 struct ResponseCost {
@@ -38,11 +38,13 @@ struct ResponseCost {
   ResponseMeasure of = ResponseMeasure::MaxAbs;
 };
 
-/// Keep the extreme, the integral or the final value of a sensor below a bound.
+/// Keep the maximum, the integral or the final value of a sensor below a bound, or its minimum above
+/// it; or, with `equality`, make its integral or final value equal to `bound`.
 struct ResponseConstraint {
   std::string sensor;
   ResponseMeasure of = ResponseMeasure::MaxAbs;
   double bound = 0.0;
+  bool equality = false;  ///< Integral or FinalValue only
 };
 
 /// How each "max over t of φ ≤ 0" becomes one number: measure(φ) ≤ tolerance.
@@ -66,7 +68,7 @@ struct DesignProblem {
   DesignDescription design;
 };
 
-/// One transcribed constraint: measure(φ) − tolerance ≤ 0 with
+/// One transcribed constraint: measure(φ) − tolerance ≤ 0 (= 0 for an equality) with
 /// φ(t) = sign · y(t) − offset − (uses_artificial ? b_{k+1} : 0).
 struct ConstraintFunctional {
   std::string name;  ///< "a_lat_above", "yaw_front_below", "drift_integral", ...
@@ -76,6 +78,7 @@ struct ConstraintFunctional {
   bool uses_artificial = false;
   TimeMeasure measure = TimeMeasure::PositivePart;  ///< the transcription's, or Integral / FinalValue
   double tolerance = 0.0;
+  bool equality = false;  ///< an exact functional (Integral, FinalValue) that must vanish
 };
 
 /// The index of the sensor `name` in the model; throws std::invalid_argument naming it if absent.
@@ -85,9 +88,11 @@ int sensorIndex(const Model& model, const std::string& name);
 /// differentiate it (a function of the state alone, isStateSensor); otherwise why not.
 std::string designSensorDefect(const Sensor& sensor);
 
-/// The constraints of the problem in the order the optimizers see them: those of the cost (with the
-/// artificial variable), then those of each constraint, each MaxAbs giving two (y above, −y above).
-/// An integral constraint ∫y dt ≤ bound is ∫(y − bound/τ) dt ≤ 0; a final value y(τ) − bound ≤ 0.
+/// The constraints of the problem in the order the optimizers see them (NlpProblem: inequalities,
+/// then equalities): those of the cost (with the artificial variable), then the inequalities of each
+/// constraint, each MaxAbs giving two (y above, −y above) and a Min one (−y above −bound), then the
+/// equalities. An integral constraint ∫y dt ≤ bound (= bound) is ∫(y − bound/τ) dt ≤ 0 (= 0); a final
+/// value y(τ) − bound ≤ 0 (= 0).
 /// Throws std::invalid_argument naming an unknown sensor or one designSensorDefect refuses.
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem);
 

@@ -3,9 +3,14 @@
 // integral, a final value) and their gradients match their closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
+#include "optimizers/optimizer.hpp"
+#include "problems/design_nlp.hpp"
 #include "problems/scene_file.hpp"
 #include "problems/tramway.hpp"
 #include "sensitivity/continuous_adjoint.hpp"
@@ -18,6 +23,16 @@ namespace mbsopt {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+/// The oscillator with spring.k (scale 10) as its variable and max x as its cost, through b_{k+1}
+/// from `b0`, followed by `rest` of its design section (constraints, transcription).
+DesignProblem oscillatorProblem(const std::string& b0, const std::string& rest,
+                                const std::vector<ParameterOverride>& overrides = {}) {
+  const std::string design = "design:\n  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]\n"
+                             "  cost: {sensor: position, of: max}\n  artificial: {initial: " + b0 +
+                             ", lower: -2, upper: 2}\n" + rest;
+  return loadDesignProblem({"o.yaml", std::string(test::kOscillator) + design}, overrides);
+}
 
 
 TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
@@ -88,15 +103,11 @@ TEST(DesignProblem, OscillatorConstraintAndGradientMatchClosedForms) {
 // continuous adjoint takes the final value's point source as a density over the last half step, so
 // its derivative is that of x at a time up to h earlier: within h |d²x/dτdk|.
 TEST(DesignProblem, OscillatorIntegralAndFinalValueMatchClosedFormsByEveryMethod) {
-  const std::string design = R"(design:
-  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
-  cost: {sensor: position, of: max}
-  artificial: {initial: 2, lower: -2, upper: 2}
-  constraints:
+  const DesignProblem problem = oscillatorProblem("2", R"(  constraints:
     - {sensor: position, of: integral, bound: 0.1}
     - {sensor: position, of: final, bound: 0.5}
-)";
-  const DesignProblem problem = loadDesignProblem({"o.yaml", std::string(test::kOscillator) + design}, {{"settings.end_time", 0.8}});
+)",
+                                                   {{"settings.end_time", 0.8}});
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
   ASSERT_EQ(functionals.size(), 3u);  // the cost's, the integral, the final value
   EXPECT_EQ(functionals[1].name, "position_integral");
@@ -144,6 +155,71 @@ TEST(DesignProblem, BadDesignSectionsAreLocated) {
                       "  artificial: {initial: 0, lower: -2, upper: 2}\n"),
             12);  // a cost is an extreme over time
   EXPECT_THROW(loadDesignProblem({"d.yaml", scene.substr(0, scene.rfind("design:"))}), SceneError);  // none
+  const std::string start = "  variables: [{parameter: spring.k, lower: 1, upper: 100}]\n" + cost + "  constraints:\n";
+  EXPECT_EQ(errorLine(start + "    - {sensor: position, of: final, bound: 0, equals: 0}\n"), 15);  // both
+  EXPECT_EQ(errorLine(start + "    - {sensor: position, of: max, equals: 0}\n"), 15);  // an extreme is no equality
+  EXPECT_EQ(errorLine(start + "    - {sensor: position, of: final}\n"), 15);            // neither
+}
+
+// `of: min` keeps min_t y ≥ bound as −y + bound ≤ 0, transcribed like the maxima; `equals:` makes an
+// integral or a final value an equality, which the optimizers see after every inequality
+// (NlpProblem's order), whatever the file's order.
+TEST(DesignProblem, MinimaAreTranscribedAndEqualitiesComeLast) {
+  const DesignProblem problem = oscillatorProblem("1.5", R"(  constraints:
+    - {sensor: position, of: final, equals: 0.25}
+    - {sensor: position, of: min, bound: -0.5}
+    - {sensor: position, of: integral, bound: 0.1}
+)");
+  ASSERT_EQ(problem.design.constraints.size(), 3u);
+  EXPECT_TRUE(problem.design.constraints[0].equality);
+  EXPECT_EQ(problem.design.constraints[0].bound, 0.25);
+  EXPECT_EQ(problem.design.constraints[1].of, ResponseMeasure::Min);
+  const std::vector<ConstraintFunctional> f = transcribe(problem);
+  ASSERT_EQ(f.size(), 4u);  // the cost's, the minimum's, the integral's, then the equality
+  EXPECT_EQ(f[1].name, "position_min");
+  EXPECT_EQ(f[1].sign, -1.0);
+  EXPECT_EQ(f[1].offset, -(-0.5));
+  EXPECT_FALSE(f[1].equality);
+  EXPECT_EQ(f[2].name, "position_integral");
+  EXPECT_EQ(f[3].name, "position_final");
+  EXPECT_TRUE(f[3].equality);
+  EXPECT_EQ(f[3].offset, 0.25);
+  // x(t) = cos(2πt) at k = (2π)²: min x = −1 < −0.5 violates the minimum by 0.5 (φ = −x − 0.5 at
+  // its largest), and x(1) − 0.25 = 0.75, to Newmark's period error (about 1e-4).
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignResponse response = evaluateDesign(problem, f, x);
+  EXPECT_NEAR(response.functionals[3].value, 0.75, 1e-3);
+}
+
+// x'' + k x = 0 from x(0) = 1 (the oscillator) with x(1) = 0 as an equality. Newmark's average
+// acceleration turns an undamped oscillation by ω̃h per step with tan(ω̃h/2) = ωh/2 (the trapezoidal
+// rule's exact phase), so the grid's x(1) = cos(ω̃) vanishes where ω̃ = (2n + 1)π/2: k =
+// ((2/h) tan(ω̃h/2))², exactly. The optimizers that take equalities stop on one of those roots within
+// their feasibility tolerance (1e-6 on x(1), so 1e-6/ω̃ on ω̃, below 1e-6 relative on k); MMA and
+// CCSAQ say they cannot take the problem.
+TEST(DesignProblem, AnEqualityOnAFinalValueIsMetOnTheGridsRoot) {
+  const DesignProblem problem = oscillatorProblem("1.5", R"(  constraints:
+    - {sensor: position, of: final, equals: 0}
+  transcription: {measure: grid_max}
+)");
+  const double h = problem.scene.settings.step;
+  std::vector<double> roots;
+  for (int n = 0; n < 4; ++n) roots.push_back(std::pow(2.0 / h * std::tan((2 * n + 1) * kPi / 2 * h / 2), 2));
+  for (const std::string optimizer : {"sdcc", "slsqp", "ipopt"}) {
+    DesignNlp nlp(problem, "adjoint");
+    EXPECT_EQ(nlp.equalityCount(), 1);
+    EXPECT_EQ(nlp.inequalityCount(), 1);
+    const OptimizerResult r = minimize(optimizer, nlp, OptimizerOptions{});
+    EXPECT_EQ(r.status, OptimizerStatus::Converged) << optimizer << ": " << r.message;
+    const double k = r.x[0] * problem.design.variables[0].scale;
+    double nearest = 1e300;
+    for (const double root : roots) nearest = std::min(nearest, std::abs(k - root) / root);
+    EXPECT_LE(nearest, 1e-6) << optimizer << ": k = " << k;
+  }
+  for (const std::string optimizer : {"mma", "ccsaq"}) {
+    DesignNlp nlp(problem, "adjoint");
+    EXPECT_EQ(minimize(optimizer, nlp, OptimizerOptions{}).status, OptimizerStatus::Unsupported) << optimizer;
+  }
 }
 
 }  // namespace
