@@ -219,16 +219,29 @@ class SdccRun {
     Eigen::VectorXd point;
     double predicted = 0.0;
   };
-  Trial plannedTrial(const SdccStep& step, double penalty) const {
+  /// The trial of `step` with the penalty raised as it needs (raisedPenalty), into `penalty`.
+  Trial plannedTrial(const SdccStep& step, double& penalty) const {
     Trial t;
     t.point = (x_ + step.step).cwiseMax(problem_.lowerBounds()).cwiseMin(problem_.upperBounds());
     const Eigen::VectorXd taken = t.point - x_;
-    t.predicted = values_.cost_gradient.dot(taken) +                             // (8)
-                  penalty * (predictedViolation(constraints_, taken) - violation_);  // (9)
+    const double cost_change = values_.cost_gradient.dot(taken);                         // (8)
+    const double violation_change = predictedViolation(constraints_, taken) - violation_;  // (9)
+    penalty = raisedPenalty(penalty, step, cost_change, violation_change, settings_);
+    t.predicted = cost_change + penalty * violation_change;
     return t;
   }
-  static double raisedPenalty(double penalty, const SdccStep& step, const SdccSettings& settings) {
-    return std::max(penalty, settings.penalty_factor * step.multipliers.lpNorm<1>());
+  /// ρ kept at least penalty_factor × ‖μ₁‖₁ (an exact penalty needs ρ > ‖μ‖₁), and, for a step that
+  /// lowers the predicted violation, at least penalty_factor × its cost change over that decrease:
+  /// then the merit predicts a decrease. Without that, a compensation whose cost rises more than
+  /// ρ × the violation it removes (the multipliers of the ε-active set need not cover a violated
+  /// equality) predicted none at any ξ, and ξ shrank to its floor at an infeasible point
+  /// (problems/suite/spring_return.yaml).
+  static double raisedPenalty(double penalty, const SdccStep& step, double cost_change, double violation_change,
+                              const SdccSettings& settings) {
+    penalty = std::max(penalty, settings.penalty_factor * step.multipliers.lpNorm<1>());
+    if (violation_change < 0.0 && cost_change > 0.0)
+      penalty = std::max(penalty, settings.penalty_factor * cost_change / -violation_change);
+    return penalty;
   }
 
   /// The point the next trials would evaluate should `rejected` be rejected: ξ shrunk, and shrunk
@@ -240,7 +253,6 @@ class SdccRun {
     double penalty = penalty_;
     for (double bound = step_bound_ * settings_.shrink_factor; bound >= stepFloor(); bound *= settings_.shrink_factor) {
       const SdccStep step = sdccStep(values_.cost_gradient, constraints_, weights_, settings_.active_set_epsilon, bound);
-      penalty = raisedPenalty(penalty, step, settings_);
       Trial next = plannedTrial(step, penalty);
       if (next.predicted < 0.0 && next.point != rejected) return std::move(next.point);
     }
@@ -254,7 +266,6 @@ class SdccRun {
   /// rejection would lead to (NlpProblem::anticipate); not before, where it would mostly simulate
   /// in vain beside an accepted trial.
   void tryStep(const SdccStep& step) {
-    penalty_ = raisedPenalty(penalty_, step, settings_);
     const Trial trial = plannedTrial(step, penalty_);
     if (!(trial.predicted < 0.0)) return shrink();  // nothing to gain at this ξ (e.g. the bounds clip the step away)
     if (rejected_here_)

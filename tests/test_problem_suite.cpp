@@ -37,6 +37,7 @@ const std::map<std::string, std::vector<std::string>> kReachedBy = {
     {"parallelogram_buffer", {"sdcc", "slsqp", "mma"}},
     {"shock_isolator", {"sdcc", "slsqp", "mma", "ccsaq"}},
     {"spring_preload", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
+    {"spring_return", {"sdcc", "slsqp", "ipopt"}},  // an equality: MMA and CCSAQ cannot take it
 };
 
 std::vector<fs::path> suiteScenes() {
@@ -116,9 +117,10 @@ TEST(ProblemSuite, ExactGradientsAgreeWithEachOtherAndWithCentralDifferences) {
 // The reference is the continuous-time optimum; mbsopt's is that of the problem on its time grid,
 // which differs by the reference's own estimate ("accuracy": "cost_relative", the Newmark step's
 // period error and the grid's sampling of a peak). The optimizers stop within 1e-6 (relative, on x)
-// of their optimum. So every response agrees to 10 × that estimate, and the design lies in the
-// reference's "design_range": the designs whose cost is within "design_cost_band" of the optimum,
-// wider than the estimate where the cost is flat near its minimum.
+// of their optimum. So every response agrees to 10 × that estimate, and the design lies (to 1e-6) in the
+// reference's "design_range", which each reference derives from its own problem: the designs whose
+// cost is within "design_cost_band" of the optimum (wider than the estimate where the cost is flat
+// near its minimum), or the grid's shift of an equality's solution.
 TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
   const fs::path directory = scratch();
   for (const fs::path& scene : suiteScenes()) {
@@ -128,7 +130,6 @@ TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
     const nlohmann::json& optimum = reference["optimum"];
     const double tolerance = 10.0 * reference["accuracy"]["cost_relative"].get<double>();
     ASSERT_GT(tolerance, 0.0);
-    ASSERT_LT(reference["accuracy"]["design_cost_band"].get<double>(), 1e-2);
     for (const std::string& optimizer : kReachedBy.at(name)) {
       SCOPED_TRACE(name + " with " + optimizer);
       const fs::path json = directory / (name + "-" + optimizer + ".json");
@@ -147,8 +148,9 @@ TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
       for (std::size_t i = 0; i < design.size(); ++i) {
         const std::string& parameter = problem.design.variables[i].parameter;
         const nlohmann::json& range = reference["accuracy"]["design_range"][parameter];
-        EXPECT_GE(design[i], range[0].get<double>()) << parameter;
-        EXPECT_LE(design[i], range[1].get<double>()) << parameter;
+        const double slack = 1e-6 * std::abs(design[i]);  // the optimizers' relative tolerance on x
+        EXPECT_GE(design[i], range[0].get<double>() - slack) << parameter;
+        EXPECT_LE(design[i], range[1].get<double>() + slack) << parameter;
       }
     }
   }

@@ -1,7 +1,7 @@
 """What the reference scripts of problems/suite/ share: a body of mass m arriving at speed v0 on a
 linear spring-damper (k, c), the closed-form response of m x'' + c x' + k x = 0 with x(0) = 0,
-x'(0) = v0 and its peaks over [0, T]; the peak of any smooth function over an interval; and the
-one-dimensional searches. Standard library only."""
+x'(0) = v0 and its peaks over [0, T]; the same oscillation about an offset equilibrium; the peak of
+any smooth function over an interval; and the one-dimensional searches. Standard library only."""
 import math
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
@@ -42,6 +42,14 @@ class Impact:
     def peaks(self, k, c):
         """(max |x|, max |x''|) over [0, end_time]."""
         return (self.peak(lambda t: self.response(k, c, t)[0]), self.peak(lambda t: self.response(k, c, t)[2]))
+
+
+def released(offset, sigma, omega_d, speed, t):
+    """x(t) of x'' + 2 sigma x' + omega^2 (x - offset) = 0 (under-damped, omega_d^2 = omega^2 -
+    sigma^2) from x(0) = 0, x'(0) = speed: offset + exp(-sigma t) (A cos(omega_d t) + B sin(omega_d t))
+    with A = -offset, B = (speed - sigma offset) / omega_d."""
+    a, b = -offset, (speed - sigma * offset) / omega_d
+    return offset + math.exp(-sigma * t) * (a * math.cos(omega_d * t) + b * math.sin(omega_d * t))
 
 
 def peak_of(f, start, end, samples=1000):

@@ -28,7 +28,7 @@ Standard library only. Prints the JSON that problems/suite/spring_preload.refere
 import json
 import math
 
-from impact import crossing, golden_max, sampled_peak_error
+from impact import crossing, golden_max, released, sampled_peak_error
 
 MASS = 100.0           # kg       body.mass
 STIFFNESS = 1.0e4      # N/m      hanger.k
@@ -47,9 +47,7 @@ OMEGA_D = math.sqrt(OMEGA * OMEGA - SIGMA * SIGMA)
 
 
 def travel(rest, t):
-    x_e = rest - MASS * GRAVITY / STIFFNESS
-    a, b = -x_e, (SPEED - SIGMA * x_e) / OMEGA_D
-    return x_e + math.exp(-SIGMA * t) * (a * math.cos(OMEGA_D * t) + b * math.sin(OMEGA_D * t))
+    return released(rest - MASS * GRAVITY / STIFFNESS, SIGMA, OMEGA_D, SPEED, t)
 
 
 def extreme(rest, sign):
