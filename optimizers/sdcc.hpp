@@ -8,7 +8,11 @@
 // - a trial step is accepted on an exact-penalty merit f + ρ·(max violation) when it achieves a
 //   fraction of the decrease the linearization (8)-(9) predicts (the cost alone would refuse the
 //   compensation steps that must raise it, and tangent steps along a curved constraint raise the
-//   violation by O(ξ²)); ξ shrinks on a rejection and grows when the prediction was good.
+//   violation by O(ξ²)); ξ shrinks on a rejection and grows when the prediction was good;
+// - ρ grows so that a step which lowers the predicted violation also predicts a lower merit;
+// - the run ends at a feasible KKT point, or when ξ falls below its floor (NLopt's xtol_rel):
+//   converged if the point is feasible (where the active constraints' gradients vanish or jump at
+//   the optimum, no KKT point can be certified), failed if not.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,7 +45,8 @@ struct SdccSettings {
   /// not options.tolerance, which asks for more than a first-order method can see in f's round-off.
   double stationarity_tolerance = 1e-7;
   /// The merit's penalty ρ (cost units per unit of violation) starts here, never falls, and is kept
-  /// at least `penalty_factor` × ‖μ₁‖₁ (an exact penalty needs ρ > ‖μ‖₁). It must start positive:
+  /// at least `penalty_factor` × ‖μ₁‖₁ (an exact penalty needs ρ > ‖μ‖₁) and `penalty_factor` × the
+  /// cost a step adds over the violation it removes (so that it predicts a decrease). It must start positive:
   /// where ∇f = 0 (μ₁ = 0) only the penalty credits a compensation step.
   double initial_penalty = 1.0;
   double penalty_factor = 2.0;
