@@ -26,37 +26,12 @@ Standard library only. Prints the JSON that problems/suite/spring_preload.refere
     python3 scripts/reference/spring_preload.py > problems/suite/spring_preload.reference.json
 """
 import json
-import math
 
-from impact import crossing, golden_max, released, sampled_peak_error
+from hanging import DATA, OMEGA, SAG, STEP, extreme
+from impact import crossing, sampled_peak_error
 
-MASS = 100.0           # kg       body.mass
-STIFFNESS = 1.0e4      # N/m      hanger.k
-DAMPING = 200.0        # N s/m    hanger.c
-GRAVITY = 9.81         # m/s^2    -gravity.x (the axis points up)
-SPEED = 1.0            # m/s      lift.v0 (from lift.q0 = 0)
-END_TIME = 2.0         # s        settings.end_time
-STEP = 1.0e-3          # s        settings.step (for the discretisation estimate only)
 LOWER, UPPER = -0.2, 0.4       # m   the design variable's bounds
 DESIGN_COST_BAND = 1e-4
-SAMPLES = 2000
-
-OMEGA = math.sqrt(STIFFNESS / MASS)
-SIGMA = DAMPING / (2.0 * MASS)
-OMEGA_D = math.sqrt(OMEGA * OMEGA - SIGMA * SIGMA)
-
-
-def travel(rest, t):
-    return released(rest - MASS * GRAVITY / STIFFNESS, SIGMA, OMEGA_D, SPEED, t)
-
-
-def extreme(rest, sign):
-    """max over [0, T] of sign * x(t), sign = +1 (upwards) or -1 (downwards), at least 0."""
-    times = [END_TIME * i / SAMPLES for i in range(SAMPLES + 1)]
-    f = lambda t: max(0.0, sign * travel(rest, t))
-    values = [f(t) for t in times]
-    i = max(range(SAMPLES + 1), key=values.__getitem__)
-    return golden_max(f, times[max(i - 1, 0)], times[min(i + 1, SAMPLES)])
 
 
 def peak(rest):
@@ -85,13 +60,11 @@ def main():
         "method": "closed-form response of the damped oscillator about its static position; the upward and "
                   "downward peaks equal (bisection), checked against a scan of the bounds",
         # The scene's numbers this computation assumes, by their dotted names (mbsopt parameters).
-        "data": {"body.mass": MASS, "hanger.k": STIFFNESS, "hanger.c": DAMPING, "gravity.x": -GRAVITY,
-                 "lift.q0": 0.0, "lift.v0": SPEED, "design.variables.0.lower": LOWER,
-                 "design.variables.0.upper": UPPER, "settings.end_time": END_TIME, "settings.step": STEP},
+        "data": {**DATA, "design.variables.0.lower": LOWER, "design.variables.0.upper": UPPER},
         "optimum": {
             "design": {"hanger.rest": rest},
             "responses": {"max_abs_travel": best},
-            "static_position": rest - MASS * GRAVITY / STIFFNESS,
+            "static_position": rest - SAG,
             # d(peak)/dr on either side of the kink, over 1e-4 m.
             "slope_below": (peak(rest) - peak(rest - width)) / width,
             "slope_above": (peak(rest + width) - peak(rest)) / width,

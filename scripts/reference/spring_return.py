@@ -22,20 +22,12 @@ Standard library only. Prints the JSON that problems/suite/spring_return.referen
 import json
 import math
 
+from hanging import END_TIME, GRAVITY, MASS, OMEGA, SAG, SPEED, STEP, STIFFNESS
 from impact import peak_of, released, sampled_peak_error
 
-MASS = 100.0           # kg       body.mass
-STIFFNESS = 1.0e4      # N/m      hanger.k
-GRAVITY = 9.81         # m/s^2    -gravity.x (the axis points up)
-SPEED = 1.0            # m/s      lift.v0 (from lift.q0 = 0)
-END_TIME = 2.0         # s        settings.end_time
-STEP = 1.0e-3          # s        settings.step (for the discretisation estimate only)
 R_LOWER, R_UPPER = -0.2, 0.4   # m        hanger.rest's bounds
-C_LOWER, C_UPPER = 20.0, 150.0  # N s/m    hanger.c's bounds
+C_LOWER, C_UPPER = 20.0, 150.0  # N s/m    hanger.c's bounds (the scene's damper is the design)
 SAMPLES = 4000
-
-OMEGA = math.sqrt(STIFFNESS / MASS)
-SAG = MASS * GRAVITY / STIFFNESS  # the static position's offset from the rest
 
 
 def motion(c):
