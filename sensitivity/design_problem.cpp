@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "dynamics/sensors.hpp"
@@ -62,6 +63,11 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   for (const bool equalities : {false, true})  // NlpProblem's order: the inequalities first
     for (const ResponseConstraint& c : problem.design.constraints)
       if (c.equality == equalities) add(c.sensor, c.of, c.bound, false, c.equality);
+  // Several constraints may read one sensor the same way (two bounds on its maximum, or a maximum
+  // beside the cost's): a repeated name gets its rank, "travel_above_2".
+  std::map<std::string, int> seen;
+  for (ConstraintFunctional& f : functionals)
+    if (const int rank = ++seen[f.name]; rank > 1) f.name += "_" + std::to_string(rank);
   return functionals;
 }
 

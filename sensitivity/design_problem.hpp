@@ -92,7 +92,7 @@ std::string designSensorDefect(const Sensor& sensor);
 /// then equalities): those of the cost (with the artificial variable), then the inequalities of each
 /// constraint, each MaxAbs giving two (y above, −y above) and a Min one (−y above −bound), then the
 /// equalities. An integral constraint ∫y dt ≤ bound (= bound) is ∫(y − bound/τ) dt ≤ 0 (= 0); a final
-/// value y(τ) − bound ≤ 0 (= 0).
+/// value y(τ) − bound ≤ 0 (= 0). Names are unique: a repeated one gets its rank ("y_above_2").
 /// Throws std::invalid_argument naming an unknown sensor or one designSensorDefect refuses.
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem);
 

@@ -184,6 +184,14 @@ TEST(DesignProblem, MinimaAreTranscribedAndEqualitiesComeLast) {
   EXPECT_EQ(f[3].name, "position_final");
   EXPECT_TRUE(f[3].equality);
   EXPECT_EQ(f[3].offset, 0.25);
+  // Several constraints on one sensor: the cost's maximum and two more bounds on it, each named apart.
+  const DesignProblem repeated = oscillatorProblem("1.5", R"(  constraints:
+    - {sensor: position, of: max, bound: 1.2}
+    - {sensor: position, of: max_abs, bound: 1.5}
+)");
+  std::vector<std::string> names;
+  for (const ConstraintFunctional& g : transcribe(repeated)) names.push_back(g.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"position_above", "position_above_2", "position_above_3", "position_below"}));
   // x(t) = cos(2πt) at k = (2π)²: min x = −1 < −0.5 violates the minimum by 0.5 (φ = −x − 0.5 at
   // its largest), and x(1) − 0.25 = 0.75, to Newmark's period error (about 1e-4).
   const Eigen::VectorXd x = initialPoint(problem);
