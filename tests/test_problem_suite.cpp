@@ -113,15 +113,15 @@ void expectSameNumbers(const nlohmann::json& a, const nlohmann::json& b, const s
   }
 }
 
-// A reference is what its script prints: the scripts that take a few seconds are run again and
-// their output compared with the file (the isolator's takes 20 s and the four-bar's 4 min: run by
-// hand, `"command"` in each file).
+// A reference is what its script prints: the scripts that take a few seconds are run again (-B: no
+// bytecode left in the source tree) and their output compared with the file (the isolator's takes
+// 20 s and the four-bar's 4 min: run by hand, `"command"` in each file).
 TEST(ProblemSuite, TheQuickReferencesAreWhatTheirScriptsPrint) {
   const fs::path directory = scratch();
   for (const std::string name : {"spring_floor", "spring_preload", "spring_return"}) {
     const nlohmann::json reference = referenceOf(kSuite / (name + ".yaml"));
     const fs::path printed = directory / (name + ".json");
-    const std::string command = "python3 " + (fs::path(MBSOPT_SOURCE_DIR) / "scripts" / "reference" / (name + ".py")).string() +
+    const std::string command = "python3 -B " + (fs::path(MBSOPT_SOURCE_DIR) / "scripts" / "reference" / (name + ".py")).string() +
                                 " > " + printed.string();
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
     nlohmann::json again;
