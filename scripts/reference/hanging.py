@@ -4,7 +4,7 @@ travel for a spring rest position r in closed form, and its extremes over [0, T]
 only."""
 import math
 
-from impact import golden_max, released
+from impact import largest_of, released
 
 MASS = 100.0           # kg       body.mass
 STIFFNESS = 1.0e4      # N/m      hanger.k
@@ -31,9 +31,5 @@ def travel(rest, t):
 
 def extreme(rest, sign):
     """max over [0, T] of sign * x(t): the highest point (sign = +1) or minus the lowest (-1), at
-    least 0 (x(0) = 0); the largest sample, refined between its neighbours by golden-section search."""
-    times = [END_TIME * i / SAMPLES for i in range(SAMPLES + 1)]
-    f = lambda t: max(0.0, sign * travel(rest, t))
-    values = [f(t) for t in times]
-    i = max(range(SAMPLES + 1), key=values.__getitem__)
-    return golden_max(f, times[max(i - 1, 0)], times[min(i + 1, SAMPLES)])
+    least 0 (x(0) = 0)."""
+    return largest_of(lambda t: max(0.0, sign * travel(rest, t)), 0.0, END_TIME, SAMPLES)

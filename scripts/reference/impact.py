@@ -52,13 +52,18 @@ def released(offset, sigma, omega_d, speed, t):
     return offset + math.exp(-sigma * t) * (a * math.cos(omega_d * t) + b * math.sin(omega_d * t))
 
 
-def peak_of(f, start, end, samples=1000):
-    """max over [start, end] of |f(t)|: the largest sample, refined between its neighbours by
-    golden-section search (f smooth, its samples dense enough to bracket the peak)."""
+def largest_of(f, start, end, samples=1000):
+    """max over [start, end] of f(t): the largest sample, refined between its neighbours by
+    golden-section search (f smooth near its maximum, its samples dense enough to bracket it)."""
     times = [start + (end - start) * i / samples for i in range(samples + 1)]
-    values = [abs(f(t)) for t in times]
+    values = [f(t) for t in times]
     i = max(range(samples + 1), key=values.__getitem__)
-    return golden_max(lambda t: abs(f(t)), times[max(i - 1, 0)], times[min(i + 1, samples)])
+    return golden_max(f, times[max(i - 1, 0)], times[min(i + 1, samples)])
+
+
+def peak_of(f, start, end, samples=1000):
+    """max over [start, end] of |f(t)|."""
+    return largest_of(lambda t: abs(f(t)), start, end, samples)
 
 
 def golden_argmax(f, lo, hi, iterations):
