@@ -14,12 +14,15 @@ namespace {
 /// ∂v_rel/∂q̇ q̈)/q̇²). Only what an element kind can make non-zero is written: the rest stays the
 /// zeros the workspace starts with (an element keeps its kind), and costs no product.
 template <class Scalar>
-void placeExit(const ElementKind& kind, std::size_t k, std::size_t e, std::size_t s, const Scalar& q, bool axes,
-               Workspace<Scalar>& ws) {
+void placeExit(const Model& model, const ElementKind& kind, std::size_t k, std::size_t e, std::size_t s,
+               const Scalar& q, bool axes, Workspace<Scalar>& ws) {
   const Matrix3<Scalar>& Re = ws.rotation[e];
   std::visit(Overloaded{
                  [&](const Offset& o) {
-                   const Vector3<Scalar> translation = Re * o.translation;
+                   // The translation carries derivatives only in a pass seeded in it.
+                   const Vector3<Scalar> translation = seedsAny(ws, o.translation)
+                                                           ? Vector3<Scalar>(Re * parameter(model, ws, o.translation))
+                                                           : Vector3<Scalar>(Re * model.vector(o.translation));
                    ws.rotation[s] = o.rotates ? Matrix3<Scalar>(Re * o.rotation) : Re;
                    ws.position[s] = ws.position[e] + translation;
                  },
@@ -68,7 +71,7 @@ void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
     const Scalar qi = element.coordinate >= 0 ? q[element.coordinate] : Scalar(0);
-    placeExit(element.kind, k, static_cast<std::size_t>(element.entry), static_cast<std::size_t>(element.exit), qi, axes,
+    placeExit(model, element.kind, k, static_cast<std::size_t>(element.entry), static_cast<std::size_t>(element.exit), qi, axes,
               ws);
   }
 }

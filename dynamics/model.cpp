@@ -54,6 +54,14 @@ FrameIndex cutFrameA(const CutKind& cut) {
   return std::visit([](const auto& c) { return c.frame_a; }, cut);
 }
 
+bool isGeometricParameter(const Model& model, ParameterIndex parameter) {
+  for (const KinematicElement& element : model.elements())
+    if (const auto* offset = std::get_if<Offset>(&element.kind))
+      if (std::find(offset->translation.begin(), offset->translation.end(), parameter) != offset->translation.end())
+        return true;
+  return false;
+}
+
 std::vector<int> allCoordinates(const Model& model) {
   std::vector<int> all(static_cast<std::size_t>(model.coordinateCount()));
   std::iota(all.begin(), all.end(), 0);
@@ -182,7 +190,10 @@ FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Ei
   if (!translation.allFinite() || !rotation.allFinite()) throw std::invalid_argument(name + ": offset must be finite");
   if ((rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm() > 1e-9 || rotation.determinant() < 0.0)
     throw std::invalid_argument(name + ": offset rotation is not a proper rotation matrix");
-  return addElement(name, parent, Offset{rotation, translation, rotation != Eigen::Matrix3d::Identity()}, false);
+  checkNewName(name);  // (before its parameters are added: a refused offset leaves none behind)
+  checkFrame(parent, name);
+  const ParameterVector3 parameters = addParameters(name + ".translation.", {"x", "y", "z"}, translation);
+  return addElement(name, parent, Offset{rotation, parameters, rotation != Eigen::Matrix3d::Identity()}, false);
 }
 
 FrameIndex Model::addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis) {

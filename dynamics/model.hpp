@@ -25,9 +25,14 @@ using FrameIndex = int;
 enum class ParameterIndex : int {};
 
 // ---- kinetostatic elements: each maps an entry frame to an exit frame (20)-(23) ----
-struct Offset {  ///< passive: constant rotation and translation, both in the entry frame
+/// Three parameters that form a vector (a centre of mass, the moments of an inertia tensor, a translation).
+using ParameterVector3 = std::array<ParameterIndex, 3>;
+
+/// Passive: a constant rotation and a translation, both in the entry frame. The translation is a
+/// geometric parameter ("NAME.translation.x", …): a design variable may move it, with exact gradients.
+struct Offset {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  ParameterVector3 translation;  ///< Model::vector gives its value
   bool rotates = false;  ///< rotation ≠ I: the kinematics multiply by it (most offsets only translate)
 };
 struct RevoluteJoint {  ///< active: rotation q about a unit axis of the entry frame
@@ -56,9 +61,6 @@ struct KinematicElement {
   /// The nearest active element between this one and the ground, not itself; -1 when there is none.
   int parent_joint;
 };
-
-/// Three parameters that form a vector (a centre of mass, the moments of an inertia tensor).
-using ParameterVector3 = std::array<ParameterIndex, 3>;
 
 /// Model::centreOfMass and Model::inertia assemble the vector and the tensor.
 struct Body {
@@ -330,6 +332,10 @@ class Model {
 int equationCount(const CutKind& cut);
 /// The frame a of a cut joint, whose axes express its reaction (CutReactionSensor).
 FrameIndex cutFrameA(const CutKind& cut);
+
+/// Whether a parameter places frames: a component of an offset's translation. The kinematics, the
+/// loop closure and the sensors depend on it, not only the forces.
+bool isGeometricParameter(const Model& model, ParameterIndex parameter);
 
 /// 0, 1, …, coordinateCount() − 1: every coordinate, driven ones included.
 std::vector<int> allCoordinates(const Model& model);

@@ -70,9 +70,14 @@ void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Sca
     const auto coordinate = [&]() -> const Scalar& { return q[element.coordinate]; };  // joints only
     std::visit(Overloaded{
                    [&](const Offset& o) {
-                     const auto [x, y] = inPlane(Re, o.translation.x(), o.translation.y());
-                     ws.position[s] = Vector3<Scalar>(ws.position[e].x() + x, ws.position[e].y() + y,
-                                                      ws.position[e].z() + o.translation.z());
+                     // The translation carries derivatives only in a pass seeded in it.
+                     const auto place = [&](const auto& translation) {
+                       const auto [x, y] = inPlane(Re, translation.x(), translation.y());
+                       ws.position[s] = Vector3<Scalar>(ws.position[e].x() + x, ws.position[e].y() + y,
+                                                        ws.position[e].z() + translation.z());
+                     };
+                     if (seedsAny(ws, o.translation)) place(parameter(model, ws, o.translation));
+                     else place(model.vector(o.translation));
                      if (o.rotates) turnInPlane(Re, Scalar(o.rotation(0, 0)), Scalar(o.rotation(1, 0)), ws.rotation[s]);
                      else copyPlaneBlock(Re, ws.rotation[s]);
                    },

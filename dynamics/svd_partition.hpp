@@ -102,6 +102,8 @@ class SvdPartition {
   const Eigen::VectorXd& singularValues() const { return singular_values_; }
   /// V₂: an orthonormal basis of the directions the constraints leave free (the degrees of freedom).
   const Eigen::MatrixXd& freeDirections() const;
+  /// V₁: an orthonormal basis of the directions the constraints fix (the row space of B), n × rank.
+  const Eigen::MatrixXd& constrainedDirections() const { return v1_; }
 
  private:
   /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat

@@ -17,8 +17,9 @@ void forEachMatrix(Point& point, F&& f) {
   auto& s = point.step;
   auto& c = point.closure;
   for (auto* matrix : {&s.mass, &s.damping, &s.stiffness, &s.parameters, &c.jacobian, &c.velocity_q, &c.acceleration_q,
-                       &c.velocity_projection, &c.acceleration_projection,
-                       &c.velocity_projection_parameters, &c.acceleration_projection_parameters})
+                       &c.velocity_projection, &c.acceleration_projection, &c.velocity_projection_parameters,
+                       &c.acceleration_projection_parameters, &c.position_parameters, &c.velocity_parameters,
+                       &c.acceleration_parameters})
     f(*matrix);
 }
 
@@ -50,7 +51,8 @@ bool TrajectoryDerivatives::packPoint(const PointDerivatives& point, const std::
   for (const ResponseJacobian& J : sensors) {
     if (!fits || out == end) return false;
     *out++ = J.value;
-    fits = packMatrix(J.position, out, end) && packMatrix(J.velocity, out, end) && packMatrix(J.acceleration, out, end);
+    fits = packMatrix(J.position, out, end) && packMatrix(J.velocity, out, end) &&
+           packMatrix(J.acceleration, out, end) && packMatrix(J.parameters, out, end);
   }
   // B's partition, with M factored when B has rows: the sweep copies it instead of computing it.
   const Eigen::Index m = point.closure.jacobian.rows(), nf = point.step.mass.rows();
@@ -67,19 +69,21 @@ void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& poin
     unpackMatrix(in, J.position);
     unpackMatrix(in, J.velocity);
     unpackMatrix(in, J.acceleration);
+    unpackMatrix(in, J.parameters);
   }
   const Eigen::Index m = point.closure.jacobian.rows(), nf = point.step.mass.rows();
   point.closure.partition.loadFactored(in, m, nf, point.step.mass);
 }
 
 Eigen::Index TrajectoryDerivatives::packedPointSize() const {
-  // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q (m nf); per sensor
-  // its value and three rows of nf; and two numbers for the shape of each of those matrices
-  // (forEachMatrix's 11, three per sensor); then B's partition and its factorization of M
-  // (SvdPartition::storedFactoredSize). packPoint refuses a point that would not fit.
+  // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q (m nf); ∂b/∂b,
+  // ∂ḃ/∂b, ∂b̈/∂b (m p at most); per sensor its value, three rows of nf and one of at most p; and two
+  // numbers for the shape of each of those matrices (forEachMatrix's 14, four per sensor); then B's
+  // partition and its factorization of M (SvdPartition::storedFactoredSize). packPoint refuses a
+  // point that would not fit.
   const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
   const auto sensors = static_cast<Eigen::Index>(functional_sensors_.size());
-  return 5 * nf * nf + 3 * nf * p + 3 * m * nf + sensors * (1 + 3 * nf) + 2 * (11 + 3 * sensors) +
+  return 5 * nf * nf + 3 * nf * p + 3 * m * nf + 3 * m * p + sensors * (1 + 3 * nf + p) + 2 * (14 + 4 * sensors) +
          SvdPartition::storedFactoredSize(m, nf);
 }
 

@@ -24,6 +24,7 @@ struct HalfSources {
 HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, const StepDerivatives& s,
                                     double half_over_weight, Eigen::MatrixXd& dpsi_db) {
   ResponseSeeds seeds = d.seeds(k);
+  if (seeds.parameters.cols() > 0) dpsi_db += seeds.parameters;  // the sensors' explicit ∂Ψ/∂b
   if (seeds.acceleration.cwiseAbs().maxCoeff() > 0.0) {
     Eigen::MatrixXd tbar, bbar;
     const Eigen::MatrixXd jacobian = d.constraintJacobian(k);
@@ -72,6 +73,12 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   // alone would make it first order). Eliminating p_k: w_k A + ½h ν̄ B̄ = R with A = M + ½h C + ¼h² K,
   // the transposed trapezoidal Newmark matrix. So w_k = ξ V₂ᵀ with V₂ the independent directions of
   // B_k, and ν̄ drops out against those of B̄: ξ (V₂ᵀ Aᵀ V̄₂) = R V̄₂.
+  if (problem.scene.model.constraintCount() > 0)
+    for (const DesignVariable& v : problem.design.variables)
+      if (isGeometricParameter(problem.scene.model, problem.scene.model.parameterIndex(v.parameter)))
+        throw std::invalid_argument("continuous adjoint: the design variable '" + v.parameter +
+                                    "' moves the loop closure, which these adjoint equations leave out (B s = 0); "
+                                    "use adjoint or direct");
   TrajectoryDerivatives d(problem, functionals, x, simulated);
   const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;
   const Eigen::Index N = d.timePoints() - 1, rows = d.functionalCount(), nf = d.freeCount();

@@ -18,8 +18,10 @@ struct ForwardStep {
   Eigen::MatrixXd q_pred, v_pred, iteration, top, bottom, a_newton, seeded;
 };
 
-/// dΨ/db += ∂Ψ/∂q S_q + ∂Ψ/∂q̇ S_v + ∂Ψ/∂q̈ S_a; nothing at a point without seeds.
+/// dΨ/db += ∂Ψ/∂q S_q + ∂Ψ/∂q̇ S_v + ∂Ψ/∂q̈ S_a, and the sensors' explicit ∂Ψ/∂b; nothing at a
+/// point without seeds.
 void accumulate(const ResponseSeeds& seeds, ForwardStep& step, Eigen::MatrixXd& dpsi_db) {
+  if (seeds.parameters.cols() > 0) dpsi_db += seeds.parameters;
   if (seeds.position.isZero(0.0) && seeds.velocity.isZero(0.0) && seeds.acceleration.isZero(0.0)) return;
   multiply(seeds.position, step.q, step.seeded);
   multiply(seeds.velocity, step.v, step.seeded, Accumulate::Add);
@@ -36,14 +38,12 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), p);
-  // t₀: q₀ and q̇₀ do not depend on b; f(q₀, q̇₀, q̈₀, λ₀; b) = 0 with b̈ = 0 gives
-  // [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b; 0].
+  // t₀: the initial state closed on the design's loops, and its accelerations.
   ForwardStep step;
-  step.q.setZero(nf, p);
-  step.v.setZero(nf, p);
-  const StepDerivatives initial = d.step(0);
-  step.a = solveAugmented(initial.mass, d.constraintJacobian(0), -initial.parameters, Eigen::MatrixXd::Zero(m, p),
-                          settings.svd_threshold);
+  InitialSensitivities initial = d.initialSensitivities();
+  step.q.swap(initial.q);
+  step.v.swap(initial.v);
+  step.a.swap(initial.a);
   accumulate(d.seeds(0), step, dpsi_db);
   AugmentedSolver solver(settings.svd_threshold);
   // The recursion goes as far as the last point with a seed: beyond it the sensitivities would only
@@ -55,7 +55,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   for (Eigen::Index k = 1; k <= last; ++k) {
     const TrajectoryDerivatives::PointDerivatives& point = points.next();
     // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
-    // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; B S_q̃ / (βh²)],
+    // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; (B S_q̃ + ∂b/∂b) / (βh²)],
     // A = M + γh C_T + βh² K_T.
     step.q_pred = step.q + h * step.v + (0.5 - beta) * h * h * step.a;
     step.v_pred = step.v + (1.0 - gamma) * h * step.a;
@@ -68,18 +68,20 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     multiply(s.stiffness, step.q_pred, step.top, Accumulate::Add);
     multiply(s.damping, step.v_pred, step.top, Accumulate::Add);
     multiply(c.jacobian, step.q_pred, step.bottom);
+    if (c.position_parameters.cols() > 0) step.bottom += c.position_parameters;
     solver.solve(-step.top, -step.bottom / (beta * h * h), step.a_newton);
     step.q = step.q_pred + beta * h * h * step.a_newton;
     step.v = step.v_pred + gamma * h * step.a_newton;
     if (m > 0) {
       // The M-orthogonal projections onto ḃ = 0 and b̈ = 0, differentiated:
-      // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q], then the same for q̈ with
-      // ∂b̈/∂(q, q̇).
+      // [M Bᵀ; B 0][S_v; ·] = [M S_v* − G_v S_q − P_v; −∂ḃ/∂q S_q − ∂ḃ/∂b], then the same for q̈
+      // with ∂b̈/∂(q, q̇, b).
       solver.setFactoredSymmetricMatrix(c.partition);  // M as the point factored it
       multiply(s.mass, step.v, step.top);
       multiply(c.velocity_projection, step.q, step.top, Accumulate::Subtract);
       step.top -= c.velocity_projection_parameters;
       multiply(c.velocity_q, step.q, step.bottom);
+      if (c.velocity_parameters.cols() > 0) step.bottom += c.velocity_parameters;
       solver.solve(step.top, -step.bottom, step.v);
       multiply(s.mass, step.a_newton, step.top);
       multiply(c.acceleration_projection, step.q, step.top, Accumulate::Subtract);
@@ -87,6 +89,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
       multiply(c.velocity_q, step.v, step.bottom);
       step.bottom *= 2.0;  // ∂b̈/∂q̇ S_v = 2 ∂ḃ/∂q S_v (ClosureDerivatives)
       multiply(c.acceleration_q, step.q, step.bottom, Accumulate::Add);
+      if (c.acceleration_parameters.cols() > 0) step.bottom += c.acceleration_parameters;
       solver.solve(step.top, -step.bottom, step.a);
     } else {
       step.a.swap(step.a_newton);

@@ -53,30 +53,31 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
   out.dpsi_db.setZero(bar.position.rows(), d.variableCount());
   solver.setConstraintPartition(c.partition);  // B's SVD, the point's, for the three solves
   if (loops) {
-    // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ), then
-    // q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ). Each hands the adjoint of its x* to `newton`, adds
-    // its share to those of qₖ and b, and leaves its t̄, b̄ in `out`.
+    // Back through the projections: q̈ₖ = L(M q̈* − G_a qₖ − P_a, −∂b̈/∂q qₖ − ∂b̈/∂q̇ q̇ₖ − ∂b̈/∂b),
+    // then q̇ₖ = L(M q̇* − G_v qₖ − P_v, −∂ḃ/∂q qₖ − ∂ḃ/∂b). Each hands the adjoint of its x* to
+    // `newton`, adds its share to those of qₖ and b, and leaves its t̄, b̄ in `out`.
     const auto backThroughProjection = [&](const Eigen::MatrixXd& xbar, const Eigen::MatrixXd& G,
                                            const Eigen::MatrixXd& closure_q, const Eigen::MatrixXd& P,
-                                           Eigen::MatrixXd& newton) {
+                                           const Eigen::MatrixXd& closure_b, Eigen::MatrixXd& newton) {
       solver.solveTransposed(xbar, out.tbar, out.bbar);
       multiply(out.tbar, s.mass, newton);
       multiply(out.tbar, G, out.product);
       multiply(out.bbar, closure_q, out.product, Accumulate::Add);
       out.q_pred -= out.product;
       multiply(out.tbar, P, out.dpsi_db, Accumulate::Subtract);
+      if (closure_b.cols() > 0) multiply(out.bbar, closure_b, out.dpsi_db, Accumulate::Subtract);
     };
     solver.setFactoredSymmetricMatrix(c.partition);  // M = Mᵀ as the point factored it
     backThroughProjection(bar.acceleration, c.acceleration_projection, c.acceleration_q,
-                          c.acceleration_projection_parameters, out.a_newton);
+                          c.acceleration_projection_parameters, c.acceleration_parameters, out.a_newton);
     out.v_total = bar.velocity;
     out.bbar *= 2.0;  // ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives); b̄ is solved for again below
     multiply(out.bbar, c.velocity_q, out.v_total, Accumulate::Subtract);
     backThroughProjection(out.v_total, c.velocity_projection, c.velocity_q, c.velocity_projection_parameters,
-                          out.v_pred);
+                          c.velocity_parameters, out.v_pred);
   }
   // Back through qₖ = q̃ + βh² q̈*, q̇* = ṽ + γh q̈* and Newton's system
-  // q̈* = L(−(∂f/∂b + K_T q̃ + C_T ṽ), −B q̃ / (βh²)) with A = M + γh C_T + βh² K_T.
+  // q̈* = L(−(∂f/∂b + K_T q̃ + C_T ṽ), −(B q̃ + ∂b/∂b) / (βh²)) with A = M + γh C_T + βh² K_T.
   out.a_total = out.a_newton + beta * h * h * out.q_pred + gamma * h * out.v_pred;
   out.iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
   solver.setTransposedMatrix(out.iteration);
@@ -86,6 +87,10 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
   if (loops) {
     multiply(out.bbar, c.jacobian, out.product);
     out.q_pred -= out.product / (beta * h * h);
+    if (c.position_parameters.cols() > 0) {
+      multiply(out.bbar, c.position_parameters, out.product);
+      out.dpsi_db -= out.product / (beta * h * h);
+    }
   }
   multiply(out.tbar, s.damping, out.v_pred, Accumulate::Subtract);
 }
@@ -115,8 +120,13 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
   // Adjoints of q_k, q̇_k, q̈_k (one row per constraint): their direct seeds, plus what flows back
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
   // Nothing flows back from the points after the last one with a seed: the sweep starts there.
+  // The sensors' explicit ∂Ψ/∂b at each point, once per point, beside the sweep.
+  const auto addExplicit = [&](const ResponseSeeds& seeds) {
+    if (seeds.parameters.cols() > 0) dpsi_db += seeds.parameters;
+  };
   Eigen::Index k = d.lastSeededPoint();
   ResponseSeeds bar = d.seeds(k), active;
+  addExplicit(bar);
   AugmentedSolver solver(settings.svd_threshold);
   BackwardStep back;
   std::vector<Eigen::Index> rows;
@@ -138,6 +148,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
       } else {
         d.seeds(0, bar);
       }
+      addExplicit(bar);
       for (std::size_t i = 0; i < rows.size(); ++i) {
         const Eigen::Index j = rows[i], r = static_cast<Eigen::Index>(i);
         dpsi_db.row(j) += back.dpsi_db.row(r);
@@ -149,14 +160,13 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
       nonZeroRows(bar, rows);
     }
   }
-  // t₀: q₀, q̇₀ do not depend on b; q̈₀ = L(−∂f/∂b, 0) with J = M.
+  // t₀: the adjoints of q₀, q̇₀, q̈₀ times their sensitivities, the start of `direct` (the initial
+  // state closed on the design's loops, and its accelerations).
   nonZeroRows(bar, rows);
   if (!rows.empty()) {
-    const StepDerivatives s = d.step(0);
-    Eigen::MatrixXd tbar, bbar;
-    solveAugmentedTransposed(s.mass, d.constraintJacobian(0), bar.acceleration(rows, Eigen::all),
-                             settings.svd_threshold, tbar, bbar);
-    dpsi_db(rows, Eigen::all) -= tbar * s.parameters;
+    const InitialSensitivities initial = d.initialSensitivities();
+    dpsi_db(rows, Eigen::all) += bar.position(rows, Eigen::all) * initial.q + bar.velocity(rows, Eigen::all) * initial.v +
+                                 bar.acceleration(rows, Eigen::all) * initial.a;
   }
   return d.gradient(dpsi_db);
 }

@@ -1,7 +1,9 @@
 #include "sensitivity/newmark_derivatives.hpp"
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 
 #include "dynamics/closure.hpp"
@@ -10,7 +12,9 @@
 #include "dynamics/residual.hpp"
 #include "dynamics/sensors.hpp"
 #include "dynamics/tangent.hpp"
+#include "sensitivity/augmented_solve.hpp"
 #include "sensitivity/forward_ad.hpp"
+#include "sensitivity/initial_state.hpp"
 #include "sensitivity/parameter_jacobian.hpp"
 #include "sensitivity/response_jacobian.hpp"
 
@@ -86,7 +90,10 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
     ad_parameter_.push_back(linear ? -1 : static_cast<int>(ad_parameter_indices_.size()));
     if (!linear) ad_parameter_indices_.push_back(index);
     linear_columns_read_kinematics_ = linear_columns_read_kinematics_ || linearForceParameterReadsKinematics(model_, index);
+    geometric_ = geometric_ || isGeometricParameter(model_, index);
   }
+  closure_rows_.resize(static_cast<std::size_t>(model_.constraintCount()));
+  std::iota(closure_rows_.begin(), closure_rows_.end(), 0);
   const std::vector<int>& free = model_.freeCoordinates();
   const std::vector<AdInput> free_q = adInputs(AdInput::Kind::Position, free);
   const std::vector<AdInput> free_v = adInputs(AdInput::Kind::Velocity, free);
@@ -207,7 +214,8 @@ Eigen::MatrixXd TrajectoryDerivatives::constraintJacobian(Eigen::Index k) {
 
 void TrajectoryDerivatives::sensorDerivatives(Scratch& s, const VectorX<AdScalar>& q, const VectorX<AdScalar>& v,
                                               const VectorX<AdScalar>& a, Eigen::Index first, Eigen::Index count) const {
-  // The pass's inputs are sensed_step_inputs_: free q [0, nf), parameters, free q̇, free q̈ (last nf).
+  // The pass's inputs are sensed_step_inputs_: free q [0, nf), the AD parameters, free q̇, free q̈
+  // (last nf).
   const Eigen::Index nf = freeCount(), velocities = firstVelocityInput();
   for (std::size_t i = 0; i < s.sensors.size(); ++i) {
     const AdScalar y = sensorValue(*s.sensors[i], s.ws, q, v, a);
@@ -218,6 +226,7 @@ void TrajectoryDerivatives::sensorDerivatives(Scratch& s, const VectorX<AdScalar
       if (input < nf) J.position[input] = y.derivatives()[j];
       else if (input >= velocities + nf) J.acceleration[input - velocities - nf] = y.derivatives()[j];
       else if (input >= velocities) J.velocity[input - velocities] = y.derivatives()[j];
+      else J.parameters[input - nf] = y.derivatives()[j];
     }
   }
 }
@@ -243,6 +252,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
     J.position.resize(nf);
     J.velocity.resize(nf);
     J.acceleration.resize(nf);
+    J.parameters.resize(static_cast<Eigen::Index>(ad_parameter_indices_.size()));
   }
   // Each projection's correction Δ and its minimum-norm multipliers μ (Bᵀμ = −M Δ, free rows), from
   // B's partition at the settings' threshold with M factored, the integrator's own where it kept
@@ -277,12 +287,13 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   // One evaluation per pass over the step's inputs (free q, the design parameters, free q̇) shares
   // the geometry at q_k between four functions of it, in rows [f; ḃ; b̈; f_v; f_a]: f at the state
   // Newton converged to (K_T, ∂f/∂b, C_T); the closure rates at the projected state, q̇ seeded the
-  // same way (∂ḃ/∂q, ∂b̈/∂q); and each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G and P). A pass
+  // same way (∂ḃ/∂q, ∂b̈/∂q, and ∂ḃ/∂b, ∂b̈/∂b); each projection's M(q)Δ + B(q)ᵀμ at q̇ = 0 (its G
+  // and P); and with a geometric variable b itself in rows [b] after them (∂b/∂b). A pass
   // of velocities alone evaluates f only, and writes only its rows: ∂b̈/∂q̇ = 2 ∂ḃ/∂q comes from the
   // passes over q (ClosureDerivatives), ḃ's derivative in q̇ is B, and M(q)Δ + B(q)ᵀμ does not depend
   // on q̇. With sensors to differentiate, free q̈ is seeded last, and each sensor is evaluated at the
   // projected state.
-  const Eigen::Index rows = m > 0 ? 3 * n + 2 * m : n;
+  const Eigen::Index rows = m > 0 ? 3 * n + 2 * m + (geometric_ ? m : 0) : n;
   const Eigen::Index velocities = firstVelocityInput();
   Eigen::MatrixXd& d = s.pass_jacobian;
   d.resize(rows, static_cast<Eigen::Index>(sensed_step_inputs_.size()));  // the widest pass: sized once
@@ -328,7 +339,11 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
       g.segment(n + 2 * m, n) = s.f;
       frameAccelerationsAtRest(model_, s.ws, s.correction_a);
       inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
-      g.tail(n) = s.f;
+      g.segment(2 * n + 2 * m, n) = s.f;
+      if (geometric_) {
+        closureEquations(model_, s.ws, Derivative::Position, s.closure_rates);
+        g.tail(m) = s.closure_rates;
+      }
     } else if (sensed) {  // only the sensors read the projected state
       projectedRates(state, first, count);
     }
@@ -355,6 +370,37 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
   copyParameterRows(d, free, n + 2 * m, nf, ad_parameter_, c.velocity_projection_parameters);
   copyRows(d, free, 2 * n + 2 * m, 0, nf, c.acceleration_projection);
   copyParameterRows(d, free, 2 * n + 2 * m, nf, ad_parameter_, c.acceleration_projection_parameters);
+  if (!geometric_) {
+    for (Eigen::MatrixXd* x : {&c.position_parameters, &c.velocity_parameters, &c.acceleration_parameters})
+      x->resize(m, 0);
+    return;
+  }
+  copyParameterRows(d, closure_rows_, 3 * n + 2 * m, nf, ad_parameter_, c.position_parameters);
+  copyParameterRows(d, closure_rows_, n, nf, ad_parameter_, c.velocity_parameters);
+  copyParameterRows(d, closure_rows_, n + m, nf, ad_parameter_, c.acceleration_parameters);
+}
+
+InitialSensitivities TrajectoryDerivatives::initialSensitivities() {
+  const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
+  PointDerivatives point;
+  pointAt(0, scratch_, point);
+  const StepDerivatives& s = point.step;
+  const ClosureDerivatives& c = point.closure;
+  InitialSensitivities out{Eigen::MatrixXd::Zero(nf, p), Eigen::MatrixXd::Zero(nf, p), {}};
+  Eigen::MatrixXd top = -s.parameters, bottom = Eigen::MatrixXd::Zero(m, p);
+  if (geometric_ && m > 0) {
+    // q₀ = q₀ˢ + V₁ z and q̇₀ = q̇₀ˢ + V₁ w on b = 0 and ḃ = 0 (initial_state.hpp) differentiated.
+    const Eigen::MatrixXd V1 = closingDirections(problem_.scene);
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> closing(c.jacobian * V1);
+    out.q = V1 * closing.solve(-c.position_parameters);
+    out.v = V1 * closing.solve(-(c.velocity_q * out.q + c.velocity_parameters));
+    top -= s.stiffness * out.q + s.damping * out.v;
+    bottom = -(c.acceleration_q * out.q + 2.0 * c.velocity_q * out.v + c.acceleration_parameters);
+  }
+  // f(q₀, q̇₀, q̈₀, λ₀; b) = 0 and b̈ = 0: [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b − K_T S_q − C_T S_v;
+  // −∂b̈/∂q S_q − ∂b̈/∂q̇ S_v − ∂b̈/∂b], ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives).
+  out.a = solveAugmented(s.mass, c.jacobian, top, bottom, settings().svd_threshold);
+  return out;
 }
 
 ClosureDerivatives TrajectoryDerivatives::closure(Eigen::Index k) {
@@ -399,6 +445,7 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
   out.position.setZero(m, nf);
   out.velocity.setZero(m, nf);
   out.acceleration.setZero(m, nf);
+  out.parameters.setZero(m, geometric_ ? variableCount() : 0);
   for (Eigen::Index j = 0; j < m; ++j) {
     const double weight = seedWeight(j, k);
     if (weight == 0.0) continue;
@@ -407,6 +454,9 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
     out.position.row(j) = weight * J.position;
     out.velocity.row(j) = weight * J.velocity;
     out.acceleration.row(j) = weight * J.acceleration;
+    if (!geometric_) continue;
+    for (std::size_t v = 0; v < ad_parameter_.size(); ++v)
+      if (ad_parameter_[v] >= 0) out.parameters(j, static_cast<Eigen::Index>(v)) = weight * J.parameters[ad_parameter_[v]];
   }
 }
 
@@ -414,7 +464,8 @@ void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSe
   const Trajectory& tr = response().trajectory;
   if (selectSensors(k, scratch))  // every selected sensor in one set of passes
     responseJacobians(model_, scratch.ws, scratch.sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k),
-                      model_.freeCoordinates(), scratch.sensor_jacobians);
+                      model_.freeCoordinates(), scratch.sensor_jacobians,
+                      geometric_ ? ad_parameter_indices_ : std::vector<ParameterIndex>{});
   sensorSeeds(k, scratch.sensor_slot, scratch.sensor_jacobians, out);
 }
 

@@ -41,15 +41,26 @@ struct ClosureDerivatives {
   Eigen::MatrixXd acceleration_q;  ///< ∂b̈/∂q at (q_k, q̇_k, q̈_k)
   Eigen::MatrixXd velocity_projection, acceleration_projection;  ///< G of each projection
   Eigen::MatrixXd velocity_projection_parameters, acceleration_projection_parameters;  ///< P of each
+  /// ∂b/∂b, ∂ḃ/∂b, ∂b̈/∂b: how the design variables move the closure itself (m × p). They are not
+  /// zero only for a geometric variable (isGeometricParameter); without one they have no columns.
+  Eigen::MatrixXd position_parameters, velocity_parameters, acceleration_parameters;
   /// B's SVD partition at the integrator's threshold with M factored (with cut joints), as the
   /// projections' multipliers were computed with it: the sweeps' solves at this point take it
   /// (AugmentedSolver::setConstraintPartition, setFactoredSymmetricMatrix).
   SvdPartition partition;
 };
 
-/// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates.
+/// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates; and the explicit
+/// ∂Ψ_j/∂b of the sensors at time point k at a fixed state (a geometric variable moves the point a
+/// sensor reads), one column per design variable, or no columns when no variable is geometric.
 struct ResponseSeeds {
-  Eigen::MatrixXd position, velocity, acceleration;
+  Eigen::MatrixXd position, velocity, acceleration, parameters;
+};
+
+/// d(q₀, q̇₀, q̈₀)/db, free coordinates × design variables: the direct method's start. q₀ and q̇₀
+/// depend on b only through a geometric variable that moves a loop (initial_state.hpp).
+struct InitialSensitivities {
+  Eigen::MatrixXd q, v, a;
 };
 
 class TrajectoryDerivatives {
@@ -94,6 +105,10 @@ class TrajectoryDerivatives {
   ResponseSeeds seeds(Eigen::Index k);
   /// The same into `out`, reusing its storage.
   void seeds(Eigen::Index k, ResponseSeeds& out);
+  /// d(q₀, q̇₀, q̈₀)/db: with a geometric variable on a loop, the initial state closed along the
+  /// scene's directions (initial_state.hpp) differentiated; then the initial accelerations'
+  /// equations f = 0, b̈ = 0 differentiated (as the integrator solves them, in one solve).
+  InitialSensitivities initialSensitivities();
   /// The last time point where some functional has a seed weight that is not zero (it depends on the
   /// state there), 0 when there is none after t₀. The seeds of every later point are exact zeros, so
   /// no sweep needs those points: the direct sensitivities stop there, the adjoint starts there.
@@ -130,6 +145,10 @@ class TrajectoryDerivatives {
   std::vector<ParameterIndex> ad_parameter_indices_;  ///< the model indices of the AD passes' parameters
   /// Whether some linear variable's column reads the frame velocities (linearForceParameterReadsKinematics).
   bool linear_columns_read_kinematics_ = false;
+  /// Whether some design variable is geometric (isGeometricParameter): then the closure's own
+  /// derivatives in b and the sensors' explicit ones are formed.
+  bool geometric_ = false;
+  std::vector<int> closure_rows_;  ///< 0, …, m − 1
   /// The inputs of the AD passes, listed once: free q, the design parameters f is not linear in, free
   /// q̇ (last, so that a pass of velocities alone can skip what does not depend on them).
   std::vector<AdInput> step_inputs_;
