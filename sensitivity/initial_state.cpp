@@ -66,7 +66,7 @@ void designInitialState(const Scene& scene, const Model& model, Eigen::VectorXd&
     for (std::size_t c = 0; c < model.cuts().size(); ++c) {
       const int rows = equationCount(model.cuts()[c].kind);
       if (!(b.segment(row, rows).cwiseAbs().maxCoeff() <= kTolerance)) {
-        names += (names.empty() ? "" : ", ") + model.cuts()[c].name;
+        names += (names.empty() ? "'" : ", '") + model.cuts()[c].name + "'";
         open.push_back(static_cast<int>(c));
       }
       row += rows;

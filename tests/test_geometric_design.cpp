@@ -1,0 +1,219 @@
+// Geometric design variables: an offset's translation (NAME.translation.x, y, z) moves frames, so
+// the kinematics, the loop closure b(q; b) and the sensors depend on it directly. The exact methods
+// carry ∂b/∂b, ∂ḃ/∂b and ∂b̈/∂b in the closure rows, the sensors' explicit ∂y/∂b, and the initial
+// state that a design closes again on its loops (sensitivity/initial_state.hpp). Checked against
+// central differences of the simulation, against each other, and on a sensor whose derivative is
+// known exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "dynamics/closure.hpp"
+#include "dynamics/kinematics.hpp"
+#include "dynamics/svd_partition.hpp"
+#include "dynamics/tangent.hpp"
+#include "problems/scene_file.hpp"
+#include "sensitivity/continuous_adjoint.hpp"
+#include "sensitivity/direct_sensitivity.hpp"
+#include "sensitivity/discrete_adjoint.hpp"
+#include "sensitivity/initial_state.hpp"
+#include "tests/gradient_checks.hpp"
+#include "tests/sensitivity_scenes.hpp"
+
+namespace mbsopt {
+namespace {
+
+using test::relativeGap;
+
+SceneSource shippedScene(const std::string& name) {
+  return readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
+}
+
+/// The four-bar swinging under gravity for 1 s with its three link lengths, the coupler's end
+/// off its axis and a mass as the design: the cost on the crank's acceleration (active), a
+/// position's extreme, an integral and a final value.
+DesignProblem fourBarLengths() {
+  SceneSource source = shippedScene("four_bar");
+  source.text += R"(  - {name: crank_rate, type: joint, joint: crank, quantity: velocity}
+  - {name: crank_acc, type: joint, joint: crank, quantity: acceleration}
+design:
+  variables:
+    - {parameter: crank_tip.translation.x, lower: 0.3, upper: 0.5}
+    - {parameter: rocker_pivot.translation.x, lower: 0.9, upper: 1.1}
+    - {parameter: rocker_tip.translation.x, lower: 0.7, upper: 0.9}
+    - {parameter: coupler_tip.translation.y, lower: -0.1, upper: 0.1}
+    - {parameter: coupler_bar.mass, lower: 1, upper: 3}
+  cost: {sensor: crank_acc, of: max_abs}
+  artificial: {initial: 5, lower: 0, upper: 200}
+  constraints:
+    - {sensor: joint_c_y, of: max_abs, bound: 0.7}
+    - {sensor: crank_rate, of: integral, bound: -1}
+    - {sensor: joint_c_x, of: final, bound: 0.9}
+)";
+  return loadDesignProblem(source, {{"settings.end_time", 1.0}});
+}
+
+TEST(GeometricDesign, AnOffsetsTranslationIsAParameterThatMovesItsFrame) {
+  Model model = loadScene(shippedScene("four_bar")).scene.model;
+  EXPECT_EQ(model.parameter("crank_tip.translation.x"), 0.4);
+  EXPECT_EQ(model.parameter("rocker_pivot.translation.y"), 0.0);
+  model.setParameter("crank_tip.translation.x", 0.45);
+  model.setParameter("rocker_pivot.translation.y", 0.1);
+  Workspace<double> ws(model);
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(model.coordinateCount());
+  frameGeometry(model, ws, q);
+  EXPECT_EQ(ws.position[static_cast<std::size_t>(model.frame("crank_tip"))], Eigen::Vector3d(0.45, 0.0, 0.0));
+  EXPECT_EQ(ws.position[static_cast<std::size_t>(model.frame("rocker_pivot"))], Eigen::Vector3d(1.0, 0.1, 0.0));
+  EXPECT_THROW(model.setParameter("crank_tip.translation.z", std::nan("")), std::invalid_argument);
+}
+
+// The initial state of a design that opens the loop: closed again (b = 0, ḃ = 0 to the assembly's
+// tolerance), moved only along the scene's V₁ (its V₂ components, the scene's degrees of freedom,
+// stay those the user gave), and at the scene's own parameters the scene's state to the bit.
+TEST(GeometricDesign, AnOpenedLoopIsClosedAgainAlongTheScenesConstrainedDirections) {
+  const Scene scene = loadScene(shippedScene("four_bar")).scene;
+  Eigen::VectorXd q, v;
+  designInitialState(scene, scene.model, q, v);
+  EXPECT_TRUE(q.cwiseEqual(scene.q0).all());
+  EXPECT_TRUE(v.cwiseEqual(scene.v0).all());
+
+  Model model = scene.model;
+  model.setParameter("crank_tip.translation.x", 0.45);
+  model.setParameter("rocker_tip.translation.x", 0.75);
+  designInitialState(scene, model, q, v);
+  Workspace<double> ws(model);
+  Eigen::VectorXd b;
+  Eigen::MatrixXd B;
+  constraintJacobian(model, ws, q, model.freeCoordinates(), b, B);
+  EXPECT_LE(b.cwiseAbs().maxCoeff(), 1e-12);
+  frameRates(model, ws, v, v, KinematicsLevel::Velocity);
+  closureEquations(model, ws, Derivative::Velocity, b);
+  EXPECT_LE(b.cwiseAbs().maxCoeff(), 1e-12);
+  Workspace<double> scene_ws(scene.model);
+  Eigen::MatrixXd B_scene;
+  constraintJacobian(scene.model, scene_ws, scene.q0, scene.model.freeCoordinates(), b, B_scene);
+  SvdPartition partition(scene.settings.svd_threshold);
+  partition.setConstraintJacobian(B_scene);
+  const Eigen::VectorXd moved = q - scene.q0;  // every coordinate of the four-bar is free
+  EXPECT_GT(moved.norm(), 1e-2);
+  EXPECT_LE((partition.freeDirections().transpose() * moved).norm(), 1e-14 * moved.norm());
+  EXPECT_LE((partition.freeDirections().transpose() * (v - scene.v0)).norm(), 1e-14);
+}
+
+// A design whose loop cannot close (a rocker too short to reach the coupler) is an error that names
+// the cut joint, not a simulation that starts off the loop.
+TEST(GeometricDesign, ALoopThatCannotCloseAtADesignIsNamed) {
+  const Scene scene = loadScene(shippedScene("four_bar")).scene;
+  Model model = scene.model;
+  model.setParameter("rocker_tip.translation.x", 0.1);  // 0.4 + 0.1 + 1 … the bars cannot meet at crank 0
+  model.setParameter("coupler_tip.translation.x", 0.3);
+  Eigen::VectorXd q, v;
+  try {
+    designInitialState(scene, model, q, v);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'loop'"), std::string::npos) << e.what();
+  }
+}
+
+// A dynamic closed loop: the lengths enter B, the closure's rates, M and Bᵀλ (the projections' P), and
+// the initial state. Adjoint = direct to round-off; both = central differences at the best step to
+// 1e-6 of each row (measured 4e-10 … 2e-8, the simulation's Newton tolerance over the step).
+TEST(GeometricDesign, FourBarLengthsAdjointEqualsDirectAndCentralDifferences) {
+  const DesignProblem problem = fourBarLengths();
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient direct = directGradient(problem, functionals, x);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  for (Eigen::Index i = 0; i < 4; ++i) EXPECT_GT(direct.constraints.col(i).cwiseAbs().maxCoeff(), 1e-2) << i;
+  EXPECT_LE(relativeGap(adjoint.constraints, direct.constraints), 1e-12);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+  // At a design where every length differs from the scene's, the initial state is closed again.
+  Eigen::VectorXd moved = x;
+  moved.head(4) << 0.45, 1.05, 0.75, 0.04;
+  const DesignGradient at_moved = adjointGradient(problem, functionals, moved);
+  EXPECT_LE(relativeGap(directGradient(problem, functionals, moved).constraints, at_moved.constraints), 1e-12);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, moved, at_moved, 1e-6);
+}
+
+// A kinematic loop driven in time (no degree of freedom left): the slider's acceleration, a cost
+// below its peak so that it is active, depends on the crank's and the rod's lengths and the rail's
+// height through the closure alone, ∂b̈/∂b included.
+TEST(GeometricDesign, SliderCrankAccelerationsMatchCentralDifferences) {
+  SceneSource source = shippedScene("slider_crank");
+  source.text += R"(design:
+  variables:
+    - {parameter: crank_pin.translation.x, lower: 0.05, upper: 0.15}
+    - {parameter: conrod_end.translation.x, lower: 0.3, upper: 0.6}
+    - {parameter: rail.translation.y, lower: 0.0, upper: 0.1}
+  cost: {sensor: slider_a, of: max_abs}
+  artificial: {initial: 5, lower: 0, upper: 200}
+  constraints:
+    - {sensor: rod_angle, of: max_abs, bound: 0.15}
+)";
+  const DesignProblem problem = loadDesignProblem(source);
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  EXPECT_GT(adjoint.constraints.leftCols(3).cwiseAbs().maxCoeff(), 1.0);
+  EXPECT_LE(relativeGap(directGradient(problem, functionals, x).constraints, adjoint.constraints), 1e-12);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+}
+
+// An open spatial chain with the elbow's offset as the design: all three methods, the continuous
+// adjoint included (no loop), against central differences.
+TEST(GeometricDesign, OpenChainOffsetMatchesCentralDifferencesByEveryMethod) {
+  std::string text = test::kOpenChainProblem;
+  const std::string variables = "    - {parameter: elbow_spring.k, lower: 1, upper: 100, scale: 10}\n";
+  text.replace(text.find(variables), variables.size(),
+               "    - {parameter: elbow_point.translation.z, lower: -1.5, upper: -0.5}\n"
+               "    - {parameter: elbow_point.translation.x, lower: -0.3, upper: 0.3}\n");
+  const DesignProblem problem = loadDesignProblem({"chain.yaml", text});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  EXPECT_GT(adjoint.constraints.leftCols(2).cwiseAbs().maxCoeff(), 1e-2);
+  EXPECT_LE(relativeGap(directGradient(problem, functionals, x).constraints, adjoint.constraints), 1e-12);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+  // The continuous adjoint discretises the continuous equations: its own O(h²) error (h = 2 ms).
+  EXPECT_LE(relativeGap(continuousAdjointGradient(problem, functionals, x).constraints, adjoint.constraints), 1e-2);
+}
+
+// A sensor on a frame fixed to the ground by an offset reads the offset's value and nothing of the
+// state: d(final x)/d(translation.x) = 1 exactly, from the explicit ∂y/∂b alone.
+TEST(GeometricDesign, ASensorOnAMovedFrameHasTheExplicitDerivative) {
+  SceneSource source = shippedScene("pendulum");
+  const std::string elements = "elements:\n";
+  source.text.replace(source.text.find(elements), elements.size(),
+                      elements + "  - {name: marker, type: offset, parent: ground, translation: [0.3, 0.2, 0]}\n");
+  source.text += R"(  - {name: marker_x, type: point, frame: marker, point: [0, 0, 0], quantity: position, component: x}
+design:
+  variables: [{parameter: marker.translation.x, lower: 0, upper: 1}]
+  cost: {sensor: angle, of: max_abs}
+  artificial: {initial: 2, lower: 0, upper: 4}
+  constraints: [{sensor: marker_x, of: final, bound: 0.5}]
+)";
+  const DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 0.5}});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const Eigen::Index row = functionals.size() - 1;
+  EXPECT_EQ(directGradient(problem, functionals, x).constraints(row, 0), 1.0);
+  EXPECT_EQ(adjointGradient(problem, functionals, x).constraints(row, 0), 1.0);
+  EXPECT_EQ(continuousAdjointGradient(problem, functionals, x).constraints(row, 0), 1.0);
+}
+
+TEST(GeometricDesign, TheContinuousAdjointRefusesAVariableThatMovesALoop) {
+  const DesignProblem problem = fourBarLengths();
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  try {
+    continuousAdjointGradient(problem, functionals, initialPoint(problem));
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'crank_tip.translation.x' moves the loop closure"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mbsopt
