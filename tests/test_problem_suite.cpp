@@ -35,6 +35,9 @@ const fs::path kSuite = fs::path(MBSOPT_SOURCE_DIR) / "problems" / "suite";
 /// and Ipopt on the parallelogram.
 const std::map<std::string, std::vector<std::string>> kReachedBy = {
     {"parallelogram_buffer", {"sdcc", "slsqp", "mma"}},
+    // An equality, which MMA and CCSAQ cannot take; Ipopt stops by its own tolerance 1.5e-7 short
+    // of the exact vertex, outside the reference's 1e-9 (README).
+    {"press_slider_crank", {"sdcc", "slsqp"}},
     {"shock_isolator", {"sdcc", "slsqp", "mma", "ccsaq"}},
     {"spring_floor", {"sdcc", "slsqp", "mma", "ipopt"}},  // CCSAQ never lowers b_{k+1} there (README)
     {"spring_preload", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
@@ -103,7 +106,9 @@ void expectSameNumbers(const nlohmann::json& a, const nlohmann::json& b, const s
   if (a.is_object() || a.is_array()) {
     ASSERT_EQ(a.size(), b.size()) << where;
     for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j) {
-      if (a.is_object()) ASSERT_EQ(i.key(), j.key()) << where;
+      if (a.is_object()) {
+        ASSERT_EQ(i.key(), j.key()) << where;
+      }
       expectSameNumbers(*i, *j, where + "/" + (a.is_object() ? i.key() : "[]"));
     }
   } else if (a.is_number()) {
@@ -118,7 +123,7 @@ void expectSameNumbers(const nlohmann::json& a, const nlohmann::json& b, const s
 // 20 s and the four-bar's 4 min: run by hand, `"command"` in each file).
 TEST(ProblemSuite, TheQuickReferencesAreWhatTheirScriptsPrint) {
   const fs::path directory = scratch();
-  for (const std::string name : {"spring_floor", "spring_preload", "spring_return"}) {
+  for (const std::string name : {"press_slider_crank", "spring_floor", "spring_preload", "spring_return"}) {
     const nlohmann::json reference = referenceOf(kSuite / (name + ".yaml"));
     const fs::path printed = directory / (name + ".json");
     const std::string command = "python3 -B " + (fs::path(MBSOPT_SOURCE_DIR) / "scripts" / "reference" / (name + ".py")).string() +
