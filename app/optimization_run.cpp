@@ -35,14 +35,32 @@ bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngle
 /// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
 std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
 
-/// max |y| over the time grid of every sensor the cost and the constraints use.
+/// The key of the cost's own functional: its sensor's responseKey for an extreme, `integral_NAME` or
+/// `rms_NAME` (with `_deg` for angles, in degrees) for an exact cost.
+std::string costKey(const DesignProblem& problem) {
+  const ResponseCost& cost = problem.design.cost;
+  const Sensor& sensor = problem.scene.model.sensors()[static_cast<std::size_t>(sensorIndex(problem.scene.model, cost.sensor))];
+  if (cost.of != ResponseMeasure::Integral && cost.of != ResponseMeasure::Rms) return responseKey(sensor);
+  return (cost.of == ResponseMeasure::Integral ? "integral_" : "rms_") + sensor.name + (isAngle(sensor) ? "_deg" : "");
+}
+
+/// max |y| over the time grid of every sensor the cost and the constraints use, and an exact cost's
+/// own value (costKey).
 nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
-  const auto& sensors = nlp.problem().scene.model.sensors();
+  const DesignProblem& problem = nlp.problem();
+  const auto& sensors = problem.scene.model.sensors();
   nlohmann::json out = nlohmann::json::object();
+  const auto inUnits = [&](const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; };
   for (const ConstraintFunctional& f : nlp.functionals()) {
     const Sensor& sensor = sensors[static_cast<std::size_t>(f.sensor)];
-    const double largest = response.trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff();
-    out[responseKey(sensor)] = isAngle(sensor) ? largest * 180.0 / std::numbers::pi : largest;
+    out[responseKey(sensor)] = inUnits(sensor, response.trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff());
+  }
+  if (const ResponseMeasure of = problem.design.cost.of; of == ResponseMeasure::Integral || of == ResponseMeasure::Rms) {
+    const int index = sensorIndex(problem.scene.model, problem.design.cost.sensor);
+    const TimeMeasure measure = of == ResponseMeasure::Integral ? TimeMeasure::Integral : TimeMeasure::RootMeanSquare;
+    const double value =
+        evaluateTimeFunctional(measure, response.trajectory.time, response.trajectory.sensors.col(index)).value;
+    out[costKey(problem)] = inUnits(sensors[static_cast<std::size_t>(index)], value);
   }
   return out;
 }
@@ -128,7 +146,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.responses = responses(nlp, final);
   run.limit_excess = limitExcess(nlp, final);
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
-  run.cost_response = responseKey(nlp.problem().scene.model.sensors()[static_cast<std::size_t>(cost_sensor)]);
+  run.cost_response = costKey(nlp.problem());
+  run.cost_sensor = nlp.problem().design.cost.sensor;
   run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
   run.time = final.trajectory.time;
   run.initial_history = initial.trajectory.sensors.col(cost_sensor);

@@ -46,11 +46,12 @@ struct OptimizationRun {
   /// did not say which point an iteration was.
   std::vector<std::vector<double>> iterate_designs;
   nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
-  std::string cost_response;   ///< the key in `responses` of the cost's sensor
+  std::string cost_response;   ///< the key in `responses` of the cost's own functional (max_abs_, rms_, integral_)
   /// max over the problem's constraints of (max over the time grid of ±y) − bound, in the sensor's
   /// units (angles in degrees): ≤ 0 when every limit holds on the grid, whatever the formulation.
   double limit_excess = 0.0;
-  double initial_cost = 0.0;   ///< max |y| of the cost's sensor at the start
+  std::string cost_sensor;     ///< the cost's sensor
+  double initial_cost = 0.0;   ///< the cost's functional (cost_response) at the start
   double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
   /// The optimizer's evaluations (simulations and gradients) in simulations: their thread time
   /// (DesignNlp::evaluationThreadSeconds: each one's wall time times the threads it held) over

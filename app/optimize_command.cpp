@@ -29,7 +29,7 @@ void plotRun(const std::string& directory, const std::string& problem, const Opt
   history.push_back(designPanel(run));
   plotPanels(directory + "/history", "optimisation of " + problem, history);
   PlotPanel response{.xlabel = "t [s]",
-                     .ylabel = run.cost_response.substr(std::string("max_abs_").size()) + " (SI)",
+                     .ylabel = run.cost_sensor + " (SI)",
                      .markers = false};
   PlotSeries initial{"start", {}}, final{"final design", {}};
   for (Eigen::Index k = 0; k < run.time.size(); ++k) {

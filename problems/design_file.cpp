@@ -8,13 +8,14 @@ namespace mbsopt {
 
 namespace {
 
-/// `of:` among `choices` (max_abs, max, and for constraints integral, final).
+/// `of:` among `choices` (max_abs, max, integral, rms, and for constraints min, final).
 ResponseMeasure readMeasure(const MapReader& entry, std::initializer_list<const char*> choices) {
   const std::string of = entry.choice("of", choices, "max_abs");
   return of == "max"        ? ResponseMeasure::Max
          : of == "min"      ? ResponseMeasure::Min
          : of == "integral" ? ResponseMeasure::Integral
          : of == "final"    ? ResponseMeasure::FinalValue
+         : of == "rms"      ? ResponseMeasure::Rms
                             : ResponseMeasure::MaxAbs;
 }
 
@@ -64,7 +65,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
 
   const MapReader cost(context, design.required("cost"), "design.cost");
   cost.allowKeys({"sensor", "of"});
-  out.cost = {readSensor(cost, model), readMeasure(cost, {"max_abs", "max"})};
+  out.cost = {readSensor(cost, model), readMeasure(cost, {"max_abs", "max", "integral", "rms"})};
 
   const MapReader artificial(context, design.required("artificial"), "design.artificial");
   artificial.allowKeys({"initial", "lower", "upper", "scale"});
@@ -74,7 +75,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   for (const YamlNode& node : readList(context, design.node()["constraints"], "design.constraints")) {
     const MapReader c(context, node, "design constraint");
     c.allowKeys({"sensor", "of", "bound", "equals"});
-    ResponseConstraint constraint{readSensor(c, model), readMeasure(c, {"max_abs", "max", "min", "integral", "final"})};
+    ResponseConstraint constraint{readSensor(c, model), readMeasure(c, {"max_abs", "max", "min", "integral", "final", "rms"})};
     constraint.equality = c.has("equals");
     if (constraint.equality && c.has("bound")) c.fail("equals", "a constraint has a bound or 'equals', not both");
     if (!constraint.equality && !c.has("bound")) c.fail("sensor", "a constraint needs a bound (or 'equals')");

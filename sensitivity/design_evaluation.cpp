@@ -11,9 +11,10 @@ namespace mbsopt {
 
 namespace {
 
-/// φ(t_k) = sign · y(t_k) − offset − b_{k+1} (when the functional uses it), DesignProblem docs.
+/// φ(t_k) = sign · y(t_k) − offset − b_{k+1} (when the functional takes it in its samples), DesignProblem docs.
 Eigen::VectorXd violation(const ConstraintFunctional& f, const Eigen::MatrixXd& sensors, double artificial) {
-  return (f.sign * sensors.col(f.sensor).array() - f.offset - (f.uses_artificial ? artificial : 0.0)).matrix();
+  const double b = f.artificial == ArtificialUse::InSamples ? artificial : 0.0;
+  return (f.sign * sensors.col(f.sensor).array() - f.offset - b).matrix();
 }
 
 }  // namespace
@@ -42,7 +43,8 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
     const ConstraintFunctional& f = functionals[j];
     out.functionals.push_back(evaluateTimeFunctional(f.measure, out.trajectory.time, violation(f, out.trajectory.sensors, out.cost),
                                                      problem.design.transcription.rho));
-    out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - f.tolerance;
+    const double b = f.artificial == ArtificialUse::AfterMeasure ? out.cost : 0.0;
+    out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - f.level - b - f.tolerance;
   }
 }
 
@@ -50,8 +52,10 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
                                  const DesignResponse& response) {
   Eigen::VectorXd column = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(functionals.size()));
   for (std::size_t j = 0; j < functionals.size(); ++j)
-    if (functionals[j].uses_artificial)  // ∂φ_k/∂b = −1 at every k
+    if (functionals[j].artificial == ArtificialUse::InSamples)  // ∂φ_k/∂b = −1 at every k
       column[static_cast<Eigen::Index>(j)] = -response.functionals[j].gradient.sum() * problem.design.artificial.scale;
+    else if (functionals[j].artificial == ArtificialUse::AfterMeasure)  // measure(φ) − b
+      column[static_cast<Eigen::Index>(j)] = -problem.design.artificial.scale;
   return column;
 }
 

@@ -46,17 +46,21 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
       throw std::invalid_argument("design: " + defect);
     if (equality && of != ResponseMeasure::Integral && of != ResponseMeasure::FinalValue)
       throw std::invalid_argument("design: an equality on '" + sensor + "' needs an exact functional (integral or final)");
+    // The cost's epigraph: b_{k+1} in the samples of a transcribed extreme, after an exact functional.
+    const ArtificialUse in_samples = artificial ? ArtificialUse::InSamples : ArtificialUse::None;
+    const ArtificialUse after = artificial ? ArtificialUse::AfterMeasure : ArtificialUse::None;
     if (of == ResponseMeasure::Integral) {
-      functionals.push_back(
-          {sensor + "_integral", index, 1.0, bound / duration, false, TimeMeasure::Integral, 0.0, equality});
+      functionals.push_back({sensor + "_integral", index, 1.0, bound / duration, after, TimeMeasure::Integral, 0.0, equality});
+    } else if (of == ResponseMeasure::Rms) {  // √((1/τ)∫y²dt) − bound (− b) ≤ 0
+      functionals.push_back({sensor + "_rms", index, 1.0, 0.0, after, TimeMeasure::RootMeanSquare, 0.0, false, bound});
     } else if (of == ResponseMeasure::FinalValue) {
-      functionals.push_back({sensor + "_final", index, 1.0, bound, false, TimeMeasure::FinalValue, 0.0, equality});
+      functionals.push_back({sensor + "_final", index, 1.0, bound, after, TimeMeasure::FinalValue, 0.0, equality});
     } else if (of == ResponseMeasure::Min) {  // min y ≥ bound: −y + bound ≤ 0
-      functionals.push_back({sensor + "_min", index, -1.0, -bound, artificial, t.measure, t.tolerance});
+      functionals.push_back({sensor + "_min", index, -1.0, -bound, in_samples, t.measure, t.tolerance});
     } else {  // y − bound (− b) ≤ 0, and −y − bound (− b) ≤ 0 for MaxAbs
-      functionals.push_back({sensor + "_above", index, 1.0, bound, artificial, t.measure, t.tolerance});
+      functionals.push_back({sensor + "_above", index, 1.0, bound, in_samples, t.measure, t.tolerance});
       if (of == ResponseMeasure::MaxAbs)
-        functionals.push_back({sensor + "_below", index, -1.0, bound, artificial, t.measure, t.tolerance});
+        functionals.push_back({sensor + "_below", index, -1.0, bound, in_samples, t.measure, t.tolerance});
     }
   };
   add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true, false);  // (17)-(19): ±y − b_{k+1} ≤ 0
@@ -93,8 +97,8 @@ double applyDesign(const DesignProblem& problem, const Eigen::VectorXd& x, Model
 }
 
 void validate(const DesignProblem& problem) {
-  if (problem.design.cost.of != ResponseMeasure::MaxAbs && problem.design.cost.of != ResponseMeasure::Max)
-    throw std::invalid_argument("the cost is the extreme of a sensor over time (max_abs or max)");
+  if (const ResponseMeasure of = problem.design.cost.of; of == ResponseMeasure::Min || of == ResponseMeasure::FinalValue)
+    throw std::invalid_argument("the cost is a sensor's extreme over time (max_abs or max), its integral or its rms");
   const std::vector<std::string> names = problem.scene.model.parameterNames();
   for (const DesignVariable& v : problem.design.variables) {
     if (std::find(names.begin(), names.end(), v.parameter) == names.end())

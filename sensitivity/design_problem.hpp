@@ -28,11 +28,12 @@ struct ArtificialVariable {
 };
 
 /// What of a response over time a cost or constraint is about: its extreme, max |y| or max y (through
-/// the transcription), or, for constraints only, its minimum min y (transcribed too), its integral
-/// ∫₀^τ y dt or its final value y(τ) (exact functionals, not transcribed).
-enum class ResponseMeasure { MaxAbs, Max, Min, Integral, FinalValue };
+/// the transcription); its integral ∫₀^τ y dt or its root mean square √((1/τ)∫₀^τ y² dt) (exact
+/// functionals, not transcribed); for constraints only, its minimum min y (transcribed) or its final
+/// value y(τ) (exact).
+enum class ResponseMeasure { MaxAbs, Max, Min, Integral, FinalValue, Rms };
 
-/// Minimise the extreme of a sensor over time (MaxAbs or Max).
+/// Minimise a sensor's extreme over time (MaxAbs or Max), its integral or its RMS.
 struct ResponseCost {
   std::string sensor;
   ResponseMeasure of = ResponseMeasure::MaxAbs;
@@ -68,17 +69,25 @@ struct DesignProblem {
   DesignDescription design;
 };
 
-/// One transcribed constraint: measure(φ) − tolerance ≤ 0 (= 0 for an equality) with
-/// φ(t) = sign · y(t) − offset − (uses_artificial ? b_{k+1} : 0).
+/// How a transcribed constraint uses the artificial variable b_{k+1}.
+enum class ArtificialUse {
+  None,
+  InSamples,     ///< φ(t) = sign · y(t) − offset − b_{k+1}: the epigraph of an extreme (17)-(19)
+  AfterMeasure,  ///< measure(φ) − b_{k+1}: the epigraph of an exact cost (an integral, an RMS)
+};
+
+/// One transcribed constraint: measure(φ) − level − (b_{k+1} after the measure) − tolerance ≤ 0 (= 0
+/// for an equality) with φ(t) = sign · y(t) − offset − (b_{k+1} in the samples).
 struct ConstraintFunctional {
   std::string name;  ///< "a_lat_above", "yaw_front_below", "drift_integral", ...
   int sensor = 0;    ///< index into the model's sensors
   double sign = 1.0;
   double offset = 0.0;
-  bool uses_artificial = false;
-  TimeMeasure measure = TimeMeasure::PositivePart;  ///< the transcription's, or Integral / FinalValue
+  ArtificialUse artificial = ArtificialUse::None;
+  TimeMeasure measure = TimeMeasure::PositivePart;  ///< the transcription's, or an exact functional's
   double tolerance = 0.0;
   bool equality = false;  ///< an exact functional (Integral, FinalValue) that must vanish
+  double level = 0.0;     ///< subtracted from the measure's value (an RMS constraint's bound)
 };
 
 /// The index of the sensor `name` in the model; throws std::invalid_argument naming it if absent.

@@ -61,6 +61,12 @@ TimeFunctionalValue evaluateTimeFunctional(TimeMeasure measure, const Eigen::Vec
       out.value = g[g.size() - 1];
       out.gradient[g.size() - 1] = 1.0;
       break;
+    case TimeMeasure::RootMeanSquare: {
+      const double duration = time[time.size() - 1] - time[0];
+      out.value = std::sqrt(w.dot(g.cwiseAbs2()) / duration);
+      if (out.value > 0.0) out.gradient = w.cwiseProduct(g) / (duration * out.value);  // (0 where g ≡ 0)
+      break;
+    }
   }
   return out;
 }

@@ -17,7 +17,8 @@ enum class TimeMeasure {
   SquaredPositivePart,  ///< ∫ ⟨g⟩² dt: the same feasible set, continuously differentiable there
   KsAggregate,          ///< (1/ρ) ln((1/T) ∫ exp(ρ g) dt): smooth, ≤ max g, → max g as ρ → ∞
   GridMax,              ///< max_k g(t_k): the plain maximum over the grid (a subgradient)
-  FinalValue            ///< g(t_N)
+  FinalValue,           ///< g(t_N)
+  RootMeanSquare        ///< √((1/T) ∫ g² dt): the RMS over the run (a comfort cost on accelerations)
 };
 
 struct TimeFunctionalValue {

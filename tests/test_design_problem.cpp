@@ -54,9 +54,9 @@ TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
   // (17)-(19) and (15)-(16): ±a_lat − b5, then ±yaw − 10° for each yaw: six constraints.
   const std::vector<ConstraintFunctional> functionals = transcribe(cpp);
   ASSERT_EQ(functionals.size(), 6u);
-  EXPECT_TRUE(functionals[0].uses_artificial && functionals[1].uses_artificial);
+  EXPECT_TRUE(functionals[0].artificial == ArtificialUse::InSamples && functionals[1].artificial == ArtificialUse::InSamples);
   EXPECT_EQ(functionals[1].sign, -1.0);
-  EXPECT_FALSE(functionals[2].uses_artificial);
+  EXPECT_EQ(functionals[2].artificial, ArtificialUse::None);
   EXPECT_EQ(functionals[5].name, "yaw_rear_below");
   EXPECT_NO_THROW(validate(cpp));
 }
@@ -133,6 +133,67 @@ TEST(DesignProblem, OscillatorIntegralAndFinalValueMatchClosedFormsByEveryMethod
     EXPECT_NEAR(gradient.constraints(2, 0), dvalue_dx[1], tolerance + shift) << name;
     EXPECT_EQ(gradient.constraints(1, 1), 0.0) << name;  // b_{k+1} is the cost's alone
   }
+}
+
+// An RMS cost, √((1/τ)∫x²dt), through b_{k+1} after the measure: the constraint RMS − b ≤ 0, whose
+// artificial column is −1. For x = cos ωt, RMS² = 1/2 + sin(2ωτ)/(4ωτ), and its k-derivative
+// through dω/dk = 1/(2ω); the phase error of the trapezoidal Newmark (a relative ω²h²/12 · ωτ =
+// 1.7e-5) bounds the difference, with 2e-4 of the largest term as in the integral's test. An RMS
+// constraint with a bound is RMS − bound.
+TEST(DesignProblem, AnRmsCostAndAnRmsConstraintMatchTheirClosedFormsByEveryMethod) {
+  const std::string design = R"(design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: rms}
+  artificial: {initial: 0.5, lower: 0, upper: 2}
+  constraints: [{sensor: position, of: rms, bound: 0.6}]
+)";
+  const DesignProblem problem =
+      loadDesignProblem({"o.yaml", std::string(test::kOscillator) + design}, {{"settings.end_time", 0.8}});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  ASSERT_EQ(functionals.size(), 2u);
+  EXPECT_EQ(functionals[0].name, "position_rms");
+  EXPECT_EQ(functionals[0].artificial, ArtificialUse::AfterMeasure);
+  EXPECT_EQ(functionals[1].name, "position_rms_2");
+  EXPECT_EQ(functionals[1].artificial, ArtificialUse::None);
+  const double omega = 2.0 * kPi, tau = 0.8, dk_dx = 10.0, domega_dk = 1.0 / (2.0 * omega);
+  const double square = 0.5 + std::sin(2.0 * omega * tau) / (4.0 * omega * tau);
+  const double rms = std::sqrt(square);
+  const double dsquare_domega = std::cos(2.0 * omega * tau) / (2.0 * omega) - std::sin(2.0 * omega * tau) / (4.0 * omega * omega * tau);
+  const double drms_dx = dsquare_domega / (2.0 * rms) * domega_dk * dk_dx;
+  const double tolerance = 2e-4 * std::max(rms, std::abs(drms_dx));
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignResponse response = evaluateDesign(problem, functionals, x);
+  EXPECT_NEAR(response.constraints[0], rms - 0.5, tolerance);
+  EXPECT_NEAR(response.constraints[1], rms - 0.6, tolerance);
+  for (const auto& [name, gradient] :
+       {std::pair{"adjoint", adjointGradient(problem, functionals, x)},
+        std::pair{"continuous-adjoint", continuousAdjointGradient(problem, functionals, x)},
+        std::pair{"direct", directGradient(problem, functionals, x)},
+        std::pair{"fd_central", finiteDifferenceGradient(problem, functionals, x, 1e-5, true)}}) {
+    EXPECT_NEAR(gradient.constraints(0, 0), drms_dx, tolerance) << name;
+    EXPECT_NEAR(gradient.constraints(1, 0), drms_dx, tolerance) << name;
+    EXPECT_EQ(gradient.constraints(0, 1), -1.0) << name;  // RMS − b
+    EXPECT_EQ(gradient.constraints(1, 1), 0.0) << name;
+  }
+}
+
+// An integral cost: b_{k+1} = ∫x dt at the optimum, the constraint ∫x dt − b ≤ 0 (for x = cos ωt,
+// ∫₀^τ x dt = sin(ωτ)/ω).
+TEST(DesignProblem, AnIntegralCostIsItsEpigraph) {
+  const std::string design = R"(design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: integral}
+  artificial: {initial: 0.5, lower: -2, upper: 2}
+)";
+  const DesignProblem problem =
+      loadDesignProblem({"o.yaml", std::string(test::kOscillator) + design}, {{"settings.end_time", 0.8}});
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  ASSERT_EQ(functionals.size(), 1u);
+  EXPECT_EQ(functionals[0].name, "position_integral");
+  const double omega = 2.0 * kPi, tau = 0.8;
+  const DesignResponse response = evaluateDesign(problem, functionals, initialPoint(problem));
+  EXPECT_NEAR(response.constraints[0], std::sin(omega * tau) / omega - 0.5, 2e-4 * 0.5);
+  EXPECT_EQ(adjointGradient(problem, functionals, initialPoint(problem)).constraints(0, 1), -1.0);
 }
 
 TEST(DesignProblem, BadDesignSectionsAreLocated) {

@@ -61,6 +61,22 @@ TEST(TimeFunctional, KsAggregateOfASineIsTheBesselClosedForm) {
   EXPECT_GT(previous, 0.99);
 }
 
+// The trapezoidal rule is exact for a trigonometric polynomial of degree below the number of
+// intervals over whole periods, so the RMS of sin over two periods is 1/√2 to round-off, on any
+// uniform grid of at least three intervals per period; and that of a constant its absolute value.
+TEST(TimeFunctional, RootMeanSquareOfASineOverWholePeriods) {
+  for (const int intervals : {6, 50, 1000}) {
+    const Eigen::VectorXd t = grid(4.0 * kPi, intervals);
+    EXPECT_NEAR(evaluateTimeFunctional(TimeMeasure::RootMeanSquare, t, sine(t)).value, std::sqrt(0.5), 1e-15) << intervals;
+  }
+  const Eigen::VectorXd t = grid(1.0, 10);
+  EXPECT_NEAR(evaluateTimeFunctional(TimeMeasure::RootMeanSquare, t, Eigen::VectorXd::Constant(11, -0.3)).value, 0.3,
+              1e-16);
+  const TimeFunctionalValue zero = evaluateTimeFunctional(TimeMeasure::RootMeanSquare, t, Eigen::VectorXd::Zero(11));
+  EXPECT_EQ(zero.value, 0.0);
+  EXPECT_TRUE(zero.gradient.allFinite());
+}
+
 TEST(TimeFunctional, MaxAndFinalValue) {
   const Eigen::VectorXd t = grid(1.0, 4);
   const Eigen::VectorXd g = (Eigen::VectorXd(5) << 0.1, 0.7, -0.2, 0.3, -0.4).finished();
@@ -83,7 +99,7 @@ TEST(TimeFunctional, GradientsAreTheDerivativesOfTheDiscreteValues) {
   for (Eigen::Index k = 0; k < g.size(); ++k) g[k] = (k % 3 == 0 ? -1.0 : 1.0) * (0.2 + uniform(engine));
   for (const TimeMeasure measure : {TimeMeasure::Integral, TimeMeasure::PositivePart,
                                     TimeMeasure::SquaredPositivePart, TimeMeasure::KsAggregate,
-                                    TimeMeasure::GridMax, TimeMeasure::FinalValue}) {
+                                    TimeMeasure::GridMax, TimeMeasure::FinalValue, TimeMeasure::RootMeanSquare}) {
     const TimeFunctionalValue f = evaluateTimeFunctional(measure, t, g, 3.0);
     const double delta = 1e-6;
     for (Eigen::Index k = 0; k < g.size(); ++k) {
