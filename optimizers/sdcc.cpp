@@ -18,12 +18,37 @@ namespace {
 /// δb₁ below this fraction of ‖W^{-1/2} l₀‖ is round-off of the projection, not a direction.
 constexpr double kNegligibleDescent = 1e-12;
 
-/// (7): every equality, and the inequalities with Ψᵢ ≥ −ε.
+/// The first of the variables' bounds among the constraints.
+Eigen::Index firstBound(const ConstraintLinearization& constraints) {
+  return constraints.values.size() - constraints.bound_count;
+}
+
+/// (7): every equality, and the inequalities with Ψᵢ ≥ −ε, the variables' bounds excepted.
 std::vector<Eigen::Index> epsilonActive(const ConstraintLinearization& constraints, double epsilon) {
   std::vector<Eigen::Index> active;
-  for (Eigen::Index i = 0; i < constraints.values.size(); ++i)
+  for (Eigen::Index i = 0; i < firstBound(constraints); ++i)
     if (i < constraints.equality_count || constraints.values[i] >= -epsilon) active.push_back(i);
   return active;
+}
+
+/// The bounds within ε that `step` would cross (ΨᵢBound + step's change > 0 for a bound at Ψᵢ ≥ −ε),
+/// added to `active`; false when there is none. (7) takes every bound within ε as an equality of the
+/// projection (11): a variable at its bound then could not leave it even where the compensation
+/// needed it to, and with more active constraints than variables (both variables of
+/// problems/suite/quarter_car.yaml at their lower bounds beside two violated travel constraints) the
+/// least-squares compensation moved nothing. A bound holds the variable only when the step pushes
+/// it out, as in a projected-gradient method on a box.
+bool addCrossedBounds(const ConstraintLinearization& constraints, const Eigen::VectorXd& step, double epsilon,
+                      std::vector<Eigen::Index>& active) {
+  bool added = false;
+  for (Eigen::Index i = firstBound(constraints); i < constraints.values.size(); ++i) {
+    if (constraints.values[i] < -epsilon || std::find(active.begin(), active.end(), i) != active.end()) continue;
+    if (constraints.values[i] + constraints.gradients.col(i).dot(step) > 0.0) {
+      active.push_back(i);
+      added = true;
+    }
+  }
+  return added;
 }
 
 /// The projection (11) in the variables W^{1/2}b, where L becomes A = W^{-1/2}L and LᵀW⁻¹L = AᵀA:
@@ -75,12 +100,16 @@ Eigen::VectorXd multiplierSigns(const ScaledProjection& p, const SdccStep& step)
 }
 
 /// The position in `active` of the inequality with the most negative multiplier, or −1 if none is.
+/// The variables' bounds (from `first_bound` on) stay: they are held only where the step crosses them
+/// (addCrossedBounds), and never leave within one step, so that the two rules cannot cycle.
 Eigen::Index leavingInequality(const std::vector<Eigen::Index>& active, const Eigen::VectorXd& signs,
-                               Eigen::Index equality_count) {
+                               Eigen::Index equality_count, Eigen::Index first_bound) {
   Eigen::Index leaving = -1;
-  for (Eigen::Index k = 0; k < signs.size(); ++k)
-    if (active[static_cast<std::size_t>(k)] >= equality_count && signs[k] < 0.0 && (leaving < 0 || signs[k] < signs[leaving]))
+  for (Eigen::Index k = 0; k < signs.size(); ++k) {
+    const Eigen::Index i = active[static_cast<std::size_t>(k)];
+    if (i >= equality_count && i < first_bound && signs[k] < 0.0 && (leaving < 0 || signs[k] < signs[leaving]))
       leaving = k;
+  }
   return leaving;
 }
 
@@ -99,13 +128,15 @@ SdccStep sdccStep(const Eigen::VectorXd& cost_gradient, const ConstraintLineariz
     const double descent_norm = p.descent.norm();
     splitStepBound(step_bound, descent_norm, p.compensation.norm(),
                    descent_norm <= kNegligibleDescent * scaled_cost_gradient.norm(), step);
-    const Eigen::Index leaving = leavingInequality(step.active, multiplierSigns(p, step), constraints.equality_count);
+    const Eigen::Index leaving =
+        leavingInequality(step.active, multiplierSigns(p, step), constraints.equality_count, firstBound(constraints));
     if (leaving < 0) {
       step.multipliers = p.first_multipliers;
       step.descent = p.descent.cwiseQuotient(root);
       step.compensation = p.compensation.cwiseQuotient(root);
       step.step = step.scale_descent * step.descent + step.scale_compensation * step.compensation;
-      return step;
+      if (!addCrossedBounds(constraints, step.step, epsilon, step.active)) return step;
+      continue;  // with the bounds it would cross held
     }
     step.active.erase(step.active.begin() + leaving);  // a negative multiplier: the constraint leaves (11)
   }
@@ -118,6 +149,7 @@ ConstraintLinearization linearize(const NlpProblem& problem, const Eigen::Vector
   const Eigen::Index n = x.size(), inequalities = problem.inequalityCount(), equalities = problem.equalityCount();
   ConstraintLinearization c;
   c.equality_count = equalities;
+  c.bound_count = 2 * n;
   c.values.resize(equalities + inequalities + 2 * n);
   c.values << values.constraints.tail(equalities), values.constraints.head(inequalities), x - problem.upperBounds(),
       problem.lowerBounds() - x;

@@ -3,8 +3,10 @@
 // W-projected steepest descent δb₁ plus the compensation δb₂ that moves Ψ̃ to zero, the two
 // W-orthogonal and together bounded by δbᵀWδb ≤ ξ² (10); an inequality whose multiplier (11) is
 // negative leaves the active set. What the paper leaves open, and what this implementation chose:
-// - bounds (the paper's (14)) are inequality constraints like the others, and a step is clipped to
-//   the bounds, so no point outside them is ever evaluated;
+// - bounds (the paper's (14)) are inequality constraints, but one joins the active set only where
+//   the step would cross it (as in a projected-gradient method on a box): taken as equalities of the
+//   projection whenever within ε, they kept a variable on its bound where the compensation needed to
+//   move it off; and a step is clipped to the bounds, so no point outside them is ever evaluated;
 // - a trial step is accepted on an exact-penalty merit f + ρ·(max violation) when it achieves a
 //   fraction of the decrease the linearization (8)-(9) predicts (the cost alone would refuse the
 //   compensation steps that must raise it, and tangent steps along a curved constraint raise the
@@ -62,6 +64,9 @@ struct ConstraintLinearization {
   Eigen::VectorXd values;
   Eigen::MatrixXd gradients;
   Eigen::Index equality_count = 0;
+  /// The last bound_count constraints are the variables' bounds (x − upper ≤ 0, lower − x ≤ 0). A
+  /// bound joins the active set only where the step would cross it (sdccStep).
+  Eigen::Index bound_count = 0;
 };
 
 /// One SDCC step at a design: the active set after dropping the negative multipliers, and the parts

@@ -38,6 +38,7 @@ const std::map<std::string, std::vector<std::string>> kReachedBy = {
     // An equality, which MMA and CCSAQ cannot take; Ipopt stops by its own tolerance 1.5e-7 short
     // of the exact vertex, outside the reference's 1e-9 (README).
     {"press_slider_crank", {"sdcc", "slsqp"}},
+    {"quarter_car", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
     {"shock_isolator", {"sdcc", "slsqp", "mma", "ccsaq"}},
     {"spring_floor", {"sdcc", "slsqp", "mma", "ipopt"}},  // CCSAQ never lowers b_{k+1} there (README)
     {"spring_preload", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
@@ -154,13 +155,15 @@ TEST(ProblemSuite, ExactGradientsAgreeWithEachOtherAndWithCentralDifferences) {
   }
 }
 
-// The reference is the continuous-time optimum; mbsopt's is that of the problem on its time grid,
-// which differs by the reference's own estimate ("accuracy": "cost_relative", the Newmark step's
-// period error and the grid's sampling of a peak). The optimizers stop within 1e-6 (relative, on x)
-// of their optimum. So every response agrees to 10 × that estimate, and the design lies (to 1e-6) in the
-// reference's "design_range", which each reference derives from its own problem: the designs whose
-// cost is within "design_cost_band" of the optimum (wider than the estimate where the cost is flat
-// near its minimum), or the grid's shift of an equality's solution.
+// The reference is the continuous-time optimum, or that of the problem on mbsopt's grid; mbsopt's is
+// the latter, which differs by the reference's own estimate ("accuracy": "cost_relative", the Newmark
+// step's period error and the grid's sampling of a peak). The optimizers stop within 1e-6 (relative,
+// on x) of their optimum, and may exceed an active bound by their feasibility tolerance (1e-6 in its
+// units), which moves the responses by the reference's "feasibility_allowance" where it gives one (the
+// bound's multiplier times 1e-6). So every response agrees to 10 × that estimate plus that allowance,
+// and the design lies (to 1e-6) in the reference's "design_range", which each reference derives from
+// its own problem: the designs whose cost is within "design_cost_band" of the optimum (wider than the
+// estimate where the cost is flat near its minimum), or the grid's shift of an equality's solution.
 TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
   const fs::path directory = scratch();
   for (const fs::path& scene : suiteScenes()) {
@@ -179,9 +182,12 @@ TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
       nlohmann::json result;
       std::ifstream(json) >> result;
       EXPECT_EQ(result["status"], "converged") << result["message"];
+      const nlohmann::json& allowance = reference["accuracy"].value("feasibility_allowance", nlohmann::json::object());
       for (const auto& [response, value] : optimum["responses"].items()) {
         const double expected = value.get<double>();
-        EXPECT_NEAR(result["responses"][response].get<double>(), expected, tolerance * std::abs(expected)) << response;
+        EXPECT_NEAR(result["responses"][response].get<double>(), expected,
+                    tolerance * std::abs(expected) + allowance.value(response, 0.0))
+            << response;
       }
       const auto design = result["design"].get<std::vector<double>>();
       ASSERT_EQ(design.size(), problem.design.variables.size());

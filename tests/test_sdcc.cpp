@@ -4,6 +4,8 @@
 // the analytic problems is in test_optimizers.cpp (the EveryOptimizer suite).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -112,6 +114,33 @@ TEST(Sdcc, DependentActiveConstraintsGiveAFiniteProjection) {
   ASSERT_TRUE(s.multipliers.allFinite());
   EXPECT_NEAR(values({1.0, 1.0}).dot(s.descent), 0.0, kRoundOff);
   EXPECT_NEAR(values({1.0, 1.0}).dot(s.compensation), -0.2, kRoundOff);
+}
+
+/// The situation of problems/suite/quarter_car.yaml where SDCC failed: the variables (k, c, b) with k
+/// and c at their lower bounds, b free; the cost is b; the epigraph (cost functional − b ≤ 0) holds,
+/// and two constraints on k and c alone are violated (the travel's maximum and minimum), each mended
+/// by raising k or c. Taken as equalities of the projection (11), the two bounds outnumbered the
+/// variables beside the violated constraints, and the least-squares compensation did not move:
+/// every trial predicted nothing and ξ shrank to its floor. A bound now holds its variable only
+/// where the step would cross it, so the compensation mends both constraints by leaving the bounds.
+TEST(Sdcc, TheCompensationMayLeaveAVariablesBound) {
+  ConstraintLinearization c;
+  c.values = values({0.0, 0.0049, 0.0068, -4.5, -4.7, -9.6, 0.0, 0.0, -0.37});
+  c.gradients.resize(3, 9);
+  c.gradients << 0.081, 0.0001, -0.0006, 1, 0, 0, -1, 0, 0,  //
+      0.207, -0.0165, -0.0070, 0, 1, 0, 0, -1, 0,            //
+      -1, 0, 0, 0, 0, 1, 0, 0, -1;
+  c.equality_count = 0;
+  c.bound_count = 6;
+  const SdccStep s = sdccStep(values({0.0, 0.0, 1.0}), c, Eigen::VectorXd::Ones(3), 0.01, 10.0);
+  // The least-norm compensation would lower k a little (it eases the maximum's constraint): k's
+  // bound holds it there; c's does not hold c, which the compensation raises.
+  EXPECT_EQ(std::count(s.active.begin(), s.active.end(), 6), 1);
+  EXPECT_EQ(std::count(s.active.begin(), s.active.end(), 7), 0);
+  const Eigen::VectorXd after = c.values + c.gradients.transpose() * s.step;
+  EXPECT_LE(after.head(3).maxCoeff(), kRoundOff);  // the linearized constraints are met
+  EXPECT_LE(after.tail(6).maxCoeff(), kRoundOff);  // inside the bounds
+  EXPECT_GT(s.step[1], 0.0);                        // c rises off its bound
 }
 
 /// min (x₀ + 1)² + 2(x₁ + 1)² subject to x₀ + x₁ ≥ 1, from (0, 0) where the constraint is violated
