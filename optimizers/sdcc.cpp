@@ -17,6 +17,9 @@ namespace {
 
 /// δb₁ below this fraction of ‖W^{-1/2} l₀‖ is round-off of the projection, not a direction.
 constexpr double kNegligibleDescent = 1e-12;
+/// A residual of the compensation's least-squares solve above this fraction of max(1, ‖Ψ̃‖∞): the
+/// active set is inconsistent (a consistent one leaves round-off, orders of magnitude below).
+constexpr double kInconsistentCompensation = 1e-9;
 
 /// The first of the variables' bounds among the constraints.
 Eigen::Index firstBound(const ConstraintLinearization& constraints) {
@@ -113,6 +116,31 @@ Eigen::Index leavingInequality(const std::vector<Eigen::Index>& active, const Ei
   return leaving;
 }
 
+/// Where the compensation cannot zero every active constraint (more of them than the variables can
+/// meet, the least-squares δb₂ leaves a residual), the position in `active` of the satisfied
+/// inequality (Ψᵢ < 0) with the most negative compensation multiplier μ₂, which leaves; −1 when the
+/// compensation meets them all or no such inequality is active. A variable's bound (from
+/// `first_bound` on) never leaves: it is held only where the step crosses it (addCrossedBounds), and
+/// letting it leave again would cycle. Compensating a satisfied inequality
+/// to zero pulls it onto its boundary; in an inconsistent set that cost the violated ones their
+/// mending, and the step mended nothing (problems/suite/train_couplers.yaml: 19 equalities and both
+/// sides of the cost's extreme for 20 variables, δb₁ zero, ξ shrinking to its floor).
+Eigen::Index leavingForTheCompensation(const std::vector<Eigen::Index>& active, const ScaledProjection& p,
+                                       const Eigen::MatrixXd& scaled_gradients, const Eigen::VectorXd& active_values,
+                                       Eigen::Index equality_count, Eigen::Index first_bound) {
+  if (active_values.size() == 0) return -1;
+  const Eigen::VectorXd residual = scaled_gradients.transpose() * p.compensation + active_values;
+  if (!(residual.cwiseAbs().maxCoeff() > kInconsistentCompensation * std::max(1.0, active_values.cwiseAbs().maxCoeff())))
+    return -1;
+  Eigen::Index leaving = -1;
+  for (Eigen::Index k = 0; k < active_values.size(); ++k)
+    if (active[static_cast<std::size_t>(k)] >= equality_count && active[static_cast<std::size_t>(k)] < first_bound &&
+        active_values[k] < 0.0 &&
+        p.second_multipliers[k] < 0.0 && (leaving < 0 || p.second_multipliers[k] < p.second_multipliers[leaving]))
+      leaving = k;
+  return leaving;
+}
+
 }  // namespace
 
 SdccStep sdccStep(const Eigen::VectorXd& cost_gradient, const ConstraintLinearization& constraints,
@@ -121,15 +149,22 @@ SdccStep sdccStep(const Eigen::VectorXd& cost_gradient, const ConstraintLineariz
   const Eigen::VectorXd scaled_cost_gradient = cost_gradient.cwiseQuotient(root);
   SdccStep step;
   step.active = epsilonActive(constraints, epsilon);  // (7)
-  for (;;) {
+  // Each pass drops a general inequality or holds a bound, never the reverse: at most one pass per
+  // constraint, plus the last.
+  for (Eigen::Index pass = 0;; ++pass) {
+    if (pass > constraints.values.size())
+      throw std::logic_error("SDCC: the active set did not settle (a constraint left and joined again)");
     const Eigen::MatrixXd scaled_gradients =
         root.cwiseInverse().asDiagonal() * constraints.gradients(Eigen::all, step.active);  // (9): l̃
     const ScaledProjection p = project(scaled_cost_gradient, scaled_gradients, constraints.values(step.active));
     const double descent_norm = p.descent.norm();
     splitStepBound(step_bound, descent_norm, p.compensation.norm(),
                    descent_norm <= kNegligibleDescent * scaled_cost_gradient.norm(), step);
-    const Eigen::Index leaving =
+    Eigen::Index leaving =
         leavingInequality(step.active, multiplierSigns(p, step), constraints.equality_count, firstBound(constraints));
+    if (leaving < 0)
+      leaving = leavingForTheCompensation(step.active, p, scaled_gradients, constraints.values(step.active),
+                                          constraints.equality_count, firstBound(constraints));
     if (leaving < 0) {
       step.multipliers = p.first_multipliers;
       step.descent = p.descent.cwiseQuotient(root);

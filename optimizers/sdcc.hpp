@@ -11,6 +11,8 @@
 //   fraction of the decrease the linearization (8)-(9) predicts (the cost alone would refuse the
 //   compensation steps that must raise it, and tangent steps along a curved constraint raise the
 //   violation by O(ξ²)); ξ shrinks on a rejection and grows when the prediction was good;
+// - where the compensation cannot zero every active constraint (more than the variables can meet),
+//   the satisfied inequality with the most negative compensation multiplier leaves;
 // - ρ grows so that a step which lowers the predicted violation also predicts a lower merit;
 // - the run ends at a feasible KKT point, or when ξ falls below its floor (NLopt's xtol_rel):
 //   converged if the point is feasible (where the active constraints' gradients vanish or jump at

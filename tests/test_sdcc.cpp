@@ -143,6 +143,26 @@ TEST(Sdcc, TheCompensationMayLeaveAVariablesBound) {
   EXPECT_GT(s.step[1], 0.0);                        // c rises off its bound
 }
 
+/// (x, b) with the cost b at a point where δb₁ vanishes: x is fixed by an equality, and both sides of
+/// an extreme, a x − b ≤ 0 (violated by 0.002) and −a x − b ≤ 0 (met with 0.005 to spare, within ε),
+/// are active. Three constraints for two variables: compensating all of them to zero is
+/// inconsistent. The satisfied side, whose compensation multiplier μ₂ is negative, leaves, and the
+/// step mends the violated one: δb = (0, 0.002) (problems/suite/train_couplers.yaml).
+TEST(Sdcc, ASatisfiedInequalityLeavesACompensationThatCannotMeetThemAll) {
+  ConstraintLinearization c;
+  const double a = 0.5;
+  c.values = values({0.0, 0.002, -0.005});
+  c.gradients.resize(2, 3);
+  c.gradients << 1.0, a, -a,  //
+      0.0, -1.0, -1.0;
+  c.equality_count = 1;
+  const SdccStep s = sdccStep(values({0.0, 1.0}), c, Eigen::VectorXd::Ones(2), 0.01, 1.0);
+  EXPECT_LE(s.descent.norm(), kRoundOff);
+  EXPECT_NEAR(s.step[0], 0.0, kRoundOff);
+  EXPECT_NEAR(s.step[1], 0.002, kRoundOff);
+  EXPECT_EQ(std::count(s.active.begin(), s.active.end(), 2), 0);  // the satisfied side left
+}
+
 /// min (x₀ + 1)² + 2(x₁ + 1)² subject to x₀ + x₁ ≥ 1, from (0, 0) where the constraint is violated
 /// by 1 and the cost pushes away from it (μ₁ = 3 > 0). The optimum is on x₀ + x₁ = 1, where
 /// 2(x₀ + 1) = 4(x₁ + 1) gives (1, 0). Rosenbrock's class lends its two variables, one inequality,
