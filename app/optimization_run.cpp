@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <variant>
 
 #include "problems/design_nlp.hpp"
@@ -35,33 +36,52 @@ bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngle
 /// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
 std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
 
-/// The key of the cost's own functional: its sensor's responseKey for an extreme, `integral_NAME` or
-/// `rms_NAME` (with `_deg` for angles, in degrees) for an exact cost.
+/// The exact functional of an integral, RMS or final-value measure; none for an extreme.
+std::optional<TimeMeasure> exactMeasure(ResponseMeasure of) {
+  if (of == ResponseMeasure::Integral) return TimeMeasure::Integral;
+  if (of == ResponseMeasure::Rms) return TimeMeasure::RootMeanSquare;
+  if (of == ResponseMeasure::FinalValue) return TimeMeasure::FinalValue;
+  return std::nullopt;
+}
+
+/// The key of a sensor's exact functional: `integral_NAME`, `rms_NAME` or `final_NAME` (`_deg` for angles).
+std::string functionalKey(const Sensor& sensor, TimeMeasure measure) {
+  const char* prefix = measure == TimeMeasure::Integral ? "integral_" : measure == TimeMeasure::RootMeanSquare ? "rms_" : "final_";
+  return prefix + sensor.name + (isAngle(sensor) ? "_deg" : "");
+}
+
+/// A value of an angle sensor in degrees, of any other in its own units.
+double inUnits(const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; }
+
+/// The key of the cost's own functional: its sensor's responseKey for an extreme, functionalKey for
+/// an exact cost.
 std::string costKey(const DesignProblem& problem) {
   const ResponseCost& cost = problem.design.cost;
   const Sensor& sensor = problem.scene.model.sensors()[static_cast<std::size_t>(sensorIndex(problem.scene.model, cost.sensor))];
-  if (cost.of != ResponseMeasure::Integral && cost.of != ResponseMeasure::Rms) return responseKey(sensor);
-  return (cost.of == ResponseMeasure::Integral ? "integral_" : "rms_") + sensor.name + (isAngle(sensor) ? "_deg" : "");
+  const std::optional<TimeMeasure> exact = exactMeasure(cost.of);
+  return exact ? functionalKey(sensor, *exact) : responseKey(sensor);
 }
 
-/// max |y| over the time grid of every sensor the cost and the constraints use, and an exact cost's
-/// own value (costKey).
+/// max |y| over the time grid of every sensor the cost and the constraints use, and the value of each
+/// exact functional the cost or a constraint takes (functionalKey).
 nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
   const DesignProblem& problem = nlp.problem();
-  const auto& sensors = problem.scene.model.sensors();
+  const Model& model = problem.scene.model;
   nlohmann::json out = nlohmann::json::object();
-  const auto inUnits = [&](const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; };
   for (const ConstraintFunctional& f : nlp.functionals()) {
-    const Sensor& sensor = sensors[static_cast<std::size_t>(f.sensor)];
+    const Sensor& sensor = model.sensors()[static_cast<std::size_t>(f.sensor)];
     out[responseKey(sensor)] = inUnits(sensor, response.trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff());
   }
-  if (const ResponseMeasure of = problem.design.cost.of; of == ResponseMeasure::Integral || of == ResponseMeasure::Rms) {
-    const int index = sensorIndex(problem.scene.model, problem.design.cost.sensor);
-    const TimeMeasure measure = of == ResponseMeasure::Integral ? TimeMeasure::Integral : TimeMeasure::RootMeanSquare;
-    const double value =
-        evaluateTimeFunctional(measure, response.trajectory.time, response.trajectory.sensors.col(index)).value;
-    out[costKey(problem)] = inUnits(sensors[static_cast<std::size_t>(index)], value);
-  }
+  const auto addExact = [&](const std::string& name, ResponseMeasure of) {
+    const std::optional<TimeMeasure> exact = exactMeasure(of);
+    if (!exact) return;
+    const int index = sensorIndex(model, name);
+    const Sensor& sensor = model.sensors()[static_cast<std::size_t>(index)];
+    out[functionalKey(sensor, *exact)] =
+        inUnits(sensor, evaluateTimeFunctional(*exact, response.trajectory.time, response.trajectory.sensors.col(index)).value);
+  };
+  addExact(problem.design.cost.sensor, problem.design.cost.of);
+  for (const ResponseConstraint& c : problem.design.constraints) addExact(c.sensor, c.of);
   return out;
 }
 
@@ -76,6 +96,7 @@ double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
     if (c.of == ResponseMeasure::MaxAbs) over = y.cwiseAbs().maxCoeff() - c.bound;
     else if (c.of == ResponseMeasure::Max) over = y.maxCoeff() - c.bound;
     else if (c.of == ResponseMeasure::Min) over = c.bound - y.minCoeff();
+    else if (c.of == ResponseMeasure::Rms) over = evaluateTimeFunctional(TimeMeasure::RootMeanSquare, response.trajectory.time, y).value - c.bound;
     else continue;  // integral and final-value constraints are exact functionals, checked by the optimizer
     const double unit = isAngle(problem.scene.model.sensors()[static_cast<std::size_t>(index)]) ? 180.0 / std::numbers::pi : 1.0;
     excess = std::max(excess, over * unit);

@@ -45,10 +45,13 @@ struct OptimizationRun {
   /// The design (SI, without b_{k+1}) at each record of result.history; empty where the optimizer
   /// did not say which point an iteration was.
   std::vector<std::vector<double>> iterate_designs;
-  nlohmann::json responses;    ///< max |y| of each sensor of the cost and constraints (angles in degrees)
+  /// max |y| of each sensor of the cost and constraints (`max_abs_NAME`), and the value of each exact
+  /// functional the cost or a constraint takes (`integral_NAME`, `rms_NAME`, `final_NAME`); angles in degrees.
+  nlohmann::json responses;
   std::string cost_response;   ///< the key in `responses` of the cost's own functional (max_abs_, rms_, integral_)
-  /// max over the problem's constraints of (max over the time grid of ±y) − bound, in the sensor's
-  /// units (angles in degrees): ≤ 0 when every limit holds on the grid, whatever the formulation.
+  /// max over the problem's extreme and RMS constraints of (their value on the time grid) − bound, in
+  /// the sensor's units (angles in degrees): ≤ 0 when every such limit holds on the grid, whatever the
+  /// formulation. Integral and final-value constraints are exact functionals the optimizer checks.
   double limit_excess = 0.0;
   std::string cost_sensor;     ///< the cost's sensor
   double initial_cost = 0.0;   ///< the cost's functional (cost_response) at the start

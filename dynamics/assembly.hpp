@@ -4,11 +4,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "dynamics/model.hpp"
+#include "dynamics/workspace.hpp"
 
 namespace mbsopt {
 
@@ -29,6 +31,21 @@ class AssemblyError : public std::runtime_error {
  private:
   std::vector<int> open_cuts_;
 };
+
+/// The correction of the free coordinates a Gauss-Newton step on b(q) = 0 subtracts, from b and
+/// B = ∂b/∂q (free columns) at the current q.
+using ClosureCorrection = std::function<void(const Eigen::VectorXd& b, const Eigen::MatrixXd& B, Eigen::VectorXd& correction)>;
+
+/// Gauss-Newton on b(q) = 0: q[free] −= correction(b, B) until max |b| ≤ `tolerance`, at most 50
+/// corrections, and no more once 10 have not lowered it by 0.1 % (a loop that cannot be closed).
+/// Leaves b and B at the final q, and the geometry at q in ws; returns the corrections made.
+int closeLoops(const Model& model, Workspace<double>& ws, Eigen::VectorXd& q, double tolerance,
+               const ClosureCorrection& correction, Eigen::VectorXd& b, Eigen::MatrixXd& B);
+
+/// Throws AssemblyError naming the cut joints with a row of b above 1e-9: "CONTEXTthe loop(s)
+/// closed by NAMES cannot be assembled: closure error E mDETAIL".
+[[noreturn]] void throwOpenLoops(const Model& model, const Eigen::VectorXd& b, const std::string& context,
+                                 const std::string& detail);
 
 /// Moves q (then v) onto b(q, t) = 0 (then ḃ = 0); driven coordinates take their prescribed
 /// motion at t. Throws AssemblyError naming the cut joints that cannot be closed when the

@@ -54,11 +54,27 @@ FrameIndex cutFrameA(const CutKind& cut) {
   return std::visit([](const auto& c) { return c.frame_a; }, cut);
 }
 
-bool isGeometricParameter(const Model& model, ParameterIndex parameter) {
-  for (const KinematicElement& element : model.elements())
-    if (const auto* offset = std::get_if<Offset>(&element.kind))
+namespace {
+
+/// The element whose offset translation `parameter` is, or −1.
+int offsetOf(const Model& model, ParameterIndex parameter) {
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    if (const auto* offset = std::get_if<Offset>(&elements[k].kind))
       if (std::find(offset->translation.begin(), offset->translation.end(), parameter) != offset->translation.end())
-        return true;
+        return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace
+
+bool isGeometricParameter(const Model& model, ParameterIndex parameter) { return offsetOf(model, parameter) >= 0; }
+
+bool movesLoopClosure(const Model& model, ParameterIndex parameter) {
+  const int element = offsetOf(model, parameter);
+  if (element < 0) return false;
+  for (const Model::CutFramePath& path : model.cutFramePaths())
+    if (path.on_path[static_cast<std::size_t>(element)]) return true;
   return false;
 }
 

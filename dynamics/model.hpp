@@ -336,6 +336,9 @@ FrameIndex cutFrameA(const CutKind& cut);
 /// Whether a parameter places frames: a component of an offset's translation. The kinematics, the
 /// loop closure and the sensors depend on it, not only the forces.
 bool isGeometricParameter(const Model& model, ParameterIndex parameter);
+/// Whether a geometric parameter moves a frame that a cut joint joins (its offset lies on the path
+/// from the ground to one): then the loop closure b(q; b) depends on it.
+bool movesLoopClosure(const Model& model, ParameterIndex parameter);
 
 /// 0, 1, …, coordinateCount() − 1: every coordinate, driven ones included.
 std::vector<int> allCoordinates(const Model& model);

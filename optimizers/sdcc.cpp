@@ -102,29 +102,36 @@ Eigen::VectorXd multiplierSigns(const ScaledProjection& p, const SdccStep& step)
   return step.scale_compensation < 1.0 ? p.second_multipliers : p.first_multipliers;
 }
 
-/// The position in `active` of the inequality with the most negative multiplier, or −1 if none is.
-/// The variables' bounds (from `first_bound` on) stay: they are held only where the step crosses them
-/// (addCrossedBounds), and never leave within one step, so that the two rules cannot cycle.
-Eigen::Index leavingInequality(const std::vector<Eigen::Index>& active, const Eigen::VectorXd& signs,
-                               Eigen::Index equality_count, Eigen::Index first_bound) {
+/// The position in `active` of the general inequality (neither an equality nor a variable's bound,
+/// those from `first_bound` on) with the most negative of `signs` among those `eligible(k)` admits,
+/// or −1. Bounds never leave: they are held only where the step crosses them (addCrossedBounds), so
+/// each pass of sdccStep drops an inequality or holds a bound, never the reverse, and it ends.
+template <class Eligible>
+Eigen::Index mostNegative(const std::vector<Eigen::Index>& active, const Eigen::VectorXd& signs,
+                          Eigen::Index equality_count, Eigen::Index first_bound, Eligible eligible) {
   Eigen::Index leaving = -1;
   for (Eigen::Index k = 0; k < signs.size(); ++k) {
     const Eigen::Index i = active[static_cast<std::size_t>(k)];
-    if (i >= equality_count && i < first_bound && signs[k] < 0.0 && (leaving < 0 || signs[k] < signs[leaving]))
+    if (i >= equality_count && i < first_bound && signs[k] < 0.0 && eligible(k) &&
+        (leaving < 0 || signs[k] < signs[leaving]))
       leaving = k;
   }
   return leaving;
 }
 
+/// The inequality with the most negative multiplier (11), which leaves; −1 if none.
+Eigen::Index leavingInequality(const std::vector<Eigen::Index>& active, const Eigen::VectorXd& signs,
+                               Eigen::Index equality_count, Eigen::Index first_bound) {
+  return mostNegative(active, signs, equality_count, first_bound, [](Eigen::Index) { return true; });
+}
+
 /// Where the compensation cannot zero every active constraint (more of them than the variables can
-/// meet, the least-squares δb₂ leaves a residual), the position in `active` of the satisfied
-/// inequality (Ψᵢ < 0) with the most negative compensation multiplier μ₂, which leaves; −1 when the
-/// compensation meets them all or no such inequality is active. A variable's bound (from
-/// `first_bound` on) never leaves: it is held only where the step crosses it (addCrossedBounds), and
-/// letting it leave again would cycle. Compensating a satisfied inequality
-/// to zero pulls it onto its boundary; in an inconsistent set that cost the violated ones their
-/// mending, and the step mended nothing (problems/suite/train_couplers.yaml: 19 equalities and both
-/// sides of the cost's extreme for 20 variables, δb₁ zero, ξ shrinking to its floor).
+/// meet, the least-squares δb₂ leaves a residual), the satisfied inequality (Ψᵢ < 0) with the most
+/// negative compensation multiplier μ₂, which leaves; −1 when the compensation meets them all or no
+/// such inequality is active. Compensating a satisfied inequality to zero pulls it onto its
+/// boundary; in an inconsistent set that cost the violated ones their mending, and the step mended
+/// nothing (problems/suite/train_couplers.yaml: 19 equalities and both sides of the cost's extreme
+/// for 20 variables, δb₁ zero, ξ shrinking to its floor).
 Eigen::Index leavingForTheCompensation(const std::vector<Eigen::Index>& active, const ScaledProjection& p,
                                        const Eigen::MatrixXd& scaled_gradients, const Eigen::VectorXd& active_values,
                                        Eigen::Index equality_count, Eigen::Index first_bound) {
@@ -132,13 +139,8 @@ Eigen::Index leavingForTheCompensation(const std::vector<Eigen::Index>& active, 
   const Eigen::VectorXd residual = scaled_gradients.transpose() * p.compensation + active_values;
   if (!(residual.cwiseAbs().maxCoeff() > kInconsistentCompensation * std::max(1.0, active_values.cwiseAbs().maxCoeff())))
     return -1;
-  Eigen::Index leaving = -1;
-  for (Eigen::Index k = 0; k < active_values.size(); ++k)
-    if (active[static_cast<std::size_t>(k)] >= equality_count && active[static_cast<std::size_t>(k)] < first_bound &&
-        active_values[k] < 0.0 &&
-        p.second_multipliers[k] < 0.0 && (leaving < 0 || p.second_multipliers[k] < p.second_multipliers[leaving]))
-      leaving = k;
-  return leaving;
+  return mostNegative(active, p.second_multipliers, equality_count, first_bound,
+                      [&](Eigen::Index k) { return active_values[k] < 0.0; });
 }
 
 }  // namespace
@@ -149,11 +151,7 @@ SdccStep sdccStep(const Eigen::VectorXd& cost_gradient, const ConstraintLineariz
   const Eigen::VectorXd scaled_cost_gradient = cost_gradient.cwiseQuotient(root);
   SdccStep step;
   step.active = epsilonActive(constraints, epsilon);  // (7)
-  // Each pass drops a general inequality or holds a bound, never the reverse: at most one pass per
-  // constraint, plus the last.
-  for (Eigen::Index pass = 0;; ++pass) {
-    if (pass > constraints.values.size())
-      throw std::logic_error("SDCC: the active set did not settle (a constraint left and joined again)");
+  for (;;) {  // each pass drops an inequality or holds a bound (mostNegative), so it ends
     const Eigen::MatrixXd scaled_gradients =
         root.cwiseInverse().asDiagonal() * constraints.gradients(Eigen::all, step.active);  // (9): l̃
     const ScaledProjection p = project(scaled_cost_gradient, scaled_gradients, constraints.values(step.active));

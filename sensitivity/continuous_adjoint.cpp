@@ -73,12 +73,11 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   // alone would make it first order). Eliminating p_k: w_k A + ½h ν̄ B̄ = R with A = M + ½h C + ¼h² K,
   // the transposed trapezoidal Newmark matrix. So w_k = ξ V₂ᵀ with V₂ the independent directions of
   // B_k, and ν̄ drops out against those of B̄: ξ (V₂ᵀ Aᵀ V̄₂) = R V̄₂.
-  if (problem.scene.model.constraintCount() > 0)
-    for (const DesignVariable& v : problem.design.variables)
-      if (isGeometricParameter(problem.scene.model, problem.scene.model.parameterIndex(v.parameter)))
-        throw std::invalid_argument("continuous adjoint: the design variable '" + v.parameter +
-                                    "' moves the loop closure, which these adjoint equations leave out (B s = 0); "
-                                    "use adjoint or direct");
+  for (const DesignVariable& v : problem.design.variables)
+    if (movesLoopClosure(problem.scene.model, problem.scene.model.parameterIndex(v.parameter)))
+      throw std::invalid_argument("continuous adjoint: the design variable '" + v.parameter +
+                                  "' moves the loop closure, which these adjoint equations leave out (B s = 0); "
+                                  "use adjoint or direct");
   TrajectoryDerivatives d(problem, functionals, x, simulated);
   const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;
   const Eigen::Index N = d.timePoints() - 1, rows = d.functionalCount(), nf = d.freeCount();

@@ -32,11 +32,15 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
   const Scene& scene = problem.scene;
   Model model = scene.model;
   out.cost = applyDesign(problem, x, model);
-  Eigen::VectorXd q0, v0;
-  designInitialState(scene, model, q0, v0);  // a geometric variable may open the loops
   NewmarkIntegrator integrator(model, scene.settings);
   integrator.keepStepMatrices(keep_step_matrices);
-  integrator.simulate(q0, v0, out.trajectory, stored);
+  if (designMovesLoopClosure(problem)) {  // a geometric variable opens the loops
+    Eigen::VectorXd q0, v0;
+    designInitialState(scene, model, q0, v0);
+    integrator.simulate(q0, v0, out.trajectory, stored);
+  } else {
+    integrator.simulate(scene.q0, scene.v0, out.trajectory, stored);
+  }
   out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
   out.functionals.clear();
   for (std::size_t j = 0; j < functionals.size(); ++j) {

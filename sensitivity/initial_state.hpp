@@ -8,24 +8,29 @@
 //   B V₁ dz/db = −∂b/∂b,   B V₁ dw/db = −(∂ḃ/∂q V₁ dz/db + ∂ḃ/∂b)
 // (TrajectoryDerivatives::initialSensitivities). Directions that moved with the design, as a fresh
 // minimum-norm assembly's would, make the state depend on the path of the iterations, which no
-// implicit function describes. Where the loops are closed already (every design without a geometric
-// variable) nothing moves: the state is the scene's, to the bit.
+// implicit function describes. Only a design with a variable that moves a loop closes it again
+// (evaluateDesign); every other design starts from the scene's state, to the bit.
 #pragma once
 
 #include <Eigen/Core>
 
 #include "dynamics/scene.hpp"
+#include "sensitivity/design_problem.hpp"
 
 namespace mbsopt {
+
+/// Whether some design variable moves a loop's closure (movesLoopClosure): then each design's
+/// initial state is closed again (designInitialState).
+bool designMovesLoopClosure(const DesignProblem& problem);
 
 /// V₁ of the scene: free coordinates × the rank of B at (scene.q0, the scene's parameters), at the
 /// integrator's SVD threshold.
 Eigen::MatrixXd closingDirections(const Scene& scene);
 
 /// The scene's initial state with `model` (the scene's model with a design applied), its loops closed
-/// again along closingDirections(scene) when they are open by more than the assembly's tolerance
-/// (1e-12). Throws AssemblyError (dynamics/assembly.hpp) naming the cut joints when Gauss-Newton
-/// cannot close them (a design whose loop cannot be assembled).
+/// again along closingDirections(scene) (closeLoops, to 1e-12; where Gauss-Newton stagnates, as
+/// assemble() does, to 1e-9). Throws AssemblyError (dynamics/assembly.hpp) naming the cut joints when
+/// it cannot close them (a design whose loop cannot be assembled).
 void designInitialState(const Scene& scene, const Model& model, Eigen::VectorXd& q, Eigen::VectorXd& v);
 
 }  // namespace mbsopt

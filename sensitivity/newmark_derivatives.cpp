@@ -388,7 +388,7 @@ InitialSensitivities TrajectoryDerivatives::initialSensitivities() {
   const ClosureDerivatives& c = point.closure;
   InitialSensitivities out{Eigen::MatrixXd::Zero(nf, p), Eigen::MatrixXd::Zero(nf, p), {}};
   Eigen::MatrixXd top = -s.parameters, bottom = Eigen::MatrixXd::Zero(m, p);
-  if (geometric_ && m > 0) {
+  if (designMovesLoopClosure(problem_)) {
     // q₀ = q₀ˢ + V₁ z and q̇₀ = q̇₀ˢ + V₁ w on b = 0 and ḃ = 0 (initial_state.hpp) differentiated.
     const Eigen::MatrixXd V1 = closingDirections(problem_.scene);
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> closing(c.jacobian * V1);

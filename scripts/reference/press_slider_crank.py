@@ -17,7 +17,7 @@ e grows: the optimum is the vertex where the lean constraint meets the equality.
 How far it can be trusted: the responses are evaluated at mbsopt's time points t_k = k h, where a
 kinematic loop's positions, rates and accelerations are those of the closure (no integration
 error: the integrator closes b, its rate and its acceleration at each point); the grid maximum is
-then the same numbers to the closure's tolerance. cost_relative is set to 1e-9, a hundred times the
+then the same numbers to the closure's tolerance. cost_relative is set to 1e-9, ten times the
 Newton tolerance (1e-10 relative) of the closure; the design is a vertex of two closed forms, exact
 to round-off. A converged optimizer may exceed the lean bound by its feasibility tolerance (1e-6
 rad), which lowers the cost by the bound's multiplier times that: feasibility_allowance.

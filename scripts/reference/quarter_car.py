@@ -13,12 +13,12 @@ script integrates it by its own trapezoidal rule (Newmark with beta = 1/4, gamma
 scheme mbsopt uses, written here for this 2 x 2 system, one linear solve a step) on mbsopt's time
 grid, and takes the RMS by the trapezoidal rule and the travel's maximum over the grid, as mbsopt
 does. So it solves the same discrete problem as mbsopt, by other code. The travel falls as c
-grows; for each k, bisection finds the c that meets the travel bound. Along that boundary a scan
-of k shows the cost rising with k: the spring's lower bound is active, and c follows from the
-travel bound there.
+grows; for each k, regula falsi finds the c that meets the travel bound. Along that boundary a scan
+of k shows one interior minimum, which golden-section search finds; beyond the bound's c the cost
+only rises, so the bound is active.
 
 How far it can be trusted: the discrete problem's optimum to round-off (regula falsi ends at 1e-13
-relative), so cost_relative is 1e-9 (the simulation's Newton tolerance). The cost is flat in k
+relative), so cost_relative is 1e-9, ten times the simulation's Newton tolerance (1e-10). The cost is flat in k
 along the bound: design_range holds the designs whose cost is within design_cost_band of the
 optimum. A converged optimizer may exceed the travel bound by its feasibility tolerance (1e-6 m),
 which lowers the cost by the bound's multiplier times that: feasibility_allowance. The continuous-

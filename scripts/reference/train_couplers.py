@@ -16,9 +16,10 @@ column, and Gaussian elimination solves the nineteen equalities. They fix the de
 set is one point, and the cost is the last car's largest acceleration on the grid there.
 
 How far it can be trusted: the discrete problem's optimum to round-off (a run at the design meets
-the equalities to about 1e-12 m), so cost_relative is 1e-9 (the simulation's Newton tolerance).
+the equalities to about 1e-12 m), so cost_relative is 1e-9, ten times the simulation's Newton
+tolerance (1e-10).
 
-Standard library only; about 20 s. Prints the JSON that problems/suite/train_couplers.reference.json
+Standard library only; under 2 s. Prints the JSON that problems/suite/train_couplers.reference.json
 holds:
     python3 scripts/reference/train_couplers.py > problems/suite/train_couplers.reference.json
 """
