@@ -4,6 +4,7 @@
 // evaluation of the final design.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -73,6 +74,35 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   const int sensor = 0;  // tip_acceleration, the cost's sensor
   const double expected = check.trajectory.sensors.col(sensor).cwiseAbs().maxCoeff();
   EXPECT_NEAR(r["responses"]["max_abs_tip_acceleration"].get<double>(), expected, 1e-9 * expected);
+  std::filesystem::remove_all(directory);
+}
+
+// An RMS cost and an RMS constraint on the oscillator x = cos(ωt), ω² = k: the JSON reports both
+// RMS values under rms_position, the closed form √(1/2 + sin(2ωτ)/(4ωτ)) at the final k within the
+// trapezoidal Newmark's phase error (a relative ω²h²/12 · ωτ, bounded by 2e-4 with a tenfold margin
+// for k ≤ 100), and limit_excess counts the RMS constraint: RMS − bound.
+TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / ("mbsopt_optimize_rms_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(directory);
+  const std::filesystem::path scene = directory / "oscillator.yaml", json = directory / "oscillator.json";
+  std::ofstream(scene) << std::string(test::kOscillator) + R"(design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: rms}
+  artificial: {initial: 1, lower: 0, upper: 2}
+  constraints: [{sensor: position, of: rms, bound: 0.6}]
+)";
+  const std::string command = std::string(MBSOPT_EXECUTABLE) + " optimize " + scene.string() + " --set settings.end_time=0.8" +
+                              " --optimizer slsqp --max-iter 10 --json " + json.string() + " > " +
+                              (directory / "stdout").string();
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  nlohmann::json r;
+  std::ifstream(json) >> r;
+  ASSERT_TRUE(r["responses"].contains("rms_position"));
+  const double omega = std::sqrt(r["design"][0].get<double>()), tau = 0.8;
+  const double rms = std::sqrt(0.5 + std::sin(2.0 * omega * tau) / (4.0 * omega * tau));
+  EXPECT_NEAR(r["responses"]["rms_position"].get<double>(), rms, 2e-4);
+  EXPECT_NEAR(r["limit_excess"].get<double>(), r["responses"]["rms_position"].get<double>() - 0.6, 1e-12);
   std::filesystem::remove_all(directory);
 }
 
