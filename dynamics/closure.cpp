@@ -104,24 +104,29 @@ void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const Vect
   }
 }
 
-CutWrench cutReaction(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda, int cut) {
+template <class Scalar>
+void reactionCoefficients(const Model& model, const Workspace<Scalar>& ws, const CutReactionSensor& sensor,
+                          VectorX<Scalar>& c) {
+  c.setZero(model.constraintCount());
   Eigen::Index row = 0;
-  for (int c = 0; c < cut; ++c) row += equationCount(model.cuts()[static_cast<std::size_t>(c)].kind);
-  // addConstraintWrenches adds λ to the wrench frame b must transmit when the rows say −λ: the
-  // cut applies +λ_p and +λ_r u_r × w_r to frame b.
-  CutWrench on_b;
+  for (int k = 0; k < sensor.cut; ++k) row += equationCount(model.cuts()[static_cast<std::size_t>(k)].kind);
+  const CutKind& cut = model.cuts()[static_cast<std::size_t>(sensor.cut)].kind;
+  const Vector3<Scalar> axis = ws.rotation[static_cast<std::size_t>(cutFrameA(cut))].col(sensor.component);
+  const bool force = sensor.quantity == ReactionQuantity::Force;
+  // addConstraintWrenches adds λ to the wrench frame b must transmit when the rows say −λ: the cut
+  // applies +λ_p and +λ_r u_r × w_r to frame b.
   forEachEquation(
-      model.cuts()[static_cast<std::size_t>(cut)].kind,
+      cut,
       [&](FrameIndex, FrameIndex) {
-        on_b.force = lambda.segment<3>(row);
+        if (force) c.template segment<3>(row) = axis;
         row += 3;
       },
       [&](const Orthogonality& o) {
-        const Eigen::Vector3d u = ws.rotation[static_cast<std::size_t>(o.frame_a)] * o.u_local;
-        const Eigen::Vector3d w = ws.rotation[static_cast<std::size_t>(o.frame_b)] * o.w_local;
-        on_b.torque += lambda[row++] * u.cross(w);
+        const Vector3<Scalar> u = ws.rotation[static_cast<std::size_t>(o.frame_a)] * o.u_local;
+        const Vector3<Scalar> w = ws.rotation[static_cast<std::size_t>(o.frame_b)] * o.w_local;
+        if (!force) c[row] = axis.dot(u.cross(w));
+        ++row;
       });
-  return on_b;
 }
 
 void checkWeldOrientations(const Model& model, const Workspace<double>& ws) {
@@ -143,6 +148,10 @@ void checkWeldOrientations(const Model& model, const Workspace<double>& ws) {
 
 template void closureEquations<double>(const Model&, const Workspace<double>&, Derivative, VectorX<double>&);
 template void closureEquations<AdScalar>(const Model&, const Workspace<AdScalar>&, Derivative, VectorX<AdScalar>&);
+template void reactionCoefficients<double>(const Model&, const Workspace<double>&, const CutReactionSensor&,
+                                           VectorX<double>&);
+template void reactionCoefficients<AdScalar>(const Model&, const Workspace<AdScalar>&, const CutReactionSensor&,
+                                             VectorX<AdScalar>&);
 template void addConstraintWrenches<double>(const Model&, Workspace<double>&, const VectorX<double>&);
 template void addConstraintWrenches<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
 

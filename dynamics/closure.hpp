@@ -18,18 +18,15 @@ void closureEquations(const Model& model, const Workspace<Scalar>& ws, Derivativ
 template <class Scalar>
 void addConstraintWrenches(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda);
 
-/// The wrench a cut joint transmits to its frame b from frame a's side, in ground axes: the force
-/// (applied at the origin of b, which coincides with that of a) and the torque about that origin.
-/// Frame a receives the opposite wrench.
-struct CutWrench {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
-};
-
-/// The reaction of cut joint `cut` from the multipliers λ of every cut (Bᵀλ of (36) on its frames,
-/// as addConstraintWrenches applies them): force λ_p of its coincidence rows p_a − p_b, torque
-/// Σ λ_r u_r × w_r of its orthogonality rows u_r·w_r. Needs forwardKinematics at Position level.
-CutWrench cutReaction(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& lambda, int cut);
+/// The coefficients c(q) of a cut-reaction sensor's value y = c·λ: one per closure equation of the
+/// model, zero outside the rows of the sensor's cut. The cut transmits to its frame b, from frame a's
+/// side, the force λ_p of its coincidence rows p_a − p_b and the torque Σ λ_r u_r × w_r of its
+/// orthogonality rows u_r·w_r (Bᵀλ of (36) on its frames, as addConstraintWrenches applies them);
+/// y is that force's or torque's component along axis `component` of frame a. Needs
+/// forwardKinematics at Position level.
+template <class Scalar>
+void reactionCoefficients(const Model& model, const Workspace<Scalar>& ws, const CutReactionSensor& sensor,
+                          VectorX<Scalar>& c);
 
 /// The closure equations of a weld cut (three orthogonalities) also hold when frame b is turned by
 /// 180° (or 120° about a diagonal) relative to frame a. Throws std::invalid_argument naming the cut
@@ -42,6 +39,10 @@ extern template void closureEquations<double>(const Model&, const Workspace<doub
 extern template void closureEquations<AdScalar>(const Model&, const Workspace<AdScalar>&, Derivative,
                                                 VectorX<AdScalar>&);
 extern template void addConstraintWrenches<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+extern template void reactionCoefficients<double>(const Model&, const Workspace<double>&, const CutReactionSensor&,
+                                                  VectorX<double>&);
+extern template void reactionCoefficients<AdScalar>(const Model&, const Workspace<AdScalar>&, const CutReactionSensor&,
+                                                    VectorX<AdScalar>&);
 extern template void addConstraintWrenches<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
 
 }  // namespace mbsopt

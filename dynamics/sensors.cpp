@@ -13,16 +13,13 @@ namespace {
 
 /// An energy or cut-reaction sensor at one time point; ws holds the kinematics of the state.
 double systemSensorValue(const Model& model, const Sensor& sensor, const Workspace<double>& ws,
-                         const Eigen::VectorXd& q, const Eigen::VectorXd& lambda, double t) {
+                         const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                         const Eigen::VectorXd& lambda, double t) {
   if (const auto* energy = std::get_if<EnergySensor>(&sensor.kind))
     return energyPart(mechanicalEnergyOfFrames(model, ws, q, t), energy->part);
-  const auto& reaction = std::get<CutReactionSensor>(sensor.kind);
   if (lambda.size() != model.constraintCount())
     throw std::invalid_argument("sensor '" + sensor.name + "': the trajectory holds no multipliers λ of the cuts");
-  const CutWrench on_b = cutReaction(model, ws, lambda, reaction.cut);
-  const Eigen::Vector3d& vector = reaction.quantity == ReactionQuantity::Force ? on_b.force : on_b.torque;
-  const auto frame_a = static_cast<std::size_t>(cutFrameA(model.cuts()[static_cast<std::size_t>(reaction.cut)].kind));
-  return ws.rotation[frame_a].col(reaction.component).dot(vector);
+  return sensorValue(model, sensor, ws, q, v, a, lambda);
 }
 
 template <class Scalar>
@@ -34,8 +31,10 @@ template <class Scalar>
 }  // namespace
 
 bool isStateSensor(const Sensor& sensor) {
-  return !std::holds_alternative<EnergySensor>(sensor.kind) && !std::holds_alternative<CutReactionSensor>(sensor.kind);
+  return !std::holds_alternative<EnergySensor>(sensor.kind) && !readsMultipliers(sensor);
 }
+
+bool readsMultipliers(const Sensor& sensor) { return std::holds_alternative<CutReactionSensor>(sensor.kind); }
 
 template <class Scalar>
 Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const VectorX<Scalar>& q,
@@ -75,12 +74,22 @@ Scalar sensorValue(const Sensor& sensor, const Workspace<Scalar>& ws, const Vect
       sensor.kind);
 }
 
+template <class Scalar>
+Scalar sensorValue(const Model& model, const Sensor& sensor, const Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                   const VectorX<Scalar>& v, const VectorX<Scalar>& a, const VectorX<Scalar>& lambda) {
+  const auto* reaction = std::get_if<CutReactionSensor>(&sensor.kind);
+  if (!reaction) return sensorValue(sensor, ws, q, v, a);
+  VectorX<Scalar> c;
+  reactionCoefficients(model, ws, *reaction, c);
+  return c.dot(lambda);
+}
+
 void sensorValues(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                   const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double t, SensorRow values) {
   for (std::size_t s = 0; s < model.sensors().size(); ++s) {
     const Sensor& sensor = model.sensors()[s];
     values[static_cast<Eigen::Index>(s)] =
-        isStateSensor(sensor) ? sensorValue(sensor, ws, q, v, a) : systemSensorValue(model, sensor, ws, q, lambda, t);
+        isStateSensor(sensor) ? sensorValue(sensor, ws, q, v, a) : systemSensorValue(model, sensor, ws, q, v, a, lambda, t);
   }
 }
 
@@ -104,5 +113,10 @@ template double sensorValue<double>(const Sensor&, const Workspace<double>&, con
                                     const VectorX<double>&, const VectorX<double>&);
 template AdScalar sensorValue<AdScalar>(const Sensor&, const Workspace<AdScalar>&, const VectorX<AdScalar>&,
                                         const VectorX<AdScalar>&, const VectorX<AdScalar>&);
+template double sensorValue<double>(const Model&, const Sensor&, const Workspace<double>&, const VectorX<double>&,
+                                    const VectorX<double>&, const VectorX<double>&, const VectorX<double>&);
+template AdScalar sensorValue<AdScalar>(const Model&, const Sensor&, const Workspace<AdScalar>&,
+                                        const VectorX<AdScalar>&, const VectorX<AdScalar>&, const VectorX<AdScalar>&,
+                                        const VectorX<AdScalar>&);
 
 }  // namespace mbsopt

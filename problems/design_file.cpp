@@ -100,4 +100,14 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   return out;
 }
 
+void checkDesignReactions(const MapReader& design, const Scene& scene) {
+  std::vector<MapReader> entries{MapReader(design.context(), design.required("cost"), "design.cost")};
+  for (const YamlNode& node : readList(design.context(), design.node()["constraints"], "design.constraints"))
+    entries.emplace_back(design.context(), node, "design constraint");
+  for (const MapReader& entry : entries) {
+    const Sensor& sensor = scene.model.sensors()[static_cast<std::size_t>(scene.model.sensor(entry.name("sensor")))];
+    if (const std::string defect = reactionDeterminacyDefect(scene, sensor); !defect.empty()) entry.fail("sensor", defect);
+  }
+}
+
 }  // namespace mbsopt

@@ -10,4 +10,9 @@ namespace mbsopt {
 /// at its line.
 DesignDescription readDesign(const MapReader& design, const Model& model);
 
+/// Once the scene is assembled: every cut reaction the section reads (its cost's and constraints'
+/// `sensor:`) must be determinate at the initial state (reactionDeterminacyDefect), an error at that
+/// `sensor:` otherwise.
+void checkDesignReactions(const MapReader& design, const Scene& scene);
+
 }  // namespace mbsopt

@@ -48,10 +48,10 @@ Eigen::MatrixXd AugmentedSolver::solve(const Eigen::MatrixXd& top, const Eigen::
   return X;
 }
 
-void AugmentedSolver::solveColumns(Eigen::MatrixXd& X) const {
+void AugmentedSolver::solveColumns(Eigen::MatrixXd& X, Eigen::MatrixXd* Y) const {
   if (factored_ != Factored::Matrix && factored_ != Factored::Symmetric)
     throw std::logic_error("AugmentedSolver::solve needs setMatrix");
-  factoredPartition().solveColumns(top_rhs_, bottom_rhs_, X, nullptr);
+  factoredPartition().solveColumns(top_rhs_, bottom_rhs_, X, Y);
 }
 
 void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const {
@@ -67,6 +67,21 @@ void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, Eigen::Matrix
   bbar = bbar_t_.transpose();
 }
 
+void AugmentedSolver::solveTransposed(const Eigen::MatrixXd& xbar, const Eigen::MatrixXd& ybar, Eigen::MatrixXd& tbar,
+                                      Eigen::MatrixXd& bbar) const {
+  if (factored_ != Factored::Transposed) throw std::logic_error("AugmentedSolver::solveTransposed(ȳ) needs setTransposedMatrix");
+  const SvdPartition& partition = factoredPartition();
+  w_t_.resize(xbar.cols(), ybar.rows());
+  for (Eigen::Index r = 0; r < ybar.rows(); ++r) {
+    column_ = ybar.row(r).transpose();
+    partition.pseudoInverse(column_, w_column_);
+    w_t_.col(r) = w_column_;
+  }
+  shifted_xbar_.noalias() = xbar - (transposed_ * w_t_).transpose();  // x̄ − w J, (w J)ᵀ = Jᵀ wᵀ
+  solveTransposed(shifted_xbar_, tbar, bbar);
+  tbar += w_t_.transpose();
+}
+
 Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
                                const Eigen::MatrixXd& bottom, double threshold) {
   AugmentedSolver solver(B, threshold);
@@ -75,10 +90,12 @@ Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& 
 }
 
 void solveAugmentedTransposed(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& xbar,
-                              double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) {
+                              double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar,
+                              const Eigen::MatrixXd* ybar) {
   AugmentedSolver solver(B, threshold);
   solver.setTransposedMatrix(J);
-  solver.solveTransposed(xbar, tbar, bbar);
+  if (ybar) solver.solveTransposed(xbar, *ybar, tbar, bbar);
+  else solver.solveTransposed(xbar, tbar, bbar);
 }
 
 }  // namespace mbsopt

@@ -43,16 +43,29 @@ class AugmentedSolver {
   void solve(const Eigen::MatrixBase<Top>& top, const Eigen::MatrixBase<Bottom>& bottom, Eigen::MatrixXd& X) const {
     top_rhs_ = -top;  // the partition solves for −[r; g]
     bottom_rhs_ = -bottom;
-    solveColumns(X);
+    solveColumns(X, nullptr);
+  }
+  /// The same with the multipliers' part Y (m × p) too: the minimum-norm one, Y = (Bᵀ)⁺(top − J X).
+  template <class Top, class Bottom>
+  void solve(const Eigen::MatrixBase<Top>& top, const Eigen::MatrixBase<Bottom>& bottom, Eigen::MatrixXd& X,
+             Eigen::MatrixXd& Y) const {
+    top_rhs_ = -top;
+    bottom_rhs_ = -bottom;
+    solveColumns(X, &Y);
   }
   /// Rows of t̄ (r × n) and b̄ (r × m), one per row of x̄ (r × n). Needs setTransposedMatrix.
   void solveTransposed(const Eigen::MatrixXd& xbar, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar) const;
+  /// The same with a seed ȳ (r × m) on the multipliers Y as solve() gives them: the rows (t̄, b̄)
+  /// with x̄ X + ȳ Y = t̄ top + b̄ bottom. With w = ȳ (Bᵀ)⁺ (w = (B⁺ȳᵀ)ᵀ), ȳ Y = w top − w J X, so
+  /// t̄ = w + t̄' and b̄ = b̄', (t̄', b̄') the transposed solve of x̄ − w J. Needs setTransposedMatrix.
+  void solveTransposed(const Eigen::MatrixXd& xbar, const Eigen::MatrixXd& ybar, Eigen::MatrixXd& tbar,
+                       Eigen::MatrixXd& bbar) const;
 
  private:
   enum class Factored { None, Matrix, Transposed, Symmetric };
-  /// X from the right-hand sides in top_rhs_, bottom_rhs_ (negated: the partition solves for
-  /// −[r; g]), all columns in one SvdPartition::solveColumns. Needs setMatrix.
-  void solveColumns(Eigen::MatrixXd& X) const;
+  /// X (and Y, when given) from the right-hand sides in top_rhs_, bottom_rhs_ (negated: the
+  /// partition solves for −[r; g]), all columns in one SvdPartition::solveColumns. Needs setMatrix.
+  void solveColumns(Eigen::MatrixXd& X, Eigen::MatrixXd* Y) const;
   /// The partition the solves use: partition_, or the one of setFactoredSymmetricMatrix.
   const SvdPartition& factoredPartition() const { return symmetric_ ? *symmetric_ : partition_; }
   SvdPartition partition_;
@@ -60,6 +73,8 @@ class AugmentedSolver {
   Eigen::MatrixXd transposed_;  ///< Jᵀ for setTransposedMatrix
   mutable Eigen::MatrixXd top_rhs_, bottom_rhs_;  ///< the right-hand sides, negated (solveTransposed: no bottom)
   mutable Eigen::MatrixXd tbar_t_, bbar_t_;  ///< solveTransposed's results, transposed
+  mutable Eigen::MatrixXd w_t_, shifted_xbar_;  ///< solveTransposed's (B⁺ȳᵀ) and x̄ − w J
+  mutable Eigen::VectorXd column_, w_column_;
   Factored factored_ = Factored::None;
 };
 
@@ -67,8 +82,9 @@ class AugmentedSolver {
 Eigen::MatrixXd solveAugmented(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& top,
                                const Eigen::MatrixXd& bottom, double threshold);
 
-/// (t̄, b̄) for x̄ with a solver of its own.
+/// (t̄, b̄) for x̄, and ȳ on the multipliers when `ybar` is given, with a solver of its own.
 void solveAugmentedTransposed(const Eigen::MatrixXd& J, const Eigen::MatrixXd& B, const Eigen::MatrixXd& xbar,
-                              double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar);
+                              double threshold, Eigen::MatrixXd& tbar, Eigen::MatrixXd& bbar,
+                              const Eigen::MatrixXd* ybar = nullptr);
 
 }  // namespace mbsopt

@@ -52,7 +52,8 @@ bool TrajectoryDerivatives::packPoint(const PointDerivatives& point, const std::
     if (!fits || out == end) return false;
     *out++ = J.value;
     fits = packMatrix(J.position, out, end) && packMatrix(J.velocity, out, end) &&
-           packMatrix(J.acceleration, out, end) && packMatrix(J.parameters, out, end);
+           packMatrix(J.acceleration, out, end) && packMatrix(J.parameters, out, end) &&
+           packMatrix(J.multipliers, out, end);
   }
   // B's partition, with M factored when B has rows: the sweep copies it instead of computing it.
   const Eigen::Index m = point.closure.jacobian.rows(), nf = point.step.mass.rows();
@@ -70,6 +71,7 @@ void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& poin
     unpackMatrix(in, J.velocity);
     unpackMatrix(in, J.acceleration);
     unpackMatrix(in, J.parameters);
+    unpackMatrix(in, J.multipliers);
   }
   const Eigen::Index m = point.closure.jacobian.rows(), nf = point.step.mass.rows();
   point.closure.partition.loadFactored(in, m, nf, point.step.mass);
@@ -77,13 +79,14 @@ void TrajectoryDerivatives::unpackPoint(const double* in, PointDerivatives& poin
 
 Eigen::Index TrajectoryDerivatives::packedPointSize() const {
   // M, C_T, K_T, G_v, G_a (nf² each); ∂f/∂b, P_v, P_a (nf p); B, ∂ḃ/∂q, ∂b̈/∂q (m nf); ∂b/∂b,
-  // ∂ḃ/∂b, ∂b̈/∂b (m p at most); per sensor its value, three rows of nf and one of at most p; and two
-  // numbers for the shape of each of those matrices (forEachMatrix's 14, four per sensor); then B's
+  // ∂ḃ/∂b, ∂b̈/∂b (m p at most); per sensor its value, three rows of nf, one of at most p and one of
+  // at most m (∂g/∂λ); and two numbers for the shape of each of those matrices (forEachMatrix's 14,
+  // five per sensor); then B's
   // partition and its factorization of M (SvdPartition::storedFactoredSize). packPoint refuses a
   // point that would not fit.
   const Eigen::Index nf = freeCount(), p = variableCount(), m = constraintCount();
   const auto sensors = static_cast<Eigen::Index>(functional_sensors_.size());
-  return 5 * nf * nf + 3 * nf * p + 3 * m * nf + 3 * m * p + sensors * (1 + 3 * nf + p) + 2 * (14 + 4 * sensors) +
+  return 5 * nf * nf + 3 * nf * p + 3 * m * nf + 3 * m * p + sensors * (1 + 3 * nf + p + m) + 2 * (14 + 5 * sensors) +
          SvdPartition::storedFactoredSize(m, nf);
 }
 

@@ -16,7 +16,8 @@ namespace {
 /// One time point's adjoint sources, per unit of time and halved (the trapezoidal rule's h/2 g_k),
 /// after the acceleration responses are substituted (paper (59)-(63), with the loop closure):
 /// q̈ = L(−(C q̇ + K q + ∂f/∂b), −(∂b̈/∂q q + ∂b̈/∂q̇ q̇)) linearised, so a seed ḡ_a on q̈ becomes
-/// −t̄ K − b̄ ∂b̈/∂q on q, −t̄ C − b̄ ∂b̈/∂q̇ on q̇ and −t̄ ∂f/∂b directly on b, (t̄, b̄) its transposed solve.
+/// −t̄ K − b̄ ∂b̈/∂q on q, −t̄ C − b̄ ∂b̈/∂q̇ on q̇ and −t̄ ∂f/∂b directly on b, (t̄, b̄) its transposed solve;
+/// a seed on the multipliers λ of the same system (a cut reaction) enters that solve beside ḡ_a.
 struct HalfSources {
   Eigen::MatrixXd position, velocity;
 };
@@ -25,10 +26,12 @@ HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, co
                                     double half_over_weight, Eigen::MatrixXd& dpsi_db) {
   ResponseSeeds seeds = d.seeds(k);
   if (seeds.parameters.cols() > 0) dpsi_db += seeds.parameters;  // the sensors' explicit ∂Ψ/∂b
-  if (seeds.acceleration.cwiseAbs().maxCoeff() > 0.0) {
+  const bool multipliers = seeds.multipliers.cols() > 0 && !seeds.multipliers.isZero(0.0);
+  if (seeds.acceleration.cwiseAbs().maxCoeff() > 0.0 || multipliers) {
     Eigen::MatrixXd tbar, bbar;
     const Eigen::MatrixXd jacobian = d.constraintJacobian(k);
-    solveAugmentedTransposed(s.mass, jacobian, seeds.acceleration, d.settings().svd_threshold, tbar, bbar);
+    solveAugmentedTransposed(s.mass, jacobian, seeds.acceleration, d.settings().svd_threshold, tbar, bbar,
+                             multipliers ? &seeds.multipliers : nullptr);
     seeds.position -= tbar * s.stiffness;
     seeds.velocity -= tbar * s.damping;
     if (d.constraintCount() > 0) {

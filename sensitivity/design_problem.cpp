@@ -5,7 +5,11 @@
 #include <map>
 #include <stdexcept>
 
+#include <Eigen/SVD>
+
+#include "dynamics/closure.hpp"
 #include "dynamics/sensors.hpp"
+#include "dynamics/tangent.hpp"
 
 namespace mbsopt {
 
@@ -16,13 +20,36 @@ int sensorIndex(const Model& model, const std::string& name) {
 }
 
 std::string designSensorDefect(const Sensor& sensor) {
-  if (isStateSensor(sensor)) return {};
-  const bool energy = std::holds_alternative<EnergySensor>(sensor.kind);
-  return "sensor '" + sensor.name + "' is " +
-         (energy ? "an energy sensor, which depends on the model parameters (masses, stiffnesses) directly"
-                 : "a cut-force sensor, which depends on the multipliers λ") +
-         ": the design gradients differentiate only point, joint and relative_angle sensors, so it cannot be a "
-         "cost or a constraint";
+  if (isStateSensor(sensor) || readsMultipliers(sensor)) return {};
+  return "sensor '" + sensor.name +
+         "' is an energy sensor, which depends on the model parameters (masses, stiffnesses) directly: the design "
+         "gradients differentiate point, joint, relative_angle and cut_reaction sensors, so it cannot be a cost or "
+         "a constraint";
+}
+
+std::string reactionDeterminacyDefect(const Scene& scene, const Sensor& sensor) {
+  const auto* reaction = std::get_if<CutReactionSensor>(&sensor.kind);
+  if (!reaction) return {};
+  const Model& model = scene.model;
+  Workspace<double> ws(model);
+  Eigen::VectorXd b, c;
+  Eigen::MatrixXd B;
+  constraintJacobian(model, ws, scene.q0, model.freeCoordinates(), b, B);  // leaves q₀'s geometry in ws
+  reactionCoefficients(model, ws, *reaction, c);
+  // The range of B at the integrator's threshold: the multipliers there are determinate.
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeThinU);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  Eigen::Index rank = 0;
+  while (rank < sigma.size() && sigma[rank] > scene.settings.svd_threshold * sigma[0]) ++rank;
+  const Eigen::MatrixXd U1 = svd.matrixU().leftCols(rank);
+  const double indeterminate = (c - U1 * (U1.transpose() * c)).norm();
+  if (indeterminate <= kDeterminateReaction * c.norm()) return {};
+  return "sensor '" + sensor.name + "' reads a component of the reaction of cut '" +
+         model.cuts()[static_cast<std::size_t>(reaction->cut)].name +
+         "' that its redundant closure equations leave statically indeterminate (at the initial state " +
+         std::to_string(static_cast<int>(std::lround(100.0 * indeterminate / c.norm()))) +
+         " % of it reads multipliers that no motion fixes): it is not a function of the design, so it cannot be a "
+         "cost or a constraint; a planar loop determines only the in-plane forces of its cut";
 }
 
 namespace {
@@ -42,8 +69,9 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   const double duration = problem.scene.settings.end_time;
   const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial, bool equality) {
     const int index = sensorIndex(model, sensor);
-    if (const std::string defect = designSensorDefect(model.sensors()[static_cast<std::size_t>(index)]); !defect.empty())
-      throw std::invalid_argument("design: " + defect);
+    const Sensor& read = model.sensors()[static_cast<std::size_t>(index)];
+    for (const std::string& defect : {designSensorDefect(read), reactionDeterminacyDefect(problem.scene, read)})
+      if (!defect.empty()) throw std::invalid_argument("design: " + defect);
     if (equality && of != ResponseMeasure::Integral && of != ResponseMeasure::FinalValue)
       throw std::invalid_argument("design: an equality on '" + sensor + "' needs an exact functional (integral or final)");
     // The cost's epigraph: b_{k+1} in the samples of a transcribed extreme, after an exact functional.

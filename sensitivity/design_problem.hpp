@@ -94,8 +94,16 @@ struct ConstraintFunctional {
 int sensorIndex(const Model& model, const std::string& name);
 
 /// Empty when a cost or constraint may use `sensor`, i.e. when the design gradients can
-/// differentiate it (a function of the state alone, isStateSensor); otherwise why not.
+/// differentiate it (a function of the state alone, isStateSensor, or a cut reaction, which also
+/// reads the multipliers λ); otherwise why not.
 std::string designSensorDefect(const Sensor& sensor);
+
+/// A cut reaction y = c·λ is a function of the design only when c lies in the range of B: redundant
+/// closure equations (a planar loop closed by a spatial revolute cut) leave the multipliers along
+/// null(Bᵀ) to the history of Newton's iterations. Empty when that holds at the scene's initial state
+/// (to kDeterminateReaction of ‖c‖) or the sensor is no cut reaction; otherwise why not.
+std::string reactionDeterminacyDefect(const Scene& scene, const Sensor& sensor);
+inline constexpr double kDeterminateReaction = 1e-6;
 
 /// The constraints of the problem in the order the optimizers see them (NlpProblem: inequalities,
 /// then equalities): those of the cost (with the artificial variable), then the inequalities of each

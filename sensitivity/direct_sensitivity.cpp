@@ -14,14 +14,15 @@ namespace {
 /// The sensitivities S_q, S_v, S_a of one time point and the intermediate matrices of a step: kept
 /// from step to step, so that the recursion allocates nothing once their sizes are reached.
 struct ForwardStep {
-  Eigen::MatrixXd q, v, a;
+  Eigen::MatrixXd q, v, a, lambda;  ///< S_λ: Newton's multipliers, as the cut reactions read them
   Eigen::MatrixXd q_pred, v_pred, iteration, top, bottom, a_newton, seeded;
 };
 
-/// dΨ/db += ∂Ψ/∂q S_q + ∂Ψ/∂q̇ S_v + ∂Ψ/∂q̈ S_a, and the sensors' explicit ∂Ψ/∂b; nothing at a
-/// point without seeds.
+/// dΨ/db += ∂Ψ/∂q S_q + ∂Ψ/∂q̇ S_v + ∂Ψ/∂q̈ S_a + ∂Ψ/∂λ S_λ, and the sensors' explicit ∂Ψ/∂b;
+/// nothing at a point without seeds.
 void accumulate(const ResponseSeeds& seeds, ForwardStep& step, Eigen::MatrixXd& dpsi_db) {
   if (seeds.parameters.cols() > 0) dpsi_db += seeds.parameters;
+  if (seeds.multipliers.cols() > 0) dpsi_db.noalias() += seeds.multipliers * step.lambda;
   if (seeds.position.isZero(0.0) && seeds.velocity.isZero(0.0) && seeds.acceleration.isZero(0.0)) return;
   multiply(seeds.position, step.q, step.seeded);
   multiply(seeds.velocity, step.v, step.seeded, Accumulate::Add);
@@ -44,6 +45,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   step.q.swap(initial.q);
   step.v.swap(initial.v);
   step.a.swap(initial.a);
+  step.lambda.swap(initial.lambda);
   accumulate(d.seeds(0), step, dpsi_db);
   AugmentedSolver solver(settings.svd_threshold);
   // The recursion goes as far as the last point with a seed: beyond it the sensitivities would only
@@ -69,7 +71,8 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
     multiply(s.damping, step.v_pred, step.top, Accumulate::Add);
     multiply(c.jacobian, step.q_pred, step.bottom);
     if (c.position_parameters.cols() > 0) step.bottom += c.position_parameters;
-    solver.solve(-step.top, -step.bottom / (beta * h * h), step.a_newton);
+    if (d.readsMultipliers()) solver.solve(-step.top, -step.bottom / (beta * h * h), step.a_newton, step.lambda);
+    else solver.solve(-step.top, -step.bottom / (beta * h * h), step.a_newton);
     step.q = step.q_pred + beta * h * h * step.a_newton;
     step.v = step.v_pred + gamma * h * step.a_newton;
     if (m > 0) {

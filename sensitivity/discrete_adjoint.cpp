@@ -23,6 +23,8 @@ void nonZeroRows(const ResponseSeeds& bar, std::vector<Eigen::Index>& rows) {
     for (const Eigen::MatrixXd* m : {&bar.position, &bar.velocity, &bar.acceleration})
       for (Eigen::Index i = 0; i < n; ++i)
         if (m->data()[j + i * r] != 0.0) return true;  // (NaN included)
+    for (Eigen::Index i = 0; i < bar.multipliers.cols(); ++i)
+      if (bar.multipliers(j, i) != 0.0) return true;
     return false;
   };
   for (Eigen::Index j = 0; j < r; ++j)
@@ -77,11 +79,13 @@ void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::Poin
                           c.velocity_parameters, out.v_pred);
   }
   // Back through qₖ = q̃ + βh² q̈*, q̇* = ṽ + γh q̈* and Newton's system
-  // q̈* = L(−(∂f/∂b + K_T q̃ + C_T ṽ), −(B q̃ + ∂b/∂b) / (βh²)) with A = M + γh C_T + βh² K_T.
+  // q̈* = L(−(∂f/∂b + K_T q̃ + C_T ṽ), −(B q̃ + ∂b/∂b) / (βh²)) with A = M + γh C_T + βh² K_T, whose
+  // multipliers λₖ the cut reactions read.
   out.a_total = out.a_newton + beta * h * h * out.q_pred + gamma * h * out.v_pred;
   out.iteration = s.mass + gamma * h * s.damping + beta * h * h * s.stiffness;
   solver.setTransposedMatrix(out.iteration);
-  solver.solveTransposed(out.a_total, out.tbar, out.bbar);
+  if (bar.multipliers.cols() > 0) solver.solveTransposed(out.a_total, bar.multipliers, out.tbar, out.bbar);
+  else solver.solveTransposed(out.a_total, out.tbar, out.bbar);
   multiply(out.tbar, s.parameters, out.dpsi_db, Accumulate::Subtract);
   multiply(out.tbar, s.stiffness, out.q_pred, Accumulate::Subtract);
   if (loops) {
@@ -101,11 +105,13 @@ void copyRows(const ResponseSeeds& bar, const std::vector<Eigen::Index>& rows, R
   out.position.resize(r, bar.position.cols());
   out.velocity.resize(r, bar.velocity.cols());
   out.acceleration.resize(r, bar.acceleration.cols());
+  out.multipliers.resize(r, bar.multipliers.cols());
   for (Eigen::Index i = 0; i < r; ++i) {
     const Eigen::Index j = rows[static_cast<std::size_t>(i)];
     out.position.row(i) = bar.position.row(j);
     out.velocity.row(i) = bar.velocity.row(j);
     out.acceleration.row(i) = bar.acceleration.row(j);
+    out.multipliers.row(i) = bar.multipliers.row(j);
   }
 }
 
@@ -167,6 +173,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
     const InitialSensitivities initial = d.initialSensitivities();
     dpsi_db(rows, Eigen::all) += bar.position(rows, Eigen::all) * initial.q + bar.velocity(rows, Eigen::all) * initial.v +
                                  bar.acceleration(rows, Eigen::all) * initial.a;
+    if (bar.multipliers.cols() > 0) dpsi_db(rows, Eigen::all) += bar.multipliers(rows, Eigen::all) * initial.lambda;
   }
   return d.gradient(dpsi_db);
 }

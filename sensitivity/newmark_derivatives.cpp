@@ -100,6 +100,8 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
   step_inputs_ = adInputs({free_q, parameterInputs(ad_parameter_indices_.size()), free_v});
   sensed_step_inputs_ = adInputs({step_inputs_, adInputs(AdInput::Kind::Acceleration, free)});
   collectSensors(model_, functionals_, [](Eigen::Index) { return true; }, functional_sensor_slot_, functional_sensors_);
+  reads_multipliers_ = std::any_of(functional_sensors_.begin(), functional_sensors_.end(),
+                                   [](const Sensor* sensor) { return mbsopt::readsMultipliers(*sensor); });
   if (simulated) return;
   if (jobs >= 2) simulateWhileEvaluating(jobs);
   else evaluateDesign(problem_, functionals_, x_, simulation_, {}, /*keep_step_matrices=*/true);
@@ -218,9 +220,11 @@ void TrajectoryDerivatives::sensorDerivatives(Scratch& s, const VectorX<AdScalar
   // (last nf).
   const Eigen::Index nf = freeCount(), velocities = firstVelocityInput();
   for (std::size_t i = 0; i < s.sensors.size(); ++i) {
-    const AdScalar y = sensorValue(*s.sensors[i], s.ws, q, v, a);
+    // A cut reaction reads Newton's multipliers λ_k, a constant of the passes (s.lambda).
+    const AdScalar y = sensorValue(model_, *s.sensors[i], s.ws, q, v, a, s.lambda);
     ResponseJacobian& J = s.sensor_jacobians[i];
     J.value = y.value();
+    if (first == 0) multiplierDerivatives(model_, s.ws, *s.sensors[i], J);
     for (Eigen::Index j = 0; j < count; ++j) {
       const Eigen::Index input = first + j;
       if (input < nf) J.position[input] = y.derivatives()[j];
@@ -386,7 +390,7 @@ InitialSensitivities TrajectoryDerivatives::initialSensitivities() {
   pointAt(0, scratch_, point);
   const StepDerivatives& s = point.step;
   const ClosureDerivatives& c = point.closure;
-  InitialSensitivities out{Eigen::MatrixXd::Zero(nf, p), Eigen::MatrixXd::Zero(nf, p), {}};
+  InitialSensitivities out{Eigen::MatrixXd::Zero(nf, p), Eigen::MatrixXd::Zero(nf, p), {}, {}};
   Eigen::MatrixXd top = -s.parameters, bottom = Eigen::MatrixXd::Zero(m, p);
   if (designMovesLoopClosure(problem_)) {
     // q₀ = q₀ˢ + V₁ z and q̇₀ = q̇₀ˢ + V₁ w on b = 0 and ḃ = 0 (initial_state.hpp) differentiated.
@@ -398,8 +402,11 @@ InitialSensitivities TrajectoryDerivatives::initialSensitivities() {
     bottom = -(c.acceleration_q * out.q + 2.0 * c.velocity_q * out.v + c.acceleration_parameters);
   }
   // f(q₀, q̇₀, q̈₀, λ₀; b) = 0 and b̈ = 0: [M Bᵀ; B 0][S_a; S_λ] = [−∂f/∂b − K_T S_q − C_T S_v;
-  // −∂b̈/∂q S_q − ∂b̈/∂q̇ S_v − ∂b̈/∂b], ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives).
-  out.a = solveAugmented(s.mass, c.jacobian, top, bottom, settings().svd_threshold);
+  // −∂b̈/∂q S_q − ∂b̈/∂q̇ S_v − ∂b̈/∂b], ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives); the integrator's λ₀ is
+  // that system's minimum-norm one, and so is S_λ.
+  AugmentedSolver solver(c.jacobian, settings().svd_threshold);
+  solver.setMatrix(s.mass);
+  solver.solve(top, bottom, out.a, out.lambda);
   return out;
 }
 
@@ -446,6 +453,7 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
   out.velocity.setZero(m, nf);
   out.acceleration.setZero(m, nf);
   out.parameters.setZero(m, geometric_ ? variableCount() : 0);
+  out.multipliers.setZero(m, reads_multipliers_ ? constraintCount() : 0);
   for (Eigen::Index j = 0; j < m; ++j) {
     const double weight = seedWeight(j, k);
     if (weight == 0.0) continue;
@@ -454,6 +462,7 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
     out.position.row(j) = weight * J.position;
     out.velocity.row(j) = weight * J.velocity;
     out.acceleration.row(j) = weight * J.acceleration;
+    if (J.multipliers.size() > 0) out.multipliers.row(j) = weight * J.multipliers;
     if (!geometric_) continue;
     for (std::size_t v = 0; v < ad_parameter_.size(); ++v)
       if (ad_parameter_[v] >= 0) out.parameters(j, static_cast<Eigen::Index>(v)) = weight * J.parameters[ad_parameter_[v]];
@@ -462,10 +471,12 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
 
 void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSeeds& out) {
   const Trajectory& tr = response().trajectory;
-  if (selectSensors(k, scratch))  // every selected sensor in one set of passes
+  if (selectSensors(k, scratch)) {  // every selected sensor in one set of passes
+    const Eigen::VectorXd lambda = tr.lambda.rows() > 0 ? Eigen::VectorXd(tr.lambda.col(k)) : Eigen::VectorXd();
     responseJacobians(model_, scratch.ws, scratch.sensors, tr.q.col(k), tr.v.col(k), tr.a.col(k),
                       model_.freeCoordinates(), scratch.sensor_jacobians,
-                      geometric_ ? ad_parameter_indices_ : std::vector<ParameterIndex>{});
+                      geometric_ ? ad_parameter_indices_ : std::vector<ParameterIndex>{}, &lambda);
+  }
   sensorSeeds(k, scratch.sensor_slot, scratch.sensor_jacobians, out);
 }
 

@@ -52,15 +52,18 @@ struct ClosureDerivatives {
 
 /// ∂Ψ_j/∂q_k, ∂Ψ_j/∂q̇_k, ∂Ψ_j/∂q̈_k: one row per constraint, free coordinates; and the explicit
 /// ∂Ψ_j/∂b of the sensors at time point k at a fixed state (a geometric variable moves the point a
-/// sensor reads), one column per design variable, or no columns when no variable is geometric.
+/// sensor reads), one column per design variable, or no columns when no variable is geometric; and
+/// ∂Ψ_j/∂λ_k, one column per closure equation, for the cut reactions some functional reads, or no
+/// columns when none does.
 struct ResponseSeeds {
-  Eigen::MatrixXd position, velocity, acceleration, parameters;
+  Eigen::MatrixXd position, velocity, acceleration, parameters, multipliers;
 };
 
-/// d(q₀, q̇₀, q̈₀)/db, free coordinates × design variables: the direct method's start. q₀ and q̇₀
-/// depend on b only through a geometric variable that moves a loop (initial_state.hpp).
+/// d(q₀, q̇₀, q̈₀)/db, free coordinates × design variables, and dλ₀/db (closure equations × design
+/// variables, the minimum-norm one): the direct method's start. q₀ and q̇₀ depend on b only through
+/// a geometric variable that moves a loop (initial_state.hpp).
 struct InitialSensitivities {
-  Eigen::MatrixXd q, v, a;
+  Eigen::MatrixXd q, v, a, lambda;
 };
 
 class TrajectoryDerivatives {
@@ -91,6 +94,8 @@ class TrajectoryDerivatives {
   const NewmarkSettings& settings() const { return problem_.scene.settings; }
 
   Eigen::Index constraintCount() const { return model_.constraintCount(); }
+  /// Whether some functional reads a cut reaction: then its seeds carry ∂Ψ/∂λ (ResponseSeeds::multipliers).
+  bool readsMultipliers() const { return reads_multipliers_; }
 
   /// At the state Newton converged to at time point k (before the projections).
   StepDerivatives step(Eigen::Index k);
@@ -148,6 +153,8 @@ class TrajectoryDerivatives {
   /// Whether some design variable is geometric (isGeometricParameter): then the closure's own
   /// derivatives in b and the sensors' explicit ones are formed.
   bool geometric_ = false;
+  /// Whether some functional reads a cut reaction (readsMultipliers): then the seeds carry ∂Ψ/∂λ.
+  bool reads_multipliers_ = false;
   std::vector<int> closure_rows_;  ///< 0, …, m − 1
   /// The inputs of the AD passes, listed once: free q, the design parameters f is not linear in, free
   /// q̇ (last, so that a pass of velocities alone can skip what does not depend on them).
