@@ -1,6 +1,7 @@
 #include "problems/design_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "problems/scene_text.hpp"
 
@@ -87,7 +88,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
 
   if (design.has("transcription")) {
     const MapReader t(context, design.node()["transcription"], "design.transcription");
-    t.allowKeys({"measure", "tolerance", "rho"});
+    t.allowKeys({"measure", "tolerance", "rho", "windows"});
     const std::string measure = t.choice("measure", {"positive_part", "squared_positive_part", "ks", "grid_max"},
                                          "positive_part");
     out.transcription.measure = measure == "positive_part"           ? TimeMeasure::PositivePart
@@ -96,11 +97,12 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
                                                                      : TimeMeasure::GridMax;
     out.transcription.tolerance = t.nonNegative("tolerance", 0.0);
     if (t.has("rho")) out.transcription.rho = t.positive("rho");
+    out.transcription.windows = t.positiveInteger("windows", 1);
   }
   return out;
 }
 
-void checkDesignReactions(const MapReader& design, const Scene& scene) {
+void checkDesignAgainstScene(const MapReader& design, const Scene& scene) {
   std::vector<MapReader> entries{MapReader(design.context(), design.required("cost"), "design.cost")};
   for (const YamlNode& node : readList(design.context(), design.node()["constraints"], "design.constraints"))
     entries.emplace_back(design.context(), node, "design constraint");
@@ -108,6 +110,14 @@ void checkDesignReactions(const MapReader& design, const Scene& scene) {
     const Sensor& sensor = scene.model.sensors()[static_cast<std::size_t>(scene.model.sensor(entry.name("sensor")))];
     if (const std::string defect = reactionDeterminacyDefect(scene, sensor); !defect.empty()) entry.fail("sensor", defect);
   }
+  if (!design.has("transcription")) return;
+  const MapReader t(design.context(), design.node()["transcription"], "design.transcription");
+  const int windows = t.positiveInteger("windows", 1);
+  const NewmarkSettings& s = scene.settings;
+  const auto steps = std::max(1L, static_cast<long>(std::ceil(s.end_time / s.step - 1e-9)));  // as the integrator takes them
+  if (2 * windows > steps + 1)
+    t.fail("windows", std::to_string(windows) + " windows of the run's " + std::to_string(steps + 1) +
+                          " time points leave some window fewer than two");
 }
 
 }  // namespace mbsopt

@@ -12,7 +12,8 @@ DesignDescription readDesign(const MapReader& design, const Model& model);
 
 /// Once the scene is assembled: every cut reaction the section reads (its cost's and constraints'
 /// `sensor:`) must be determinate at the initial state (reactionDeterminacyDefect), an error at that
-/// `sensor:` otherwise.
-void checkDesignReactions(const MapReader& design, const Scene& scene);
+/// `sensor:` otherwise; and the transcription's windows must hold two time points each, an error at
+/// `windows:` otherwise.
+void checkDesignAgainstScene(const MapReader& design, const Scene& scene);
 
 }  // namespace mbsopt

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "sensitivity/initial_state.hpp"
 #include "sensitivity/parallel_runs.hpp"
@@ -45,8 +46,16 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
   out.functionals.clear();
   for (std::size_t j = 0; j < functionals.size(); ++j) {
     const ConstraintFunctional& f = functionals[j];
-    out.functionals.push_back(evaluateTimeFunctional(f.measure, out.trajectory.time, violation(f, out.trajectory.sensors, out.cost),
-                                                     problem.design.transcription.rho));
+    const Eigen::VectorXd phi = violation(f, out.trajectory.sensors, out.cost);
+    const auto [first, count] = windowPoints(f.window, f.windows, phi.size());
+    TimeFunctionalValue value = evaluateTimeFunctional(f.measure, out.trajectory.time.segment(first, count),
+                                                       phi.segment(first, count), problem.design.transcription.rho);
+    if (count < phi.size()) {  // its gradient on the whole grid, zero outside the window
+      Eigen::VectorXd gradient = Eigen::VectorXd::Zero(phi.size());
+      gradient.segment(first, count) = value.gradient;
+      value.gradient.swap(gradient);
+    }
+    out.functionals.push_back(std::move(value));
     const double b = f.artificial == ArtificialUse::AfterMeasure ? out.cost : 0.0;
     out.constraints[static_cast<Eigen::Index>(j)] = out.functionals.back().value - f.level - b - f.tolerance;
   }

@@ -83,12 +83,22 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
       functionals.push_back({sensor + "_rms", index, 1.0, 0.0, after, TimeMeasure::RootMeanSquare, 0.0, false, bound});
     } else if (of == ResponseMeasure::FinalValue) {
       functionals.push_back({sensor + "_final", index, 1.0, bound, after, TimeMeasure::FinalValue, 0.0, equality});
-    } else if (of == ResponseMeasure::Min) {  // min y ≥ bound: −y + bound ≤ 0
-      functionals.push_back({sensor + "_min", index, -1.0, -bound, in_samples, t.measure, t.tolerance});
-    } else {  // y − bound (− b) ≤ 0, and −y − bound (− b) ≤ 0 for MaxAbs
-      functionals.push_back({sensor + "_above", index, 1.0, bound, in_samples, t.measure, t.tolerance});
-      if (of == ResponseMeasure::MaxAbs)
-        functionals.push_back({sensor + "_below", index, -1.0, bound, in_samples, t.measure, t.tolerance});
+    } else {  // the extremes, transcribed on each window of the run
+      for (int w = 0; w < t.windows; ++w) {
+        const std::string window = t.windows > 1 ? "_w" + std::to_string(w + 1) : "";
+        const auto extreme = [&](const std::string& side, double sign, double offset) {
+          ConstraintFunctional f{sensor + side + window, index, sign, offset, in_samples, t.measure, t.tolerance};
+          f.window = w;
+          f.windows = t.windows;
+          functionals.push_back(f);
+        };
+        if (of == ResponseMeasure::Min) {  // min y ≥ bound: −y + bound ≤ 0
+          extreme("_min", -1.0, -bound);
+        } else {  // y − bound (− b) ≤ 0, and −y − bound (− b) ≤ 0 for MaxAbs
+          extreme("_above", 1.0, bound);
+          if (of == ResponseMeasure::MaxAbs) extreme("_below", -1.0, bound);
+        }
+      }
     }
   };
   add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true, false);  // (17)-(19): ±y − b_{k+1} ≤ 0
@@ -101,6 +111,17 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   for (ConstraintFunctional& f : functionals)
     if (const int rank = ++seen[f.name]; rank > 1) f.name += "_" + std::to_string(rank);
   return functionals;
+}
+
+std::pair<Eigen::Index, Eigen::Index> windowPoints(int window, int windows, Eigen::Index points) {
+  const Eigen::Index N = points - 1;
+  const auto start = [&](int i) { return (static_cast<Eigen::Index>(i) * N + windows - 1) / windows; };  // ⌈i N / W⌉
+  const Eigen::Index first = start(window), end = window + 1 == windows ? points : start(window + 1);
+  if (end - first < 2)
+    throw std::invalid_argument("design: " + std::to_string(windows) + " windows leave window " +
+                                std::to_string(window + 1) + " fewer than two of the run's " + std::to_string(points) +
+                                " time points");
+  return {first, end - first};
 }
 
 Eigen::VectorXd initialPoint(const DesignProblem& problem) {
@@ -142,6 +163,7 @@ void validate(const DesignProblem& problem) {
     throw std::invalid_argument("the artificial variable starts outside its bounds");
   if (!(problem.design.transcription.tolerance >= 0.0)) throw std::invalid_argument("the tolerance must not be negative");
   if (!(problem.design.transcription.rho > 0.0)) throw std::invalid_argument("rho must be positive");
+  if (problem.design.transcription.windows < 1) throw std::invalid_argument("the windows must be at least one");
   transcribe(problem);  // every sensor exists
 }
 

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dynamics/scene.hpp"
@@ -53,6 +54,10 @@ struct Transcription {
   TimeMeasure measure = TimeMeasure::PositivePart;  ///< the paper's ∫⟨φ⟩dt by default
   double tolerance = 0.0;  ///< ε ≥ 0 (a small ε > 0 gives the constraint a strictly feasible interior)
   double rho = 50.0;       ///< KS sharpness [1 / units of φ]
+  /// The run's time points split into this many equal windows, each extreme measured on each window
+  /// as a constraint of its own: separate peaks of one sign, which a single grid maximum would
+  /// switch between at a kink, become separate smooth constraints (transcribeWindows).
+  int windows = 1;
 };
 
 /// What a scene file's `design:` section says.
@@ -88,7 +93,14 @@ struct ConstraintFunctional {
   double tolerance = 0.0;
   bool equality = false;  ///< an exact functional (Integral, FinalValue) that must vanish
   double level = 0.0;     ///< subtracted from the measure's value (an RMS constraint's bound)
+  int window = 0, windows = 1;  ///< the measure reads window `window` of `windows` (windowPoints)
 };
+
+/// The time points [first, first + count) of window `window` of `windows` on a grid of `points`
+/// (t_0 … t_{N}, N = points − 1): window i holds the points from ⌈i N / W⌉ to ⌈(i + 1) N / W⌉ − 1,
+/// the last one t_N too, so every point lies in exactly one window. Throws std::invalid_argument when
+/// a window would hold fewer than two points.
+std::pair<Eigen::Index, Eigen::Index> windowPoints(int window, int windows, Eigen::Index points);
 
 /// The index of the sensor `name` in the model; throws std::invalid_argument naming it if absent.
 int sensorIndex(const Model& model, const std::string& name);

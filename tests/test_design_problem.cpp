@@ -260,6 +260,58 @@ TEST(DesignProblem, MinimaAreTranscribedAndEqualitiesComeLast) {
   EXPECT_NEAR(response.functionals[3].value, 0.75, 1e-3);
 }
 
+// `windows: W` splits the run's time points into W equal windows (windowPoints: every point in exactly
+// one, each of at least two) and measures each extreme on each window as a constraint of its own,
+// named _w1 … _wW. On x = cos(2πt) over one period with four windows the grid maxima of x are those
+// of its quarters, read from the trajectory by their times; each window's gradient vanishes outside it.
+TEST(DesignProblem, TranscriptionWindowsMeasureEachExtremeOnEachWindow) {
+  for (const Eigen::Index points : {5, 6, 1001})
+    for (int windows = 1; 2 * windows <= points; ++windows) {
+      Eigen::Index next = 0;
+      for (int w = 0; w < windows; ++w) {
+        const auto [first, count] = windowPoints(w, windows, points);
+        EXPECT_EQ(first, next);
+        EXPECT_GE(count, 2);
+        next = first + count;
+      }
+      EXPECT_EQ(next, points);
+    }
+  EXPECT_THROW(windowPoints(1, 3, 5), std::invalid_argument);  // the points 0-1, 2, 3-4
+  const DesignProblem problem = oscillatorProblem("1.5", R"(  constraints:
+    - {sensor: position, of: max_abs, bound: 1.5}
+  transcription: {measure: grid_max, windows: 4}
+)");
+  const std::vector<ConstraintFunctional> f = transcribe(problem);
+  std::vector<std::string> names;
+  for (const ConstraintFunctional& g : f) names.push_back(g.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"position_above_w1", "position_above_w2", "position_above_w3",
+                                             "position_above_w4", "position_above_w1_2", "position_below_w1",
+                                             "position_above_w2_2", "position_below_w2", "position_above_w3_2",
+                                             "position_below_w3", "position_above_w4_2", "position_below_w4"}));
+  const DesignResponse response = evaluateDesign(problem, f, initialPoint(problem));
+  const Eigen::VectorXd& t = response.trajectory.time;
+  const Eigen::VectorXd x = response.trajectory.sensors.col(0);
+  for (int w = 0; w < 4; ++w) {
+    // The quarter [w/4, (w + 1)/4), the last one closed, by the times themselves.
+    double largest = -1e300;
+    for (Eigen::Index k = 0; k < t.size(); ++k)
+      if (t[k] >= 0.25 * w - 1e-12 && (t[k] < 0.25 * (w + 1) - 1e-12 || w == 3)) largest = std::max(largest, x[k]);
+    const std::size_t cost = static_cast<std::size_t>(w), bound = 4 + 2 * static_cast<std::size_t>(w);
+    EXPECT_EQ(response.functionals[cost].value, largest - 1.5) << w;  // x − b, b = 1.5
+    EXPECT_EQ(response.functionals[bound].value, largest - 1.5) << w;
+    const auto [first, count] = windowPoints(w, 4, t.size());
+    const Eigen::VectorXd& gradient = response.functionals[cost].gradient;
+    EXPECT_EQ(gradient.segment(first, count).sum(), 1.0);
+    EXPECT_EQ(gradient.cwiseAbs().sum(), 1.0) << "a gradient outside its window";
+  }
+  try {
+    oscillatorProblem("1.5", "  transcription: {measure: grid_max, windows: 501}\n");
+    FAIL() << "501 windows of 1001 points were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 14) << e.what();  // the transcription's
+  }
+}
+
 // x'' + k x = 0 from x(0) = 1 (the oscillator) with x(1) = 0 as an equality. Newmark's average
 // acceleration turns an undamped oscillation by ω̃h per step with tan(ω̃h/2) = ωh/2 (the trapezoidal
 // rule's exact phase), so the grid's x(1) = cos(ω̃) vanishes where ω̃ = (2n + 1)π/2: k =

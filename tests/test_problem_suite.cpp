@@ -44,6 +44,9 @@ const std::map<std::string, std::vector<std::string>> kReachedBy = {
     {"spring_preload", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
     {"spring_return", {"sdcc", "slsqp", "ipopt"}},  // an equality: MMA and CCSAQ cannot take it
     {"train_couplers", {"sdcc", "slsqp", "ipopt"}},  // nineteen equalities
+    // MMA, CCSAQ and Ipopt converge too, 2.5e-8 … 1.3e-7 above the vertex (their tolerance on x
+    // times the cost's slopes there), outside the reference's 1e-9 (README).
+    {"wrist_pin_balance", {"sdcc", "slsqp"}},
 };
 
 std::vector<fs::path> suiteScenes() {
@@ -126,7 +129,7 @@ void expectSameNumbers(const nlohmann::json& a, const nlohmann::json& b, const s
 TEST(ProblemSuite, TheQuickReferencesAreWhatTheirScriptsPrint) {
   const fs::path directory = scratch();
   for (const std::string name :
-       {"press_slider_crank", "spring_floor", "spring_preload", "spring_return", "train_couplers"}) {
+       {"press_slider_crank", "spring_floor", "spring_preload", "spring_return", "train_couplers", "wrist_pin_balance"}) {
     const nlohmann::json reference = referenceOf(kSuite / (name + ".yaml"));
     const fs::path printed = directory / (name + ".json");
     const std::string command = "python3 -B " + (fs::path(MBSOPT_SOURCE_DIR) / "scripts" / "reference" / (name + ".py")).string() +
