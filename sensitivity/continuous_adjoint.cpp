@@ -6,7 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/QR>
+
 #include "sensitivity/augmented_solve.hpp"
+#include "sensitivity/initial_state.hpp"
 #include "sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
@@ -34,12 +37,14 @@ HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, co
                              multipliers ? &seeds.multipliers : nullptr);
     seeds.position -= tbar * s.stiffness;
     seeds.velocity -= tbar * s.damping;
+    dpsi_db -= tbar * s.parameters;
     if (d.constraintCount() > 0) {
       const ClosureDerivatives c = d.closure(k);
       seeds.position -= bbar * c.acceleration_q;
       seeds.velocity -= 2.0 * bbar * c.velocity_q;  // ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives)
+      // A geometric variable moves b̈ itself: −b̄ ∂b̈/∂b.
+      if (c.acceleration_parameters.cols() > 0) dpsi_db -= bbar * c.acceleration_parameters;
     }
-    dpsi_db -= tbar * s.parameters;
   }
   return {half_over_weight * seeds.position, half_over_weight * seeds.velocity};
 }
@@ -61,13 +66,15 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
                                          const std::vector<ConstraintFunctional>& functionals,
                                          const Eigen::VectorXd& x, const DesignResponse* simulated) {
   // The sensitivity equations of the loop-closed motion, first order in (s, u) = d(q, q̇)/db:
-  //   M u̇ + C u + K s + Bᵀσ + ∂f/∂b = 0,  ṡ − u = 0,  B s = 0,   s(0) = u(0) = 0,
+  //   M u̇ + C u + K s + Bᵀσ + ∂f/∂b = 0,  ṡ − u = 0,  B s + ∂b/∂b = 0,  s(0) = S_q₀, u(0) = S_v₀,
   // with K including the loop forces' geometric stiffness (the paper's (58) with (57)'s closure).
+  // ∂b/∂b, S_q₀ and S_v₀ vanish unless a geometric variable moves a loop (initial_state.hpp).
   // With adjoints (w, p, ν) of the three, integration by parts as in (50)-(52) gives, for
   // Ψ = ∫ (g_q s + g_q̇ u) dt,
   //   d(M w)/dt = Cᵀw − p + g_q̇ᵀ,  dp/dt = Kᵀw + Bᵀν + g_qᵀ,  B w = 0,  w(τ) = p(τ) = 0   (53)/(64)
-  //   dΨ/db = ∫ wᵀ ∂f/∂b dt                                                           (56)/(65)
-  // (w is the paper's λ up to sign). Instead of reducing the equations to (57)'s independent
+  //   dΨ/db = ∫ wᵀ ∂f/∂b dt + ∫ νᵀ ∂b/∂b dt − p(0)ᵀ S_q₀ − w(0)ᵀ M(0) S_v₀          (56)/(65)
+  // (w is the paper's λ up to sign; the paper's design leaves the closure alone, so its (56) has the
+  // first term only). Instead of reducing the equations to (57)'s independent
   // directions V₂, whose time derivative that reduction would need, the closure stays as B w = 0
   // with the multiplier ν. The trapezoidal rule backward from t_{k+1} to t_k, rows = constraints:
   //   w_k M_k = w_{k+1} M_{k+1} − h/2 (F_k + F_{k+1}),  F = w C − p + g_q̇,
@@ -76,12 +83,8 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   // alone would make it first order). Eliminating p_k: w_k A + ½h ν̄ B̄ = R with A = M + ½h C + ¼h² K,
   // the transposed trapezoidal Newmark matrix. So w_k = ξ V₂ᵀ with V₂ the independent directions of
   // B_k, and ν̄ drops out against those of B̄: ξ (V₂ᵀ Aᵀ V̄₂) = R V̄₂.
-  for (const DesignVariable& v : problem.design.variables)
-    if (movesLoopClosure(problem.scene.model, problem.scene.model.parameterIndex(v.parameter)))
-      throw std::invalid_argument("continuous adjoint: the design variable '" + v.parameter +
-                                  "' moves the loop closure, which these adjoint equations leave out (B s = 0); "
-                                  "use adjoint or direct");
   TrajectoryDerivatives d(problem, functionals, x, simulated);
+  const bool moves_loops = designMovesLoopClosure(problem);
   const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;
   const Eigen::Index N = d.timePoints() - 1, rows = d.functionalCount(), nf = d.freeCount();
   // The trapezoidal rule's weights on the uniform grid: h/2 at both ends, h inside.
@@ -93,6 +96,7 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   Eigen::MatrixXd momentum = Eigen::MatrixXd::Zero(rows, nf), half_flux, p = Eigen::MatrixXd::Zero(rows, nf);
   Eigen::MatrixXd half_force;
   Eigen::MatrixXd later_jacobian = d.constraintJacobian(start);
+  Eigen::MatrixXd later_closure_b = moves_loops ? d.closure(start).position_parameters : Eigen::MatrixXd();
   StepDerivatives s = d.projectedStep(start);
   HalfSources g = substituteAccelerations(d, start, s, half / weight(start), dpsi_db);
   half_flux = g.velocity;
@@ -111,6 +115,16 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
                                std::to_string(d.time(k)) + " s (a singular configuration); use adjoint or direct");
     const Eigen::MatrixXd reduced = V2_mean.transpose() * A.transpose() * V2;  // V̄₂ᵀ Aᵀ V₂ ξᵀ = V̄₂ᵀ Rᵀ
     const Eigen::MatrixXd w = reduced.partialPivLu().solve(V2_mean.transpose() * rhs.transpose()).transpose() * V2.transpose();
+    if (moves_loops) {
+      // ν̄ from ½h ν̄ B̄ = R − w A (minimum norm: redundant rows carry none), then ∫νᵀ ∂b/∂b dt over
+      // the step by the midpoint rule, as ∫Bᵀν dt.
+      const Eigen::MatrixXd closure_b = d.closure(k).position_parameters;
+      const Eigen::MatrixXd mean = 0.5 * (jacobian + later_jacobian);
+      const Eigen::MatrixXd nu =
+          mean.transpose().completeOrthogonalDecomposition().solve((rhs - w * A).transpose()).transpose() / half;
+      dpsi_db += nu * (0.5 * (closure_b + later_closure_b));
+      later_closure_b = closure_b;
+    }
     later_jacobian = jacobian;
     const Eigen::MatrixXd wM = w * s.mass, wC = w * s.damping;
     p = (wM + half * wC + g.velocity - momentum + half_flux) / half;  // the first equation solved for p_k
@@ -118,6 +132,10 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
     half_flux = half * (wC - p) + g.velocity;
     half_force = half * (w * s.stiffness) + g.position;
     dpsi_db += weight(k) * (w * s.parameters);
+  }
+  if (moves_loops) {  // the initial state closed on the design's loops: −p(0)ᵀ S_q₀ − w(0)ᵀ M(0) S_v₀
+    const InitialSensitivities initial = d.initialSensitivities();
+    dpsi_db -= p * initial.q + momentum * initial.v;
   }
   return d.gradient(dpsi_db);
 }
