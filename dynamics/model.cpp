@@ -103,9 +103,21 @@ ParameterVector3 Model::addParameters(const std::string& prefix, const char* con
 }
 
 TimeInput Model::timeInput(const std::string& name, TimeFunction function) {
-  if (!function.isConstant()) return {std::move(function), std::nullopt};
-  // The value lives in the parameter vector alone; the function keeps only the (zero) rates.
-  return {TimeFunction(), addParameter(name, function.value(0.0))};
+  TimeInput input;
+  if (function.isConstant()) {
+    input.coefficients.push_back(addParameter(name, function.value(0.0)));
+    return input;
+  }
+  for (std::size_t k = 0; k < function.coefficients().size(); ++k)
+    input.coefficients.push_back(addParameter(name + ".polynomial." + std::to_string(k), function.coefficients()[k]));
+  for (std::size_t j = 0; j < function.harmonics().size(); ++j) {
+    const TimeFunction::Harmonic& h = function.harmonics()[j];
+    const std::string prefix = name + ".harmonics." + std::to_string(j) + ".";
+    input.harmonics.push_back({addParameter(prefix + "amplitude", h.amplitude),
+                               addParameter(prefix + "angular_frequency", h.angular_frequency),
+                               addParameter(prefix + "phase", h.phase)});
+  }
+  return input;
 }
 
 ParameterIndex Model::parameterIndex(std::string_view dotted_name) const {
@@ -119,8 +131,10 @@ Eigen::Vector3d Model::vector(const ParameterVector3& parameters) const {
   return {value(parameters[0]), value(parameters[1]), value(parameters[2])};
 }
 
-double Model::value(const TimeInput& input, double t) const {
-  return input.parameter ? value(*input.parameter) : input.function.value(t);
+double Model::value(const TimeInput& input, double t, int order) const {
+  return timeFunctionDerivative<double>(
+      input.coefficients.size(), [&](std::size_t k) { return value(input.coefficients[k]); }, input.harmonics.size(),
+      [&](std::size_t j, int which) { return value(input.harmonics[j][static_cast<std::size_t>(which)]); }, t, order);
 }
 
 Eigen::Matrix3d Model::inertia(const Body& body) const {

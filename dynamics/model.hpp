@@ -72,12 +72,15 @@ struct Body {
   Eigen::Vector3d products_of_inertia;  ///< I_xy, I_xz, I_yz (constants, not parameters)
 };
 
-/// A function of time that is a model parameter when it is constant (a spring's rest value, a
-/// constant actuation): `parameter` then indexes its value, and `function` is zero (it gives the
-/// rates, zero too). Model::value(input, t) evaluates it.
+/// A function of time, f(t) = Σ_k c_k t^k + Σ_j A_j sin(ω_j t + φ_j) (a spring's rest value or
+/// moving target, an actuation), whose numbers are model parameters: a constant is one parameter
+/// under the input's own name (`spring.rest`, `motor.value`), a function has NAME.polynomial.K and
+/// NAME.harmonics.J.amplitude, .angular_frequency, .phase. Model::value(input, t, order) and the
+/// residual (through parameter(), so AD differentiates them) evaluate it.
 struct TimeInput {
-  TimeFunction function;
-  std::optional<ParameterIndex> parameter;
+  std::vector<ParameterIndex> coefficients;                ///< c_0, c_1, …
+  std::vector<std::array<ParameterIndex, 3>> harmonics;  ///< A_j, ω_j, φ_j
+  bool isConstant() const { return coefficients.size() <= 1 && harmonics.empty(); }
 };
 
 // ---- force elements ----
@@ -291,7 +294,8 @@ class Model {
   double value(ParameterIndex parameter) const { return parameter_values_[static_cast<std::size_t>(parameter)]; }
   Eigen::Vector3d vector(const ParameterVector3& parameters) const;
   /// r(t) of a time input: its parameter when it is constant, its function otherwise.
-  double value(const TimeInput& input, double t) const;
+  /// The order-th time derivative (0, 1, 2) of a time input at t, from the parameters' values.
+  double value(const TimeInput& input, double t, int order = 0) const;
   Eigen::Vector3d centreOfMass(const Body& body) const { return vector(body.centre_of_mass); }
   /// The inertia tensor about the centre of mass, in the body frame's axes.
   Eigen::Matrix3d inertia(const Body& body) const;

@@ -14,10 +14,15 @@ namespace mbsopt {
 
 namespace {
 
-/// r(t) of a time input, a parameter when it is constant (a spring's rest value, a constant actuation).
+/// The order-th time derivative of a time input at t (a spring's rest value or target, an actuation),
+/// its numbers read as model parameters: seeded where a pass differentiates them.
 template <class Scalar>
-Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInput& input, double t) {
-  return input.parameter ? parameter(model, ws, *input.parameter) : Scalar(input.function.value(t));
+Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInput& input, double t, int order = 0) {
+  return timeFunctionDerivative<Scalar>(
+      input.coefficients.size(), [&](std::size_t k) { return parameter(model, ws, input.coefficients[k]); },
+      input.harmonics.size(),
+      [&](std::size_t j, int which) { return parameter(model, ws, input.harmonics[j][static_cast<std::size_t>(which)]); },
+      t, order);
 }
 
 /// Whether the frames in the workspace move: at rest every frame velocity is zero, and the terms in
@@ -202,7 +207,7 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
     std::visit(Overloaded{[&](const JointSpringDamper& s) {
                             const auto i = static_cast<Eigen::Index>(s.coordinate);
                             f[i] += parameter(model, ws, s.stiffness) * (q[i] - timeValue(model, ws, s.rest, t)) +
-                                    parameter(model, ws, s.damping) * (v[i] - Scalar(s.rest.function.rate(t)));
+                                    parameter(model, ws, s.damping) * (v[i] - timeValue(model, ws, s.rest, t, 1));
                           },
                           [&](const PointSpringDamper& s) {
                             addPointSpringWrenches(model, s, ws, parameter(model, ws, s.stiffness),
@@ -324,7 +329,7 @@ bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const
   column.setZero(model.coordinateCount());
   if (const auto* spring = std::get_if<JointSpringDamper>(owner)) {  // a force on its own coordinate only
     const auto i = static_cast<Eigen::Index>(spring->coordinate);
-    column[i] = p == spring->stiffness ? q[i] - model.value(spring->rest, t) : v[i] - spring->rest.function.rate(t);
+    column[i] = p == spring->stiffness ? q[i] - model.value(spring->rest, t) : v[i] - model.value(spring->rest, t, 1);
     return true;
   }
   // The element's force is k·(a stiffness term) + c·(a damping term): ∂f/∂k is its force with k = 1,

@@ -13,7 +13,7 @@ bool conservesEnergy(const Model& model) {
   if (!model.drivenCoordinates().empty()) return false;
   for (const ForceElement& force : model.forces()) {
     const bool conservative = std::visit(
-        Overloaded{[&](const JointSpringDamper& s) { return model.value(s.damping) == 0.0 && s.rest.parameter; },
+        Overloaded{[&](const JointSpringDamper& s) { return model.value(s.damping) == 0.0 && s.rest.isConstant(); },
                    [&](const PointSpringDamper& s) { return model.value(s.damping) == 0.0; },
                    [](const JointActuation&) { return false; }, [](const TrackGuidance&) { return false; }},
         force);

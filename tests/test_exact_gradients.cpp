@@ -79,6 +79,67 @@ TEST(ExactGradients, OscillatorMatchesFiniteDifferencesAndTheClosedForm) {
 
 // The paper's equivalent constraint with the artificial max (positive_part), its square, a KS
 // aggregate and the grid maximum, on a cost that depends on accelerations.
+/// A 1 kg mass on a damped spring, at rest at x = 0, driven by an actuation A sin(ωt + φ) + c₁t (its
+/// numbers as design variables, `motor.value.…`) and pulled by a guidance spring towards a moving
+/// target 0.1 sin(ω_r t) (`guide.rest.…`, which enters through r and ṙ).
+DesignProblem drivenOscillator(const std::string& variables) {
+  return loadDesignProblem({"driven.yaml", R"(settings: {step: 1.0e-3, end_time: 2}
+elements:
+  - {name: x, type: prismatic, parent: ground, axis: [1, 0, 0], q0: 0}
+bodies:
+  - {name: mass, frame: x, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}
+forces:
+  - {name: spring, type: joint_spring_damper, joint: x, k: 39.478417604357434, c: 0.5}
+  - {name: motor, type: joint_actuation, joint: x, value: {polynomial: [0, 1.0], harmonics: [{amplitude: 2, angular_frequency: 3, phase: 0.1}]}}
+  - {name: guide, type: joint_spring_damper, joint: x, k: 5, c: 0.2, rest: {harmonics: [{amplitude: 0.1, angular_frequency: 4}]}}
+sensors:
+  - {name: position, type: joint, joint: x, quantity: position}
+  - {name: acc, type: joint, joint: x, quantity: acceleration}
+design:
+  variables:
+)" + variables + R"(  cost: {sensor: acc, of: max_abs}
+  artificial: {initial: 5, lower: 0, upper: 100}
+  constraints:
+    - {sensor: position, of: integral, bound: 0.1}
+    - {sensor: position, of: final, bound: 0.1}
+)"});
+}
+
+// The numbers of a time input are model parameters, so a driver's amplitude, frequency and phase
+// are design variables. The motion is linear in the inputs from rest, so with the other inputs
+// switched off ∫x dt and x(τ) are proportional to the amplitude on the discrete map itself:
+// dΨ/dA = Ψ/A for both exact methods, to round-off. The frequency, phase and the target's frequency
+// enter nonlinearly: adjoint = direct to round-off, central differences at the best step to 1e-6
+// of each row (measured 2e-10 … 5e-10).
+TEST(ExactGradients, DriverParametersAreDesignVariables) {
+  {
+    const DesignProblem problem = drivenOscillator("    - {parameter: motor.value.harmonics.0.amplitude, lower: 0, upper: 5}\n");
+    DesignProblem alone = problem;
+    alone.scene.model.setParameter("motor.value.polynomial.1", 0.0);
+    alone.scene.model.setParameter("guide.rest.harmonics.0.amplitude", 0.0);
+    const std::vector<ConstraintFunctional> functionals = transcribe(alone);
+    ASSERT_EQ(functionals.size(), 4u);  // the cost's two, ∫x dt, x(τ)
+    const Eigen::VectorXd x = initialPoint(alone);
+    const DesignResponse response = evaluateDesign(alone, functionals, x);
+    for (const DesignGradient& g : {adjointGradient(alone, functionals, x), directGradient(alone, functionals, x)})
+      for (const Eigen::Index row : {Eigen::Index{2}, Eigen::Index{3}}) {  // ∫x dt and x(τ), each less 0.1
+        const double psi = response.functionals[static_cast<std::size_t>(row)].value + 0.1;
+        EXPECT_NEAR(g.constraints(row, 0), psi / 2.0, 1e-13 * std::abs(psi)) << functionals[static_cast<std::size_t>(row)].name;
+      }
+  }
+  const DesignProblem problem = drivenOscillator(
+      "    - {parameter: motor.value.polynomial.1, lower: -5, upper: 5}\n"
+      "    - {parameter: motor.value.harmonics.0.angular_frequency, lower: 1, upper: 10}\n"
+      "    - {parameter: motor.value.harmonics.0.phase, lower: -3, upper: 3}\n"
+      "    - {parameter: guide.rest.harmonics.0.angular_frequency, lower: 1, upper: 10}\n");
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  EXPECT_GT(adjoint.constraints.block(2, 0, 2, 4).cwiseAbs().minCoeff(), 1e-3);  // every variable acts
+  EXPECT_LE(relativeGap(adjoint.constraints, directGradient(problem, functionals, x).constraints), 1e-12);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+}
+
 TEST(ExactGradients, OpenChainAdjointEqualsDirectForEveryTranscription) {
   DesignProblem problem = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
   problem.design.artificial.initial = 4.0;  // below max |tip acceleration|: the ⟨⟩ forms are active
