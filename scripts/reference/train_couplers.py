@@ -25,6 +25,8 @@ holds:
 """
 import json
 
+from linear import gauss
+
 CARS, MASS = 20, 1000.0           # kg
 STIFFNESS, DAMPING = 1.0e5, 2000.0  # N/m, N s/m   couplerI.k, couplerI.c
 GAP, PUSH = 10.0, 1.0             # m, m/s       the gaps and the first car's speed at t = 0
@@ -94,23 +96,6 @@ def simulate(rest):
         v = [v_pred[i] + h / 2 * a[i] for i in range(n)]
         last.append(a[-1])
     return [None, None] + [x[i - 1] - x[i - 2] for i in range(2, n + 1)], last
-
-
-def gauss(matrix, rhs):
-    """The solution of matrix x = rhs by Gaussian elimination with partial pivoting."""
-    m = [row[:] + [b] for row, b in zip(matrix, rhs)]
-    size = len(m)
-    for col in range(size):
-        best = max(range(col, size), key=lambda r: abs(m[r][col]))
-        m[col], m[best] = m[best], m[col]
-        for r in range(col + 1, size):
-            f = m[r][col] / m[col][col]
-            for c in range(col, size + 1):
-                m[r][c] -= f * m[col][c]
-    x = [0.0] * size
-    for r in range(size - 1, -1, -1):
-        x[r] = (m[r][size] - sum(m[r][c] * x[c] for c in range(r + 1, size))) / m[r][r]
-    return x
 
 
 def main():
