@@ -63,14 +63,14 @@ std::string costKey(const DesignProblem& problem) {
 }
 
 /// max |y| over the time grid of every sensor the cost and the constraints use, and the value of each
-/// exact functional the cost or a constraint takes (functionalKey).
-nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
+/// exact functional the cost or a constraint takes (functionalKey), on one trajectory.
+nlohmann::json trajectoryResponses(const DesignNlp& nlp, const Trajectory& trajectory) {
   const DesignProblem& problem = nlp.problem();
   const Model& model = problem.scene.model;
   nlohmann::json out = nlohmann::json::object();
   for (const ConstraintFunctional& f : nlp.functionals()) {
     const Sensor& sensor = model.sensors()[static_cast<std::size_t>(f.sensor)];
-    out[responseKey(sensor)] = inUnits(sensor, response.trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff());
+    out[responseKey(sensor)] = inUnits(sensor, trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff());
   }
   const auto addExact = [&](const std::string& name, ResponseMeasure of) {
     const std::optional<TimeMeasure> exact = exactMeasure(of);
@@ -78,28 +78,48 @@ nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
     const int index = sensorIndex(model, name);
     const Sensor& sensor = model.sensors()[static_cast<std::size_t>(index)];
     out[functionalKey(sensor, *exact)] =
-        inUnits(sensor, evaluateTimeFunctional(*exact, response.trajectory.time, response.trajectory.sensors.col(index)).value);
+        inUnits(sensor, evaluateTimeFunctional(*exact, trajectory.time, trajectory.sensors.col(index)).value);
   };
   addExact(problem.design.cost.sensor, problem.design.cost.of);
   for (const ResponseConstraint& c : problem.design.constraints) addExact(c.sensor, c.of);
   return out;
 }
 
-/// The largest excess of a constrained sensor over its bound on the time grid (angles in degrees).
+/// trajectoryResponses of the response; with load cases, each case's under KEY_CASE and, under KEY,
+/// the largest over the cases (the worst case, which the cost's epigraph bounds).
+nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
+  const std::vector<LoadCase>& cases = nlp.problem().load_cases;
+  if (cases.empty()) return trajectoryResponses(nlp, response.trajectory);
+  nlohmann::json out = nlohmann::json::object();
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const nlohmann::json own = trajectoryResponses(nlp, caseTrajectory(response, c));
+    for (const auto& [key, value] : own.items()) {
+      out[key + "_" + cases[c].name] = value;
+      out[key] = out.contains(key) ? std::max(out[key].get<double>(), value.get<double>()) : value.get<double>();
+    }
+  }
+  return out;
+}
+
+/// The largest excess of a constrained sensor over its bound on the time grid (angles in degrees),
+/// over every load case.
 double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
   const DesignProblem& problem = nlp.problem();
   double excess = -std::numeric_limits<double>::infinity();
-  for (const ResponseConstraint& c : problem.design.constraints) {
-    const int index = sensorIndex(problem.scene.model, c.sensor);
-    const Eigen::VectorXd y = response.trajectory.sensors.col(index);
-    double over = 0.0;  // how far the extreme lies beyond the bound
-    if (c.of == ResponseMeasure::MaxAbs) over = y.cwiseAbs().maxCoeff() - c.bound;
-    else if (c.of == ResponseMeasure::Max) over = y.maxCoeff() - c.bound;
-    else if (c.of == ResponseMeasure::Min) over = c.bound - y.minCoeff();
-    else if (c.of == ResponseMeasure::Rms) over = evaluateTimeFunctional(TimeMeasure::RootMeanSquare, response.trajectory.time, y).value - c.bound;
-    else continue;  // integral and final-value constraints are exact functionals, checked by the optimizer
-    const double unit = isAngle(problem.scene.model.sensors()[static_cast<std::size_t>(index)]) ? 180.0 / std::numbers::pi : 1.0;
-    excess = std::max(excess, over * unit);
+  for (std::size_t k = 0; k < std::max<std::size_t>(problem.load_cases.size(), 1); ++k) {
+    for (const ResponseConstraint& c : problem.design.constraints) {
+      const int index = sensorIndex(problem.scene.model, c.sensor);
+      const Trajectory& trajectory = caseTrajectory(response, k);
+      const Eigen::VectorXd y = trajectory.sensors.col(index);
+      double over = 0.0;  // how far the extreme lies beyond the bound
+      if (c.of == ResponseMeasure::MaxAbs) over = y.cwiseAbs().maxCoeff() - c.bound;
+      else if (c.of == ResponseMeasure::Max) over = y.maxCoeff() - c.bound;
+      else if (c.of == ResponseMeasure::Min) over = c.bound - y.minCoeff();
+      else if (c.of == ResponseMeasure::Rms) over = evaluateTimeFunctional(TimeMeasure::RootMeanSquare, trajectory.time, y).value - c.bound;
+      else continue;  // integral and final-value constraints are exact functionals, checked by the optimizer
+      const double unit = isAngle(problem.scene.model.sensors()[static_cast<std::size_t>(index)]) ? 180.0 / std::numbers::pi : 1.0;
+      excess = std::max(excess, over * unit);
+    }
   }
   return excess;
 }
@@ -170,9 +190,17 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.cost_response = costKey(nlp.problem());
   run.cost_sensor = nlp.problem().design.cost.sensor;
   run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
-  run.time = final.trajectory.time;
-  run.initial_history = initial.trajectory.sensors.col(cost_sensor);
-  run.final_history = final.trajectory.sensors.col(cost_sensor);
+  // The cost's history in the load case where the final design's cost is largest (the only one without cases).
+  std::size_t worst = 0;
+  for (std::size_t c = 1; c < nlp.problem().load_cases.size(); ++c) {
+    const std::string& name = nlp.problem().load_cases[c].name;
+    const std::string& worst_name = nlp.problem().load_cases[worst].name;
+    if (run.responses[run.cost_response + "_" + name].get<double>() > run.responses[run.cost_response + "_" + worst_name].get<double>())
+      worst = c;
+  }
+  run.time = caseTrajectory(final, worst).time;
+  run.initial_history = caseTrajectory(initial, worst).sensors.col(cost_sensor);
+  run.final_history = caseTrajectory(final, worst).sensors.col(cost_sensor);
   return run;
 }
 

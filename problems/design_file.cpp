@@ -47,7 +47,7 @@ void readRange(const MapReader& entry, double value, double& lower, double& uppe
 
 DesignDescription readDesign(const MapReader& design, const Model& model) {
   const YamlContext& context = design.context();
-  design.allowKeys({"variables", "cost", "artificial", "constraints", "transcription"});
+  design.allowKeys({"variables", "cost", "artificial", "constraints", "transcription", "load_cases"});
   DesignDescription out;
   const std::vector<std::string> parameters = model.parameterNames();
   for (const YamlNode& node : readList(context, design.required("variables"), "design.variables")) {
@@ -84,6 +84,26 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
       c.fail("equals", "an equality needs an exact functional: of: integral or of: final");
     constraint.bound = c.number(constraint.equality ? "equals" : "bound");
     out.constraints.push_back(constraint);
+  }
+
+  for (const YamlNode& node : readList(context, design.node()["load_cases"], "design.load_cases")) {
+    const MapReader c(context, node, "design load case");
+    c.allowKeys({"name", "set"});
+    LoadCaseDescription load_case{c.name("name"), {}};
+    for (const LoadCaseDescription& other : out.load_cases)
+      if (other.name == load_case.name) c.fail("name", "a load case named '" + load_case.name + "' comes earlier");
+    if (c.has("set")) {
+      const YamlNode& set = c.required("set");
+      if (!set.isMap()) c.fail("set", "'set' is a map of the scene's numbers by their dotted names");
+      const MapReader values(context, set, "load case '" + load_case.name + "'.set");
+      for (std::size_t i = 0; i < set.size(); ++i) {
+        const std::string& name = set.key(i).text();
+        if (name.rfind("design.", 0) == 0)
+          values.fail(name, "a load case sets the scene's numbers, not the design's ('" + name + "')");
+        load_case.set.emplace_back(name, values.number(name));
+      }
+    }
+    out.load_cases.push_back(std::move(load_case));
   }
 
   if (design.has("transcription")) {

@@ -622,7 +622,20 @@ LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOver
 DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   LoadedScene loaded = loadScene(source, overrides);
   if (!loaded.design) throw SceneError(source.path, 0, 0, "the scene has no 'design:' section");
-  return {std::move(loaded.scene), std::move(*loaded.design)};
+  DesignProblem problem{std::move(loaded.scene), std::move(*loaded.design), {}};
+  // Each load case: the scene again with the command line's overrides, then the case's own.
+  for (std::size_t c = 0; c < problem.design.load_cases.size(); ++c) {
+    const LoadCaseDescription& description = problem.design.load_cases[c];
+    std::vector<ParameterOverride> own = overrides;
+    for (const auto& [name, value] : description.set) own.emplace_back(name, value);
+    try {
+      problem.load_cases.push_back({description.name, loadScene(source, own).scene});
+    } catch (const SceneError& e) {  // at the case's entry, whose number it is
+      const YamlMark mark = parse(source)["design"]["load_cases"][c].mark();
+      throw SceneError(source.path, mark.line + 1, mark.column + 1, "load case '" + description.name + "': " + e.reason());
+    }
+  }
+  return problem;
 }
 
 std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& source) {

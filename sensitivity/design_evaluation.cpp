@@ -27,9 +27,32 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
   return out;
 }
 
+const Trajectory& caseTrajectory(const DesignResponse& response, std::size_t c) {
+  return response.load_cases.empty() ? response.trajectory : response.load_cases.at(c).trajectory;
+}
+
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                     const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
                     bool keep_step_matrices) {
+  if (!problem.load_cases.empty()) {
+    if (stored) throw std::logic_error("evaluateDesign: a problem with load cases reports no stored points");
+    out.load_cases.resize(problem.load_cases.size());
+    out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
+    out.functionals.assign(functionals.size(), {});
+    out.trajectory = {};
+    std::vector<Eigen::Index> rows;
+    for (std::size_t c = 0; c < problem.load_cases.size(); ++c) {
+      const std::vector<ConstraintFunctional> own = loadCaseFunctionals(functionals, static_cast<int>(c), &rows);
+      DesignResponse& response = out.load_cases[c];
+      evaluateDesign(loadCaseProblem(problem, c), own, x, response, {}, keep_step_matrices);
+      out.cost = response.cost;
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        out.constraints[rows[i]] = response.constraints[static_cast<Eigen::Index>(i)];
+        out.functionals[static_cast<std::size_t>(rows[i])] = response.functionals[i];
+      }
+    }
+    return;
+  }
   const Scene& scene = problem.scene;
   Model model = scene.model;
   out.cost = applyDesign(problem, x, model);

@@ -20,7 +20,14 @@ struct DesignResponse {
   /// Per constraint: its value and ∂measure/∂φ_k at every time point (what the gradient methods
   /// chain with ∂φ/∂(q, q̇, q̈)).
   std::vector<TimeFunctionalValue> functionals;
+  /// With load cases, each case's own response (its trajectory, and its functionals' values in the
+  /// order of loadCaseFunctionals); `trajectory` is then empty and the vectors above hold every
+  /// case's, in the problem's order.
+  std::vector<DesignResponse> load_cases;
 };
+
+/// The trajectory of load case c of a response (c = 0: the only one of a problem without cases).
+const Trajectory& caseTrajectory(const DesignResponse& response, std::size_t c);
 
 /// Simulates the problem's scene at the scaled point x and measures every transcribed constraint.
 DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
@@ -28,7 +35,8 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
 /// The same into `out`, its trajectory written in place: `stored(k)` is called as soon as time
 /// point k of out.trajectory is complete (NewmarkIntegrator::simulate), before the constraints are
 /// measured. `keep_step_matrices`: the trajectory keeps each point's M and B where the integrator
-/// forms them (NewmarkIntegrator::keepStepMatrices), for the exact gradients.
+/// forms them (NewmarkIntegrator::keepStepMatrices), for the exact gradients. With load cases each
+/// case is simulated into out.load_cases (`stored` must then be empty).
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                     const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
                     bool keep_step_matrices = false);

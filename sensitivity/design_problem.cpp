@@ -62,7 +62,36 @@ void checkRange(const std::string& what, double lower, double upper, double scal
 
 }  // namespace
 
+DesignProblem loadCaseProblem(const DesignProblem& problem, std::size_t c) {
+  return {problem.load_cases.at(c).scene, problem.design, {}};
+}
+
+std::vector<ConstraintFunctional> loadCaseFunctionals(const std::vector<ConstraintFunctional>& functionals, int c,
+                                                      std::vector<Eigen::Index>* rows) {
+  std::vector<ConstraintFunctional> out;
+  if (rows) rows->clear();
+  for (std::size_t j = 0; j < functionals.size(); ++j) {
+    if (functionals[j].load_case != c) continue;
+    out.push_back(functionals[j]);
+    out.back().load_case = 0;  // in the case's own problem
+    if (rows) rows->push_back(static_cast<Eigen::Index>(j));
+  }
+  return out;
+}
+
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
+  if (!problem.load_cases.empty()) {
+    // Each case's constraints, named after it; NlpProblem's order: every inequality, then every equality.
+    std::vector<ConstraintFunctional> inequalities, equalities;
+    for (std::size_t c = 0; c < problem.load_cases.size(); ++c)
+      for (ConstraintFunctional f : transcribe(loadCaseProblem(problem, c))) {
+        f.name += "_" + problem.load_cases[c].name;
+        f.load_case = static_cast<int>(c);
+        (f.equality ? equalities : inequalities).push_back(std::move(f));
+      }
+    inequalities.insert(inequalities.end(), equalities.begin(), equalities.end());
+    return inequalities;
+  }
   const Model& model = problem.scene.model;
   std::vector<ConstraintFunctional> functionals;
   const Transcription& t = problem.design.transcription;

@@ -60,6 +60,13 @@ struct Transcription {
   int windows = 1;
 };
 
+/// A load case as a scene file's `design:` section names it: its numbers' values (`set:`), by their
+/// dotted names, on top of the scene's.
+struct LoadCaseDescription {
+  std::string name;
+  std::vector<std::pair<std::string, double>> set;
+};
+
 /// What a scene file's `design:` section says.
 struct DesignDescription {
   std::vector<DesignVariable> variables;
@@ -67,12 +74,28 @@ struct DesignDescription {
   ArtificialVariable artificial;
   std::vector<ResponseConstraint> constraints;
   Transcription transcription;
+  std::vector<LoadCaseDescription> load_cases;
+};
+
+/// One load case of a design problem: the mechanism under other numbers (a speed, a track, a load),
+/// simulated on its own with the same design variables.
+struct LoadCase {
+  std::string name;
+  Scene scene;
 };
 
 struct DesignProblem {
   Scene scene;
   DesignDescription design;
+  /// None: the problem simulates `scene`. Several: each case's scene is simulated, every constraint
+  /// holds in each case (named NAME_CASE), and the cost is the worst case's (its epigraph takes
+  /// b_{k+1} in every case); `scene` is the scene as written, whose model names the parameters and
+  /// sensors.
+  std::vector<LoadCase> load_cases;
 };
+
+/// Case c of a problem with load cases as a problem of its own: its scene, the same design.
+DesignProblem loadCaseProblem(const DesignProblem& problem, std::size_t c);
 
 /// How a transcribed constraint uses the artificial variable b_{k+1}.
 enum class ArtificialUse {
@@ -94,7 +117,12 @@ struct ConstraintFunctional {
   bool equality = false;  ///< an exact functional (Integral, FinalValue) that must vanish
   double level = 0.0;     ///< subtracted from the measure's value (an RMS constraint's bound)
   int window = 0, windows = 1;  ///< the measure reads window `window` of `windows` (windowPoints)
+  int load_case = 0;            ///< the load case whose simulation it measures (DesignProblem::load_cases)
 };
+
+/// The functionals of load case c, in their order, and where each stands in `functionals`.
+std::vector<ConstraintFunctional> loadCaseFunctionals(const std::vector<ConstraintFunctional>& functionals, int c,
+                                                      std::vector<Eigen::Index>* rows = nullptr);
 
 /// The time points [first, first + count) of window `window` of `windows` on a grid of `points`
 /// (t_0 … t_{N}, N = points − 1): window i holds the points from ⌈i N / W⌉ to ⌈(i + 1) N / W⌉ − 1,

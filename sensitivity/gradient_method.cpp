@@ -14,9 +14,41 @@ const std::vector<std::string>& gradientMethodNames() {
   return names;
 }
 
+namespace {
+
+/// An exact method on a problem with load cases: each case's gradient on its own simulation, its rows
+/// put where its functionals stand.
+DesignGradient perLoadCase(const std::string& method, const DesignProblem& problem,
+                           const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
+                           double fd_step, const DesignResponse* simulated, int jobs) {
+  DesignGradient out;
+  out.constraints.resize(static_cast<Eigen::Index>(functionals.size()), x.size());
+  DesignValues values{0.0, Eigen::VectorXd(static_cast<Eigen::Index>(functionals.size()))};
+  bool every_value = true;
+  std::vector<Eigen::Index> rows;
+  for (std::size_t c = 0; c < problem.load_cases.size(); ++c) {
+    const std::vector<ConstraintFunctional> own = loadCaseFunctionals(functionals, static_cast<int>(c), &rows);
+    const DesignResponse* response = simulated ? &simulated->load_cases.at(c) : nullptr;
+    const DesignGradient g = designGradient(method, loadCaseProblem(problem, c), own, x, fd_step, response, jobs);
+    out.cost = g.cost;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      out.constraints.row(rows[i]) = g.constraints.row(static_cast<Eigen::Index>(i));
+      if (g.values) values.constraints[rows[i]] = g.values->constraints[static_cast<Eigen::Index>(i)];
+    }
+    if (g.values) values.cost = g.values->cost;
+    every_value = every_value && g.values.has_value();
+  }
+  if (every_value) out.values = std::move(values);
+  return out;
+}
+
+}  // namespace
+
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
                               double fd_step, const DesignResponse* simulated, int jobs) {
+  const bool exact = method == "adjoint" || method == "continuous-adjoint" || method == "direct";
+  if (exact && !problem.load_cases.empty()) return perLoadCase(method, problem, functionals, x, fd_step, simulated, jobs);
   if (method == "adjoint") return adjointGradient(problem, functionals, x, simulated, jobs);
   if (method == "continuous-adjoint") return continuousAdjointGradient(problem, functionals, x, simulated);
   if (method == "direct") return directGradient(problem, functionals, x, simulated, jobs);

@@ -17,6 +17,7 @@
 #include "sensitivity/design_evaluation.hpp"
 #include "sensitivity/direct_sensitivity.hpp"
 #include "sensitivity/discrete_adjoint.hpp"
+#include "sensitivity/gradient_method.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -310,6 +311,81 @@ TEST(DesignProblem, TranscriptionWindowsMeasureEachExtremeOnEachWindow) {
   } catch (const SceneError& e) {
     EXPECT_EQ(e.line(), 14) << e.what();  // the transcription's
   }
+}
+
+/// The oscillator with its acceleration sensor, a design on k, and two load cases that release it
+/// from 1 m and from 0.5 m.
+std::string twoCaseOscillator(const std::string& cases) {
+  return std::string(test::kOscillator) + R"(  - {name: acceleration, type: joint, joint: x, quantity: acceleration}
+design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: acceleration, of: max_abs}
+  artificial: {initial: 50, lower: 0, upper: 200}
+  constraints:
+    - {sensor: position, of: final, bound: 0.9}
+    - {sensor: position, of: integral, equals: 0}
+  transcription: {measure: grid_max}
+  load_cases:
+)" + cases;
+}
+
+// Load cases: each case's scene is the file with the case's numbers set, simulated on its own; its
+// constraints are named after it, every inequality before every equality; the cost's epigraph takes
+// b_{k+1} in every case, so the cost is the worst case's. The values and the exact gradients of each
+// case are those of the scene loaded with the same numbers by --set (an independent path), to the
+// bit; central differences of the whole problem agree with them.
+TEST(DesignProblem, LoadCasesAreSimulatedOneByOneAndShareTheDesign) {
+  const DesignProblem problem = loadDesignProblem(
+      {"cases.yaml", twoCaseOscillator("    - {name: far, set: {x.q0: 1.0}}\n    - {name: near, set: {x.q0: 0.5}}\n")});
+  ASSERT_EQ(problem.load_cases.size(), 2u);
+  const std::vector<ConstraintFunctional> f = transcribe(problem);
+  std::vector<std::string> names;
+  for (const ConstraintFunctional& g : f) names.push_back(g.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"acceleration_above_far", "acceleration_below_far", "position_final_far",
+                                             "acceleration_above_near", "acceleration_below_near",
+                                             "position_final_near", "position_integral_far",
+                                             "position_integral_near"}));
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignResponse response = evaluateDesign(problem, f, x);
+  const DesignGradient adjoint = designGradient("adjoint", problem, f, x, 1e-6, &response);
+  const DesignGradient direct = designGradient("direct", problem, f, x, 1e-6, &response);
+  std::vector<Eigen::Index> rows;
+  for (const auto& [c, q0] : {std::pair<int, double>{0, 1.0}, {1, 0.5}}) {
+    const DesignProblem alone = loadDesignProblem({"cases.yaml", twoCaseOscillator("")}, {{"x.q0", q0}});
+    const std::vector<ConstraintFunctional> own = loadCaseFunctionals(f, c, &rows);
+    const DesignResponse single = evaluateDesign(alone, transcribe(alone), x);
+    const DesignGradient single_adjoint = adjointGradient(alone, transcribe(alone), x);
+    ASSERT_EQ(rows.size(), 4u);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      EXPECT_EQ(response.constraints[rows[i]], single.constraints[static_cast<Eigen::Index>(i)]) << names[rows[i]];
+      EXPECT_EQ(adjoint.constraints.row(rows[i]), single_adjoint.constraints.row(static_cast<Eigen::Index>(i))) << names[rows[i]];
+    }
+    EXPECT_EQ(caseTrajectory(response, static_cast<std::size_t>(c)).q(0, 0), q0);
+  }
+  EXPECT_LE((adjoint.constraints - direct.constraints).cwiseAbs().maxCoeff(), 1e-12 * adjoint.constraints.cwiseAbs().maxCoeff());
+  const DesignGradient central = finiteDifferenceGradient(problem, f, x, 1e-5, true);
+  EXPECT_LE((central.constraints - adjoint.constraints).cwiseAbs().maxCoeff(), 1e-6 * adjoint.constraints.cwiseAbs().maxCoeff());
+  // The cost's epigraph in every case: max a − b, the peak k x₀ = 39.5 from 1 m, 19.7 from 0.5 m, to
+  // the Newmark period error's few 1e-4.
+  EXPECT_NEAR(response.constraints[0], 39.478 - 50.0, 0.03);
+  EXPECT_NEAR(response.constraints[3], 0.5 * 39.478 - 50.0, 0.03);
+}
+
+TEST(DesignProblem, BadLoadCasesAreLocated) {
+  const auto errorLine = [&](const std::string& cases) {
+    try {
+      loadDesignProblem({"cases.yaml", twoCaseOscillator(cases)});
+    } catch (const SceneError& e) {
+      return e.line();
+    }
+    return -1;
+  };
+  // Line 20 is the first case.
+  EXPECT_EQ(errorLine("    - {name: far, set: {x.q1: 1.0}}\n"), 20);                       // no such number
+  EXPECT_EQ(errorLine("    - {name: far, set: {design.artificial.initial: 1}}\n"), 20);    // not the scene's
+  EXPECT_EQ(errorLine("    - {name: far}\n    - {name: far, set: {x.q0: 2}}\n"), 21);  // a repeated name
+  EXPECT_EQ(errorLine("    - {name: far, set: [1, 2]}\n"), 20);                            // not a map
+  EXPECT_EQ(errorLine("    - {name: far, set: {x.q0: 2}}\n"), -1);
 }
 
 // x'' + k x = 0 from x(0) = 1 (the oscillator) with x(1) = 0 as an equality. Newmark's average

@@ -106,5 +106,42 @@ TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
   std::filesystem::remove_all(directory);
 }
 
+// With load cases, every response is reported per case (KEY_CASE) and for the worst case (KEY, the
+// largest). The oscillator released from 1 m and from 0.5 m moves in proportion on the discrete map
+// itself, so each response of the far case is twice the near one's to round-off, and the worst is
+// the far one's.
+TEST(OptimizeCommand, ReportsEveryLoadCaseAndTheWorst) {
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / ("mbsopt_optimize_cases_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(directory);
+  const std::filesystem::path scene = directory / "oscillator.yaml", json = directory / "oscillator.json";
+  std::ofstream(scene) << std::string(test::kOscillator) + R"(  - {name: acceleration, type: joint, joint: x, quantity: acceleration}
+design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: acceleration, of: max_abs}
+  artificial: {initial: 50, lower: 0, upper: 200}
+  constraints: [{sensor: position, of: rms, bound: 0.6}]
+  load_cases:
+    - {name: far, set: {x.q0: 1.0}}
+    - {name: near, set: {x.q0: 0.5}}
+)";
+  const std::string command = std::string(MBSOPT_EXECUTABLE) + " optimize " + scene.string() +
+                              " --optimizer slsqp --max-iter 5 --json " + json.string() + " > " +
+                              (directory / "stdout").string();
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  nlohmann::json r;
+  std::ifstream(json) >> r;
+  for (const std::string key : {"max_abs_acceleration", "max_abs_position", "rms_position"}) {
+    SCOPED_TRACE(key);
+    ASSERT_TRUE(r["responses"].contains(key + "_far") && r["responses"].contains(key + "_near"));
+    const double far = r["responses"][key + "_far"].get<double>(), near = r["responses"][key + "_near"].get<double>();
+    EXPECT_NEAR(far, 2.0 * near, 1e-12 * far);
+    EXPECT_EQ(r["responses"][key].get<double>(), far);
+  }
+  // The far case's RMS is over its bound for any k (it is about 0.71), the near one's below.
+  EXPECT_NEAR(r["limit_excess"].get<double>(), r["responses"]["rms_position_far"].get<double>() - 0.6, 1e-12);
+  std::filesystem::remove_all(directory);
+}
+
 }  // namespace
 }  // namespace mbsopt
