@@ -111,7 +111,7 @@ void copyRows(const ResponseSeeds& bar, const std::vector<Eigen::Index>& rows, R
     out.position.row(i) = bar.position.row(j);
     out.velocity.row(i) = bar.velocity.row(j);
     out.acceleration.row(i) = bar.acceleration.row(j);
-    out.multipliers.row(i) = bar.multipliers.row(j);
+    if (bar.multipliers.cols() > 0) out.multipliers.row(i) = bar.multipliers.row(j);  // (a row of no columns has no data)
   }
 }
 
