@@ -55,8 +55,8 @@ AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd&
     throw std::invalid_argument("assemble: the state has " + std::to_string(q.size()) + " coordinates, the model " +
                                 std::to_string(model.coordinateCount()));
   for (int i : model.drivenCoordinates()) {
-    q[i] = model.coordinates()[static_cast<std::size_t>(i)].motion.value(t);
-    v[i] = model.coordinates()[static_cast<std::size_t>(i)].motion.rate(t);
+    q[i] = model.value(model.coordinates()[static_cast<std::size_t>(i)].motion, t);
+    v[i] = model.value(model.coordinates()[static_cast<std::size_t>(i)].motion, t, 1);
   }
   if (model.constraintCount() == 0) return report;
   const std::vector<int>& free = model.freeCoordinates();

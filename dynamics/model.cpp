@@ -68,10 +68,27 @@ int offsetOf(const Model& model, ParameterIndex parameter) {
 
 }  // namespace
 
-bool isGeometricParameter(const Model& model, ParameterIndex parameter) { return offsetOf(model, parameter) >= 0; }
+int drivingCoordinate(const Model& model, ParameterIndex parameter) {
+  for (const int i : model.drivenCoordinates()) {
+    const TimeInput& motion = model.coordinates()[static_cast<std::size_t>(i)].motion;
+    const bool reads = std::find(motion.coefficients.begin(), motion.coefficients.end(), parameter) !=
+                           motion.coefficients.end() ||
+                       std::any_of(motion.harmonics.begin(), motion.harmonics.end(), [&](const auto& h) {
+                         return std::find(h.begin(), h.end(), parameter) != h.end();
+                       });
+    if (reads) return i;
+  }
+  return -1;
+}
+
+bool isGeometricParameter(const Model& model, ParameterIndex parameter) {
+  return offsetOf(model, parameter) >= 0 || drivingCoordinate(model, parameter) >= 0;
+}
 
 bool movesLoopClosure(const Model& model, ParameterIndex parameter) {
-  const int element = offsetOf(model, parameter);
+  const int driven = drivingCoordinate(model, parameter);
+  const int element = driven >= 0 ? model.coordinates()[static_cast<std::size_t>(driven)].element
+                                   : offsetOf(model, parameter);
   if (element < 0) return false;
   for (const Model::CutFramePath& path : model.cutFramePaths())
     if (path.on_path[static_cast<std::size_t>(element)]) return true;
@@ -316,7 +333,7 @@ void Model::drive(const std::string& joint, TimeFunction motion) {
   const int i = coordinate(joint);
   if (coordinates_[static_cast<std::size_t>(i)].driven) throw std::invalid_argument(joint + " is driven twice");
   coordinates_[static_cast<std::size_t>(i)].driven = true;
-  coordinates_[static_cast<std::size_t>(i)].motion = std::move(motion);
+  coordinates_[static_cast<std::size_t>(i)].motion = timeInput(joint + ".motion", std::move(motion));
   free_.erase(std::find(free_.begin(), free_.end(), i));
   driven_.push_back(i);
 }

@@ -196,7 +196,7 @@ struct Coordinate {
   std::string name;
   int element;       ///< the active element that owns it
   bool driven;       ///< prescribed as a function of time, removed from the unknowns
-  TimeFunction motion;
+  TimeInput motion;  ///< when driven: its numbers are model parameters (JOINT.motion…)
 };
 
 class Model {
@@ -337,12 +337,15 @@ int equationCount(const CutKind& cut);
 /// The frame a of a cut joint, whose axes express its reaction (CutReactionSensor).
 FrameIndex cutFrameA(const CutKind& cut);
 
-/// Whether a parameter places frames: a component of an offset's translation. The kinematics, the
-/// loop closure and the sensors depend on it, not only the forces.
+/// Whether a parameter places frames: a component of an offset's translation, or a number of a driven
+/// joint's motion (drivingCoordinate). The kinematics, the loop closure and the sensors depend on it,
+/// not only the forces.
 bool isGeometricParameter(const Model& model, ParameterIndex parameter);
-/// Whether a geometric parameter moves a frame that a cut joint joins (its offset lies on the path
-/// from the ground to one): then the loop closure b(q; b) depends on it.
+/// Whether a geometric parameter moves a frame that a cut joint joins (its offset or its driven joint
+/// lies on the path from the ground to one): then the loop closure b(q; b) depends on it.
 bool movesLoopClosure(const Model& model, ParameterIndex parameter);
+/// The driven coordinate whose motion reads `parameter`, or −1.
+int drivingCoordinate(const Model& model, ParameterIndex parameter);
 
 /// 0, 1, …, coordinateCount() − 1: every coordinate, driven ones included.
 std::vector<int> allCoordinates(const Model& model);

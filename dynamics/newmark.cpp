@@ -177,10 +177,10 @@ void NewmarkIntegrator::factorMass(const char* name) {
 
 void NewmarkIntegrator::setDriven(double t) {
   for (int i : model_.drivenCoordinates()) {
-    const TimeFunction& motion = model_.coordinates()[static_cast<std::size_t>(i)].motion;
-    q_[i] = motion.value(t);
-    v_[i] = motion.rate(t);
-    a_[i] = motion.acceleration(t);
+    const TimeInput& motion = model_.coordinates()[static_cast<std::size_t>(i)].motion;
+    q_[i] = model_.value(motion, t);
+    v_[i] = model_.value(motion, t, 1);
+    a_[i] = model_.value(motion, t, 2);
     if (!std::isfinite(q_[i]) || !std::isfinite(v_[i]) || !std::isfinite(a_[i])) {
       const std::string& element = model_.coordinateOwner(i);
       throw SimulationError("the prescribed motion of '" + element + "' or its derivatives are not finite", t,

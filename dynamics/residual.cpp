@@ -14,17 +14,6 @@ namespace mbsopt {
 
 namespace {
 
-/// The order-th time derivative of a time input at t (a spring's rest value or target, an actuation),
-/// its numbers read as model parameters: seeded where a pass differentiates them.
-template <class Scalar>
-Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInput& input, double t, int order = 0) {
-  return timeFunctionDerivative<Scalar>(
-      input.coefficients.size(), [&](std::size_t k) { return parameter(model, ws, input.coefficients[k]); },
-      input.harmonics.size(),
-      [&](std::size_t j, int which) { return parameter(model, ws, input.harmonics[j][static_cast<std::size_t>(which)]); },
-      t, order);
-}
-
 /// Whether the frames in the workspace move: at rest every frame velocity is zero, and the terms in
 /// them are skipped (exact zeros there).
 enum class FrameMotion { Moving, AtRest };

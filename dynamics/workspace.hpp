@@ -62,6 +62,11 @@ struct Workspace {
   /// Model parameters differentiated in this evaluation (AdScalar only): the parameter and the AD
   /// direction it is seeded in. Empty: none.
   std::vector<std::pair<ParameterIndex, int>> parameter_seeds;
+  /// The model and the time of the state a pass evaluates, when a seeded parameter may be a number
+  /// of a driven joint's motion (drivingCoordinate): the pass then seeds that joint's q, q̇, q̈ with
+  /// their derivatives in it (seedDrivenMotions, sensitivity/forward_ad.hpp). Null: never.
+  const Model* driving_model = nullptr;
+  double driving_time = 0.0;
 };
 
 /// to += v; on a planar model only the components in `carried`, those the planar backward recursion
@@ -96,6 +101,18 @@ Scalar parameter(const Model& model, const Workspace<Scalar>& ws, ParameterIndex
       if (seeded == index) out.derivatives()[direction] = 1.0;
   }
   return out;
+}
+
+/// The order-th time derivative of a time input at t (a spring's rest value or target, an actuation,
+/// a driven joint's motion), its numbers read as model parameters: seeded where a pass differentiates
+/// them. In double, Model::value(input, t, order) to the bit.
+template <class Scalar>
+Scalar timeValue(const Model& model, const Workspace<Scalar>& ws, const TimeInput& input, double t, int order = 0) {
+  return timeFunctionDerivative<Scalar>(
+      input.coefficients.size(), [&](std::size_t k) { return parameter(model, ws, input.coefficients[k]); },
+      input.harmonics.size(),
+      [&](std::size_t j, int which) { return parameter(model, ws, input.harmonics[j][static_cast<std::size_t>(which)]); },
+      t, order);
 }
 
 template <class Scalar>

@@ -26,6 +26,18 @@ std::vector<AdInput> adInputs(std::initializer_list<std::vector<AdInput>> parts)
   return out;
 }
 
+void seedDrivenMotions(const Model& model, Workspace<AdScalar>& ws, double t) {
+  for (const int i : model.drivenCoordinates()) {
+    const bool seeded = std::any_of(ws.parameter_seeds.begin(), ws.parameter_seeds.end(),
+                                    [&](const auto& seed) { return drivingCoordinate(model, seed.first) == i; });
+    if (!seeded) continue;
+    const TimeInput& motion = model.coordinates()[static_cast<std::size_t>(i)].motion;
+    ws.seeded_q[i] = timeValue(model, ws, motion, t, 0);
+    ws.seeded_v[i] = timeValue(model, ws, motion, t, 1);
+    ws.seeded_a[i] = timeValue(model, ws, motion, t, 2);
+  }
+}
+
 SeededState seedAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                        const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
                        const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters,
@@ -46,6 +58,7 @@ SeededState seedAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::Ve
         break;
     }
   }
+  if (ws.driving_model && !ws.parameter_seeds.empty()) seedDrivenMotions(*ws.driving_model, ws, ws.driving_time);
   return SeededState{ws.seeded_q, ws.seeded_v, ws.seeded_a};
 }
 

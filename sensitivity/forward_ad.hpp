@@ -36,9 +36,15 @@ struct SeededState {
   const VectorX<AdScalar>& a;
 };
 
+/// With ws's parameter seeds set, the driven coordinates whose motion reads a seeded parameter get
+/// their q, q̇, q̈ at time t with the derivatives in it (their values those the integrator prescribed,
+/// to the bit); seedAdPass calls it when ws.driving_model is set.
+void seedDrivenMotions(const Model& model, Workspace<AdScalar>& ws, double t);
+
 /// Seeds the pass over inputs [first, first + count): input first + j carries the unit derivative
 /// direction j in ws.seeded_q, seeded_v, seeded_a (parameters through ws.parameter_seeds,
-/// `parameters` being their indices in the model), every other input a constant.
+/// `parameters` being their indices in the model), every other input a constant; then, when
+/// ws.driving_model is set, the driven motions (seedDrivenMotions at ws.driving_time).
 SeededState seedAdPass(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>& q,
                        const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
                        const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters,

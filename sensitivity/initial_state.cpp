@@ -38,6 +38,10 @@ Eigen::MatrixXd closingDirections(const Scene& scene) {
 void designInitialState(const Scene& scene, const Model& model, Eigen::VectorXd& q, Eigen::VectorXd& v) {
   q = scene.q0;
   v = scene.v0;
+  for (const int i : model.drivenCoordinates()) {  // the design's motion at t₀ = 0, as the integrator sets it
+    q[i] = model.value(model.coordinates()[static_cast<std::size_t>(i)].motion, 0.0);
+    v[i] = model.value(model.coordinates()[static_cast<std::size_t>(i)].motion, 0.0, 1);
+  }
   if (model.constraintCount() == 0) return;
   const std::vector<int>& free = model.freeCoordinates();
   const Eigen::MatrixXd V1 = closingDirections(scene);

@@ -93,6 +93,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
     if (!linear) ad_parameter_indices_.push_back(index);
     linear_columns_read_kinematics_ = linear_columns_read_kinematics_ || linearForceParameterReadsKinematics(model_, index);
     geometric_ = geometric_ || isGeometricParameter(model_, index);
+    drives_ = drives_ || drivingCoordinate(model_, index) >= 0;
   }
   closure_rows_.resize(static_cast<std::size_t>(model_.constraintCount()));
   std::iota(closure_rows_.begin(), closure_rows_.end(), 0);
@@ -182,6 +183,12 @@ StepDerivatives TrajectoryDerivatives::step(Eigen::Index k) {
   return point.step;
 }
 
+void TrajectoryDerivatives::driveAt(Eigen::Index k, Workspace<AdScalar>& ws) const {
+  if (!drives_) return;
+  ws.driving_model = &model_;
+  ws.driving_time = time(k);
+}
+
 StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   const Trajectory& tr = response().trajectory;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(model_.constraintCount());
@@ -197,6 +204,7 @@ StepDerivatives TrajectoryDerivatives::projectedStep(Eigen::Index k) {
   // the columns of the parameters f is linear in in double.
   const Eigen::Index nf = freeCount();
   const std::vector<int>& free = model_.freeCoordinates();
+  driveAt(k, scratch_.ws);
   const Eigen::MatrixXd d = residualJacobian(model_, scratch_.ws, tr.q.col(k), tr.v.col(k), tr.a.col(k), lambda,
                                              tr.time[k], step_inputs_, ad_parameter_indices_);
   geometryAt(k, scratch_);
@@ -244,6 +252,7 @@ void TrajectoryDerivatives::pointAt(Eigen::Index k, Scratch& s, PointDerivatives
 }
 
 void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDerivatives& out) {
+  driveAt(k, s.ws);
   const Trajectory& tr = response().trajectory;
   const std::vector<int>& free = model_.freeCoordinates();
   const Eigen::Index n = model_.coordinateCount(), m = model_.constraintCount(), nf = freeCount();
@@ -472,6 +481,7 @@ void TrajectoryDerivatives::sensorSeeds(Eigen::Index k, const std::vector<int>& 
 }
 
 void TrajectoryDerivatives::seedsAt(Eigen::Index k, Scratch& scratch, ResponseSeeds& out) {
+  driveAt(k, scratch.ws);
   const Trajectory& tr = response().trajectory;
   if (selectSensors(k, scratch)) {  // every selected sensor in one set of passes
     const Eigen::VectorXd lambda = tr.lambda.rows() > 0 ? Eigen::VectorXd(tr.lambda.col(k)) : Eigen::VectorXd();

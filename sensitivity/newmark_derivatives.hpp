@@ -153,6 +153,11 @@ class TrajectoryDerivatives {
   /// Whether some design variable is geometric (isGeometricParameter): then the closure's own
   /// derivatives in b and the sensors' explicit ones are formed.
   bool geometric_ = false;
+  /// Whether some design variable is a number of a driven joint's motion (drivingCoordinate): then
+  /// the passes at a time point seed the driven coordinates too (Workspace::driving_model).
+  bool drives_ = false;
+  /// Sets ws to seed the driven motions at time point k's time, when some variable drives one.
+  void driveAt(Eigen::Index k, Workspace<AdScalar>& ws) const;
   /// Whether some functional reads a cut reaction (readsMultipliers): then the seeds carry ∂Ψ/∂λ.
   bool reads_multipliers_ = false;
   std::vector<int> closure_rows_;  ///< 0, …, m − 1
