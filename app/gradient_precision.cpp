@@ -8,6 +8,16 @@
 
 namespace mbsopt {
 
+namespace {
+
+/// The problem's time step h, in its scene and in every load case's.
+void setStep(DesignProblem& problem, double step) {
+  problem.scene.settings.step = step;
+  for (LoadCase& c : problem.load_cases) c.scene.settings.step = step;
+}
+
+}  // namespace
+
 GradientReference referenceGradient(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                     const Eigen::VectorXd& x, double step) {
   GradientReference reference;
@@ -15,7 +25,7 @@ GradientReference referenceGradient(const DesignProblem& problem, const std::vec
   reference.functionals.push_back("cost");
   for (const ConstraintFunctional& f : functionals) reference.functionals.push_back(f.name);
   DesignProblem at = problem;
-  at.scene.settings.step = step;
+  setStep(at, step);
   timeMedian(1, [&] { reference.gradient = designGradient(reference.method, at, functionals, x); }, reference.seconds);
   return reference;
 }
@@ -32,7 +42,7 @@ PrecisionRun measureGradientRun(DesignProblem problem, const std::vector<Constra
   PrecisionRun result;
   result.variant = method;
   result.step = step;
-  problem.scene.settings.step = step;
+  setStep(problem, step);
   std::optional<DesignGradient> gradient;
   try {
     timeMedian(repeat, [&] { gradient.emplace(designGradient(method, problem, functionals, x, fd_step)); },

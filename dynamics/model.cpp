@@ -121,7 +121,7 @@ ParameterVector3 Model::addParameters(const std::string& prefix, const char* con
 
 TimeInput Model::timeInput(const std::string& name, TimeFunction function) {
   TimeInput input;
-  if (function.isConstant()) {
+  if (function.isNumber()) {
     input.coefficients.push_back(addParameter(name, function.value(0.0)));
     return input;
   }

@@ -73,8 +73,9 @@ struct Body {
 };
 
 /// A function of time, f(t) = Σ_k c_k t^k + Σ_j A_j sin(ω_j t + φ_j) (a spring's rest value or
-/// moving target, an actuation), whose numbers are model parameters: a constant is one parameter
-/// under the input's own name (`spring.rest`, `motor.value`), a function has NAME.polynomial.K and
+/// moving target, an actuation, a driven joint's motion), whose numbers are model parameters under
+/// the scene file's dotted names: a number is one parameter under the input's own name
+/// (`spring.rest`, `motor.value`), a function (even of one term) has NAME.polynomial.K and
 /// NAME.harmonics.J.amplitude, .angular_frequency, .phase. Model::value(input, t, order) and the
 /// residual (through parameter(), so AD differentiates them) evaluate it.
 struct TimeInput {

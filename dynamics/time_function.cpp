@@ -5,7 +5,7 @@ namespace mbsopt {
 TimeFunction TimeFunction::polynomial(std::vector<double> coefficients) { return {std::move(coefficients), {}}; }
 
 TimeFunction TimeFunction::harmonic(double amplitude, double angular_frequency, double phase, double offset) {
-  TimeFunction f = constant(offset);
+  TimeFunction f = polynomial({offset});
   f.harmonics_.push_back({amplitude, angular_frequency, phase});
   return f;
 }

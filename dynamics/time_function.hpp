@@ -51,7 +51,11 @@ class TimeFunction {
       : coefficients_(std::move(coefficients)), harmonics_(std::move(harmonics)) {
     if (coefficients_.empty()) coefficients_.push_back(0.0);
   }
-  static TimeFunction constant(double value) { return polynomial({value}); }
+  static TimeFunction constant(double value) {
+    TimeFunction f = polynomial({value});
+    f.number_ = true;
+    return f;
+  }
   static TimeFunction polynomial(std::vector<double> coefficients);
   static TimeFunction harmonic(double amplitude, double angular_frequency, double phase = 0.0, double offset = 0.0);
 
@@ -62,12 +66,16 @@ class TimeFunction {
   double derivative(double t, int order) const;
 
   bool isConstant() const;
+  /// Made by constant(): a single number, not a function that happens to be constant. A time input
+  /// names its parameter after itself then, after the function's terms otherwise (Model::timeInput).
+  bool isNumber() const { return number_; }
   const std::vector<double>& coefficients() const { return coefficients_; }
   const std::vector<Harmonic>& harmonics() const { return harmonics_; }
 
  private:
   std::vector<double> coefficients_{0.0};
   std::vector<Harmonic> harmonics_;
+  bool number_ = false;
 };
 
 }  // namespace mbsopt

@@ -100,6 +100,9 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
         const std::string& name = set.key(i).text();
         if (name.rfind("design.", 0) == 0)
           values.fail(name, "a load case sets the scene's numbers, not the design's ('" + name + "')");
+        for (const DesignVariable& v : out.variables)
+          if (v.parameter == name)
+            values.fail(name, "'" + name + "' is a design variable: every load case takes the design's value");
         load_case.set.emplace_back(name, values.number(name));
       }
     }

@@ -53,6 +53,7 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
     }
     return;
   }
+  out.load_cases.clear();
   const Scene& scene = problem.scene;
   Model model = scene.model;
   out.cost = applyDesign(problem, x, model);

@@ -95,6 +95,7 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   const Model& model = problem.scene.model;
   std::vector<ConstraintFunctional> functionals;
   const Transcription& t = problem.design.transcription;
+  if (t.windows < 1) throw std::invalid_argument("design: the windows must be at least one");
   const double duration = problem.scene.settings.end_time;
   const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial, bool equality) {
     const int index = sensorIndex(model, sensor);

@@ -74,7 +74,9 @@ void adJacobian(Workspace<AdScalar>& ws, const Eigen::Ref<const Eigen::VectorXd>
                 const std::vector<AdInput>& inputs, const std::vector<ParameterIndex>& parameters, Eigen::Index rows,
                 const std::function<void(const SeededState&, VectorX<AdScalar>&)>& evaluate, Eigen::MatrixXd& out);
 
-/// ∂f/∂(inputs) at (q, q̇, q̈, λ, t): coordinateCount() rows, one column per input.
+/// ∂f/∂(inputs) at (q, q̇, q̈, λ, t): coordinateCount() rows, one column per input. The state is
+/// the one given, driven coordinates included, unless ws.driving_model is set (seedAdPass): a driven
+/// motion's number then moves its joint too.
 Eigen::MatrixXd residualJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                  double t, const std::vector<AdInput>& inputs,

@@ -16,7 +16,9 @@ namespace mbsopt {
 /// The index in `model` of each named parameter, for seeding it (Workspace::parameter_seeds).
 std::vector<ParameterIndex> parameterIndices(const Model& model, const std::vector<std::string>& parameters);
 
-/// n × p, one column per parameter (every coordinate's row, driven ones included).
+/// n × p, one column per parameter (every coordinate's row, driven ones included), at the given
+/// state: the driven coordinates too are held, so a driven motion's number has a zero column here
+/// (TrajectoryDerivatives moves them, Workspace::driving_model).
 Eigen::MatrixXd parameterJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                   const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                   double t, const std::vector<std::string>& parameters);

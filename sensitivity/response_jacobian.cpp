@@ -22,6 +22,9 @@ void responseJacobians(const Model& model, Workspace<AdScalar>& ws, const std::v
     J.acceleration.resize(nc);
     J.parameters.resize(static_cast<Eigen::Index>(parameters.size()));
   }
+  for (const ParameterIndex p : parameters)
+    if (drivingCoordinate(model, p) >= 0 && !ws.driving_model)
+      throw std::logic_error("responseJacobians: a driven motion's number needs ws.driving_model and the time");
   // λ is a constant of every pass: the sensors that read it are linear in it (multiplierDerivatives).
   VectorX<AdScalar> constant_lambda;
   if (lambda) seedVector(*lambda, 0, 0, 0, constant_lambda);

@@ -31,7 +31,9 @@ ResponseJacobian responseJacobian(const Model& model, Workspace<AdScalar>& ws, c
 /// The same for several sensors at once, over the coordinates `columns` only (entry j of each row
 /// is the derivative in coordinate columns[j]) and the model parameters `parameters`: one
 /// kinematics evaluation per AD pass serves them all. Into `out`, one per sensor, reusing its storage.
-/// A cut reaction (readsMultipliers) needs the multipliers λ of the state: `lambda`, else nullptr.
+/// A cut reaction (readsMultipliers) needs the multipliers λ of the state: `lambda`, else nullptr. A
+/// driven motion's number among `parameters` needs ws.driving_model and ws.driving_time set to the
+/// state's (TrajectoryDerivatives does); std::logic_error otherwise.
 void responseJacobians(const Model& model, Workspace<AdScalar>& ws, const std::vector<const Sensor*>& sensors,
                        const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
                        const Eigen::Ref<const Eigen::VectorXd>& a, const std::vector<int>& columns,

@@ -385,6 +385,7 @@ TEST(DesignProblem, BadLoadCasesAreLocated) {
   EXPECT_EQ(errorLine("    - {name: far, set: {design.artificial.initial: 1}}\n"), 20);    // not the scene's
   EXPECT_EQ(errorLine("    - {name: far}\n    - {name: far, set: {x.q0: 2}}\n"), 21);  // a repeated name
   EXPECT_EQ(errorLine("    - {name: far, set: [1, 2]}\n"), 20);                            // not a map
+  EXPECT_EQ(errorLine("    - {name: far, set: {spring.k: 5}}\n"), 20);  // a design variable: the design's value
   EXPECT_EQ(errorLine("    - {name: far, set: {x.q0: 2}}\n"), -1);
 }
 

@@ -4,6 +4,7 @@
 // Newton tolerance over δ), and with closed forms to the discretisation error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -112,6 +113,16 @@ design:
 // enter nonlinearly: adjoint = direct to round-off, central differences at the best step to 1e-6
 // of each row (measured 2e-10 … 5e-10).
 TEST(ExactGradients, DriverParametersAreDesignVariables) {
+  // A number names its parameter after the input, a function (even of one term) after its terms, as
+  // the scene file's dotted names do.
+  const std::vector<std::string> names =
+      loadScene({"names.yaml", "elements:\n  - {name: x, type: prismatic, parent: ground, axis: [1, 0, 0]}\n"
+                               "bodies:\n  - {name: m, frame: x, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}\n"
+                               "forces:\n  - {name: a, type: joint_actuation, joint: x, value: 2}\n"
+                               "  - {name: b, type: joint_actuation, joint: x, value: {polynomial: [2]}}\n"})
+          .scene.model.parameterNames();
+  for (const char* name : {"a.value", "b.value.polynomial.0"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
   {
     const DesignProblem problem = drivenOscillator("    - {parameter: motor.value.harmonics.0.amplitude, lower: 0, upper: 5}\n");
     DesignProblem alone = problem;

@@ -3,7 +3,8 @@
 
 The problem: a centred slider-crank (crank R, rod L) turned at a constant OMEGA drives a ram of
 mass M along a rail; a spring (stiffness k, rest position x0) pulls the ram towards x0. Choose k
-and x0 to make the peak axial load of the wrist pin, max_t |F(t)| over one turn, least: a spring
+and x0 to make the peak axial load of the wrist pin, max_t |F(t)| over half a turn from top to bottom
+dead centre (the other half repeats it), least: a spring
 that balances the ram's reciprocating inertia force. The ram's equation along the rail gives the
 pin force the rod receives from the ram, F = -(M s'' + k (s - x0)), so the cost is the peak of an
 affine function of (k, k x0): a discrete Chebyshev (minimax) problem. Its optimum lies on a kink of
@@ -133,7 +134,7 @@ def main():
             "design": {"balancer.k": k, "balancer.rest": x0},
             "responses": {"max_abs_pin_x": best},
             "peak_at_the_start": start,
-            "peak_without_spring": 0.5 * (max(MASS * a for _, a in POINTS_SA) - min(MASS * a for _, a in POINTS_SA)),
+            "peak_without_spring": max(abs(MASS * a) for _, a in POINTS_SA),
             "primary_balance_stiffness": MASS * OMEGA * OMEGA,
             "slope_below": slope_below,
             "slope_above": slope_above,
