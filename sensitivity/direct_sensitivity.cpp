@@ -37,7 +37,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
   const NewmarkSettings& settings = d.settings();
   const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
-  const Eigen::Index nf = d.freeCount(), p = d.variableCount(), m = d.constraintCount();
+  const Eigen::Index p = d.variableCount(), m = d.constraintCount();
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), p);
   // t₀: the initial state closed on the design's loops, and its accelerations.
   ForwardStep step;

@@ -225,8 +225,8 @@ design:
 
 // A dynamic loop: the pin forces depend on the lengths through B, the closure and the initial state,
 // on the masses through M and gravity. Adjoint = direct to round-off (≤ 1e-9 relative, as in
-// test_exact_gradients; measured 4e-13); both = central differences at the best step to 1e-6 of
-// each row (measured 1e-7 … 3e-7: λ carries the round-off of Newton's last solve, over δ).
+// test_exact_gradients; measured 4e-12); both = central differences at the best step to 1e-6 of
+// each row (measured 9e-8 … 2e-7: λ carries the round-off of Newton's last solve, over δ).
 TEST(CutForceSensor, FourBarPinLoadsAdjointEqualsDirectAndCentralDifferences) {
   const DesignProblem problem = fourBarPinLoads(true);
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
