@@ -125,7 +125,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   return out;
 }
 
-void checkDesignAgainstScene(const MapReader& design, const Scene& scene) {
+void checkDesignAgainstScene(const MapReader& design, const DesignDescription& described, const Scene& scene) {
   std::vector<MapReader> entries{MapReader(design.context(), design.required("cost"), "design.cost")};
   for (const YamlNode& node : readList(design.context(), design.node()["constraints"], "design.constraints"))
     entries.emplace_back(design.context(), node, "design constraint");
@@ -133,9 +133,9 @@ void checkDesignAgainstScene(const MapReader& design, const Scene& scene) {
     const Sensor& sensor = scene.model.sensors()[static_cast<std::size_t>(scene.model.sensor(entry.name("sensor")))];
     if (const std::string defect = reactionDeterminacyDefect(scene, sensor); !defect.empty()) entry.fail("sensor", defect);
   }
-  if (!design.has("transcription")) return;
+  const int windows = described.transcription.windows;
+  if (windows == 1) return;
   const MapReader t(design.context(), design.node()["transcription"], "design.transcription");
-  const int windows = t.positiveInteger("windows", 1);
   const NewmarkSettings& s = scene.settings;
   const auto steps = std::max(1L, static_cast<long>(std::ceil(s.end_time / s.step - 1e-9)));  // as the integrator takes them
   if (2 * windows > steps + 1)

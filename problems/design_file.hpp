@@ -12,8 +12,8 @@ DesignDescription readDesign(const MapReader& design, const Model& model);
 
 /// Once the scene is assembled: every cut reaction the section reads (its cost's and constraints'
 /// `sensor:`) must be determinate at the initial state (reactionDeterminacyDefect), an error at that
-/// `sensor:` otherwise; and the transcription's windows must hold two time points each, an error at
-/// `windows:` otherwise.
-void checkDesignAgainstScene(const MapReader& design, const Scene& scene);
+/// `sensor:` otherwise; and the transcription's windows (as readDesign read them into `described`)
+/// must hold two time points each, an error at `windows:` otherwise.
+void checkDesignAgainstScene(const MapReader& design, const DesignDescription& described, const Scene& scene);
 
 }  // namespace mbsopt

@@ -71,7 +71,8 @@ class SceneBuilder {
     if (root_.has("design")) result_.design = readDesign(MapReader(context_, root_.node()["design"], "design"), model());
     recordLocations();
     assembleInitialState();
-    if (result_.design) checkDesignAgainstScene(MapReader(context_, root_.node()["design"], "design"), result_.scene);
+    if (result_.design)
+      checkDesignAgainstScene(MapReader(context_, root_.node()["design"], "design"), *result_.design, result_.scene);
     checkFirstEvaluation();
     return std::move(result_);
   }

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -21,12 +22,14 @@ namespace {
 /// q̈ = L(−(C q̇ + K q + ∂f/∂b), −(∂b̈/∂q q + ∂b̈/∂q̇ q̇)) linearised, so a seed ḡ_a on q̈ becomes
 /// −t̄ K − b̄ ∂b̈/∂q on q, −t̄ C − b̄ ∂b̈/∂q̇ on q̇ and −t̄ ∂f/∂b directly on b, (t̄, b̄) its transposed solve;
 /// a seed on the multipliers λ of the same system (a cut reaction) enters that solve beside ḡ_a.
+/// `closure`: the point's closure derivatives when the caller has them, else null.
 struct HalfSources {
   Eigen::MatrixXd position, velocity;
 };
 
 HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, const StepDerivatives& s,
-                                    double half_over_weight, Eigen::MatrixXd& dpsi_db) {
+                                    const ClosureDerivatives* closure, double half_over_weight,
+                                    Eigen::MatrixXd& dpsi_db) {
   ResponseSeeds seeds = d.seeds(k);
   if (seeds.parameters.cols() > 0) dpsi_db += seeds.parameters;  // the sensors' explicit ∂Ψ/∂b
   const bool multipliers = seeds.multipliers.cols() > 0 && !seeds.multipliers.isZero(0.0);
@@ -39,7 +42,8 @@ HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, co
     seeds.velocity -= tbar * s.damping;
     dpsi_db -= tbar * s.parameters;
     if (d.constraintCount() > 0) {
-      const ClosureDerivatives c = d.closure(k);
+      std::optional<ClosureDerivatives> own;  // the point's closure, unless the caller has it
+      const ClosureDerivatives& c = closure ? *closure : own.emplace(d.closure(k));
       seeds.position -= bbar * c.acceleration_q;
       seeds.velocity -= 2.0 * bbar * c.velocity_q;  // ∂b̈/∂q̇ = 2 ∂ḃ/∂q (ClosureDerivatives)
       // A geometric variable moves b̈ itself: −b̄ ∂b̈/∂b.
@@ -96,14 +100,18 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   Eigen::MatrixXd momentum = Eigen::MatrixXd::Zero(rows, nf), half_flux, p = Eigen::MatrixXd::Zero(rows, nf);
   Eigen::MatrixXd half_force;
   Eigen::MatrixXd later_jacobian = d.constraintJacobian(start);
-  Eigen::MatrixXd later_closure_b = moves_loops ? d.closure(start).position_parameters : Eigen::MatrixXd();
+  // A design that moves a loop needs each point's ∂b/∂b; its closure then serves the substitution too.
+  std::optional<ClosureDerivatives> closure;
+  if (moves_loops) closure = d.closure(start);
+  Eigen::MatrixXd later_closure_b = closure ? closure->position_parameters : Eigen::MatrixXd();
   StepDerivatives s = d.projectedStep(start);
-  HalfSources g = substituteAccelerations(d, start, s, half / weight(start), dpsi_db);
+  HalfSources g = substituteAccelerations(d, start, s, closure ? &*closure : nullptr, half / weight(start), dpsi_db);
   half_flux = g.velocity;
   half_force = g.position;
   for (Eigen::Index k = start - 1; k >= 0; --k) {
     s = d.projectedStep(k);
-    g = substituteAccelerations(d, k, s, half / weight(k), dpsi_db);
+    if (moves_loops) closure = d.closure(k);
+    g = substituteAccelerations(d, k, s, closure ? &*closure : nullptr, half / weight(k), dpsi_db);
     const Eigen::MatrixXd A = s.mass + half * s.damping + half * half * s.stiffness;
     // w A + ½h ν̄ B = w_{k+1}M_{k+1} − h/2 F_{k+1} − h/2 g_q̇,k + ½h (p_{k+1} − h/2 (w_{k+1}K_{k+1} + g_q,k+1) − h/2 g_q,k)
     const Eigen::MatrixXd rhs = momentum - half_flux - g.velocity + half * (p - half_force - g.position);
@@ -118,7 +126,7 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
     if (moves_loops) {
       // ν̄ from ½h ν̄ B̄ = R − w A (minimum norm: redundant rows carry none), then ∫νᵀ ∂b/∂b dt over
       // the step by the midpoint rule, as ∫Bᵀν dt.
-      const Eigen::MatrixXd closure_b = d.closure(k).position_parameters;
+      const Eigen::MatrixXd& closure_b = closure->position_parameters;
       const Eigen::MatrixXd mean = 0.5 * (jacobian + later_jacobian);
       const Eigen::MatrixXd nu =
           mean.transpose().completeOrthogonalDecomposition().solve((rhs - w * A).transpose()).transpose() / half;
