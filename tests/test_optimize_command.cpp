@@ -77,33 +77,39 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   std::filesystem::remove_all(directory);
 }
 
+/// `mbsopt optimize` on a scene written from `text` into a scratch directory, with `options` and
+/// --json: the JSON it wrote (the test fails when the command does).
+nlohmann::json optimizeScene(const std::string& name, const std::string& text, const std::string& options) {
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / ("mbsopt_optimize_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(directory);
+  const std::filesystem::path scene = directory / (name + ".yaml"), json = directory / (name + ".json");
+  std::ofstream(scene) << text;
+  const std::string command = std::string(MBSOPT_EXECUTABLE) + " optimize " + scene.string() + " " + options +
+                              " --json " + json.string() + " > " + (directory / "stdout").string();
+  nlohmann::json r;
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream(json) >> r;
+  std::filesystem::remove_all(directory);
+  return r;
+}
+
 // An RMS cost and an RMS constraint on the oscillator x = cos(ωt), ω² = k: the JSON reports both
 // RMS values under rms_position, the closed form √(1/2 + sin(2ωτ)/(4ωτ)) at the final k within the
 // trapezoidal Newmark's phase error (a relative ω²h²/12 · ωτ, bounded by 2e-4 with a tenfold margin
 // for k ≤ 100), and limit_excess counts the RMS constraint: RMS − bound.
 TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
-  const std::filesystem::path directory =
-      std::filesystem::temp_directory_path() / ("mbsopt_optimize_rms_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(directory);
-  const std::filesystem::path scene = directory / "oscillator.yaml", json = directory / "oscillator.json";
-  std::ofstream(scene) << std::string(test::kOscillator) + R"(design:
+  const nlohmann::json r = optimizeScene("rms", std::string(test::kOscillator) + R"(design:
   variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
   cost: {sensor: position, of: rms}
   artificial: {initial: 1, lower: 0, upper: 2}
   constraints: [{sensor: position, of: rms, bound: 0.6}]
-)";
-  const std::string command = std::string(MBSOPT_EXECUTABLE) + " optimize " + scene.string() + " --set settings.end_time=0.8" +
-                              " --optimizer slsqp --max-iter 10 --json " + json.string() + " > " +
-                              (directory / "stdout").string();
-  ASSERT_EQ(std::system(command.c_str()), 0);
-  nlohmann::json r;
-  std::ifstream(json) >> r;
+)", "--set settings.end_time=0.8 --optimizer slsqp --max-iter 10");
   ASSERT_TRUE(r["responses"].contains("rms_position"));
   const double omega = std::sqrt(r["design"][0].get<double>()), tau = 0.8;
   const double rms = std::sqrt(0.5 + std::sin(2.0 * omega * tau) / (4.0 * omega * tau));
   EXPECT_NEAR(r["responses"]["rms_position"].get<double>(), rms, 2e-4);
   EXPECT_NEAR(r["limit_excess"].get<double>(), r["responses"]["rms_position"].get<double>() - 0.6, 1e-12);
-  std::filesystem::remove_all(directory);
 }
 
 // With load cases, every response is reported per case (KEY_CASE) and for the worst case (KEY, the
@@ -111,11 +117,7 @@ TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
 // itself, so each response of the far case is twice the near one's to round-off, and the worst is
 // the far one's.
 TEST(OptimizeCommand, ReportsEveryLoadCaseAndTheWorst) {
-  const std::filesystem::path directory =
-      std::filesystem::temp_directory_path() / ("mbsopt_optimize_cases_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(directory);
-  const std::filesystem::path scene = directory / "oscillator.yaml", json = directory / "oscillator.json";
-  std::ofstream(scene) << std::string(test::kOscillator) + R"(  - {name: acceleration, type: joint, joint: x, quantity: acceleration}
+  const nlohmann::json r = optimizeScene("cases", std::string(test::kOscillator) + R"(  - {name: acceleration, type: joint, joint: x, quantity: acceleration}
 design:
   variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
   cost: {sensor: acceleration, of: max_abs}
@@ -124,13 +126,7 @@ design:
   load_cases:
     - {name: far, set: {x.q0: 1.0}}
     - {name: near, set: {x.q0: 0.5}}
-)";
-  const std::string command = std::string(MBSOPT_EXECUTABLE) + " optimize " + scene.string() +
-                              " --optimizer slsqp --max-iter 5 --json " + json.string() + " > " +
-                              (directory / "stdout").string();
-  ASSERT_EQ(std::system(command.c_str()), 0);
-  nlohmann::json r;
-  std::ifstream(json) >> r;
+)", "--optimizer slsqp --max-iter 5");
   for (const std::string key : {"max_abs_acceleration", "max_abs_position", "rms_position"}) {
     SCOPED_TRACE(key);
     ASSERT_TRUE(r["responses"].contains(key + "_far") && r["responses"].contains(key + "_near"));
@@ -140,7 +136,6 @@ design:
   }
   // The far case's RMS is over its bound for any k (it is about 0.71), the near one's below.
   EXPECT_NEAR(r["limit_excess"].get<double>(), r["responses"]["rms_position_far"].get<double>() - 0.6, 1e-12);
-  std::filesystem::remove_all(directory);
 }
 
 }  // namespace
