@@ -20,7 +20,7 @@ double guidanceDeviation(const Model& model, const TrackGuidance& g, const Works
                          const Eigen::VectorXd& q) {
   const KinematicElement& slider =
       model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(g.slider_coordinate)].element)];
-  const Track& track = *std::get<CurveSliderJoint>(slider.kind).track;
+  const Track& track = model.track(std::get<CurveSliderJoint>(slider.kind).track);
   const double heading = track.at(q[g.slider_coordinate]).heading;
   const Eigen::Vector3d x =
       ws.rotation[static_cast<std::size_t>(slider.entry)].transpose() * ws.rotation[static_cast<std::size_t>(g.frame)].col(0);

@@ -1,6 +1,7 @@
 #include "dynamics/kinematics.hpp"
 #include "dynamics/overloaded.hpp"
 #include "dynamics/planar_recursions.hpp"
+#include "dynamics/track_state.hpp"
 
 #include <cmath>
 
@@ -38,16 +39,13 @@ void placeExit(const Model& model, const ElementKind& kind, std::size_t k, std::
                    if (axes) ws.motion_linear[k] = Re * j.axis;
                  },
                  [&](const CurveSliderJoint& j) {
-                   // dr/ds = t to first order, as the heading and curvature (trackStateAt).
-                   const TrackState<Scalar> track = trackStateAt(*j.track, q);
-                   const TrackPoint& point = track.point;
-                   const Scalar& ds = track.offset;
+                   // dr/ds = t to first order, as the heading and curvature (trackAt).
+                   const TrackPointTpl<Scalar> track = trackAt(model, ws, j.track, q);
                    const Scalar& curvature = track.curvature;
                    const Scalar& cos_heading = track.cos_heading;
                    const Scalar& sin_heading = track.sin_heading;
                    ws.slider_track[k] = {cos_heading, sin_heading, curvature};
-                   const Vector3<Scalar> translation = Re * (point.position + point.tangent() * ds);  // t(s)
-                   ws.position[s] = ws.position[e] + translation;
+                   ws.position[s] = ws.position[e] + Re * track.position;
                    const bool turns = j.orientation != SliderOrientation::Translate;
                    if (axes) {
                      ws.motion_linear[k] = Re * Vector3<Scalar>(cos_heading, sin_heading, Scalar(0));
@@ -55,7 +53,7 @@ void placeExit(const Model& model, const ElementKind& kind, std::size_t k, std::
                      if (turns) {
                        ws.motion_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
                        // α = (κ s̈ + κ' ṡ²) z
-                       ws.bias_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), Scalar(point.curvature_derivative));
+                       ws.bias_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), track.curvature_derivative);
                      }
                    }
                    ws.rotation[s] = turns ? turnedAbout(Re, Eigen::Vector3d::UnitZ(), cos_heading, sin_heading) : Re;

@@ -81,17 +81,48 @@ int drivingCoordinate(const Model& model, ParameterIndex parameter) {
   return -1;
 }
 
-bool isGeometricParameter(const Model& model, ParameterIndex parameter) {
-  return offsetOf(model, parameter) >= 0 || drivingCoordinate(model, parameter) >= 0;
+int trackOf(const Model& model, ParameterIndex parameter) {
+  const auto& tracks = model.tracks();
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const ModelTrack& track = tracks[i];
+    const bool reads = parameter == track.heading ||
+                       std::find(track.origin.begin(), track.origin.end(), parameter) != track.origin.end() ||
+                       std::any_of(track.segments.begin(), track.segments.end(), [&](const auto& numbers) {
+                         return std::find(numbers.begin(), numbers.end(), parameter) != numbers.end();
+                       });
+    if (reads) return static_cast<int>(i);
+  }
+  return -1;
 }
 
+bool isGeometricParameter(const Model& model, ParameterIndex parameter) {
+  return offsetOf(model, parameter) >= 0 || drivingCoordinate(model, parameter) >= 0 || trackOf(model, parameter) >= 0;
+}
+
+namespace {
+
+/// The elements a geometric parameter moves directly: its offset, its driven joint, or the curve
+/// sliders that ride its track.
+std::vector<int> elementsPlacedBy(const Model& model, ParameterIndex parameter) {
+  if (const int driven = drivingCoordinate(model, parameter); driven >= 0)
+    return {model.coordinates()[static_cast<std::size_t>(driven)].element};
+  if (const int offset = offsetOf(model, parameter); offset >= 0) return {offset};
+  std::vector<int> sliders;
+  const int track = trackOf(model, parameter);
+  if (track < 0) return sliders;
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    if (const auto* slider = std::get_if<CurveSliderJoint>(&elements[k].kind))
+      if (static_cast<int>(slider->track) == track) sliders.push_back(static_cast<int>(k));
+  return sliders;
+}
+
+}  // namespace
+
 bool movesLoopClosure(const Model& model, ParameterIndex parameter) {
-  const int driven = drivingCoordinate(model, parameter);
-  const int element = driven >= 0 ? model.coordinates()[static_cast<std::size_t>(driven)].element
-                                   : offsetOf(model, parameter);
-  if (element < 0) return false;
-  for (const Model::CutFramePath& path : model.cutFramePaths())
-    if (path.on_path[static_cast<std::size_t>(element)]) return true;
+  for (const int element : elementsPlacedBy(model, parameter))
+    for (const Model::CutFramePath& path : model.cutFramePaths())
+      if (path.on_path[static_cast<std::size_t>(element)]) return true;
   return false;
 }
 
@@ -251,10 +282,31 @@ FrameIndex Model::addPrismatic(const std::string& name, FrameIndex parent, const
   return addElement(name, parent, PrismaticJoint{unitAxis(axis, name)}, true);
 }
 
-FrameIndex Model::addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track,
+TrackIndex Model::addTrack(const std::string& name, const Track& track) {
+  checkNewName(name);
+  if (track.segments().empty()) throw std::invalid_argument(name + ": a track needs at least one segment");
+  names_.push_back(name);
+  const TrackNumbers& numbers = track.numbers();
+  ModelTrack added{name, track, addParameters(name + ".origin.", {"x", "y", "z"}, numbers.origin),
+                   addParameter(name + ".heading", numbers.heading), {}};
+  for (std::size_t k = 0; k < numbers.types.size(); ++k) {
+    const TrackSegmentType type = numbers.types[k];
+    const std::string prefix = name + ".segments." + std::to_string(k) + ".";
+    std::array<ParameterIndex, 2> indices{};
+    for (int i = 0; i < numberCount(type); ++i)
+      indices[static_cast<std::size_t>(i)] =
+          addParameter(prefix + numberName(type, i), numbers.numbers[k][static_cast<std::size_t>(i)]);
+    added.segments.push_back(indices);
+  }
+  tracks_.push_back(std::move(added));
+  return static_cast<TrackIndex>(tracks_.size() - 1);
+}
+
+FrameIndex Model::addCurveSlider(const std::string& name, FrameIndex parent, TrackIndex track,
                                  SliderOrientation orientation) {
-  if (!track || track->segments().empty()) throw std::invalid_argument(name + ": curve slider needs a non-empty track");
-  return addElement(name, parent, CurveSliderJoint{std::move(track), orientation}, true);
+  if (static_cast<std::size_t>(track) >= tracks_.size())
+    throw std::invalid_argument(name + ": no track with index " + std::to_string(static_cast<int>(track)));
+  return addElement(name, parent, CurveSliderJoint{track, orientation}, true);
 }
 
 void Model::addBody(const std::string& name, FrameIndex frame, double mass, const Eigen::Vector3d& centre_of_mass,
@@ -366,12 +418,12 @@ void Model::addWeldCut(const std::string& name, FrameIndex frame_a, FrameIndex f
   addCut({name, WeldCut{frame_a, frame_b}}, 6);
 }
 
-void Model::addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
-                              std::shared_ptr<const Track> track, SliderOrientation orientation) {
+void Model::addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base, TrackIndex track,
+                              SliderOrientation orientation) {
   checkFrame(frame_a, name);
   checkNewName(name);
   checkNewName(name + "_closure");
-  const FrameIndex track_point = addCurveSlider(name, base, std::move(track), orientation);
+  const FrameIndex track_point = addCurveSlider(name, base, track, orientation);
   if (orientation == SliderOrientation::FollowTrack) addWeldCut(name + "_closure", frame_a, track_point);
   else addSphericalCut(name + "_closure", frame_a, track_point);
 }
@@ -434,6 +486,22 @@ void Model::setParameter(ParameterIndex parameter, double value) {
   if (!std::isfinite(value)) throw std::invalid_argument(name + " must be finite");
   const double previous = parameter_values_[i];
   parameter_values_[i] = value;
+  if (const int track = trackOf(*this, parameter); track >= 0) {  // rebuilt with the builders' checks
+    ModelTrack& changed = tracks_[static_cast<std::size_t>(track)];
+    TrackNumbers numbers = changed.geometry.numbers();
+    numbers.origin = vector(changed.origin);
+    numbers.heading = this->value(changed.heading);
+    for (std::size_t k = 0; k < changed.segments.size(); ++k)
+      for (int n = 0; n < numberCount(numbers.types[k]); ++n)
+        numbers.numbers[k][static_cast<std::size_t>(n)] = this->value(changed.segments[k][static_cast<std::size_t>(n)]);
+    try {
+      changed.geometry = Track(numbers);
+    } catch (const std::invalid_argument& e) {
+      parameter_values_[i] = previous;
+      throw std::invalid_argument(name + " = " + std::to_string(value) + " leaves track '" + changed.name +
+                                  "' invalid: " + e.what());
+    }
+  }
   for (const Body& body : bodies_) {  // the same checks as addBody
     if (const std::string defect = rigidBodyDefect(this->value(body.mass), centreOfMass(body), inertia(body));
         !defect.empty()) {

@@ -46,8 +46,9 @@ enum class SliderOrientation {
   FollowTrack,  ///< axes = tangent, normal, binormal of the track (ω_s/e = κ ṡ about the binormal)
   Translate     ///< axes parallel to the entry frame's: the slider only translates
 };
+enum class TrackIndex : int {};
 struct CurveSliderJoint {  ///< active: the exit frame rides a track of the entry frame at arc length q
-  std::shared_ptr<const Track> track;
+  TrackIndex track;  ///< Model::track gives its geometry
   SliderOrientation orientation = SliderOrientation::FollowTrack;
 };
 using ElementKind = std::variant<Offset, RevoluteJoint, PrismaticJoint, CurveSliderJoint>;
@@ -187,6 +188,18 @@ struct Sensor {
   SensorKind kind;
 };
 
+/// A track the curve sliders ride. Its numbers (TrackNumbers) are model parameters under the scene
+/// file's dotted names, NAME.origin.x|y|z, NAME.heading and NAME.segments.K.length | radius | angle |
+/// end_curvature: a design variable may change its geometry, which the kinematics then differentiate
+/// (trackAt in dynamics/track_state.hpp).
+struct ModelTrack {
+  std::string name;
+  Track geometry;  ///< built from the parameters' values; rebuilt by Model::setParameter
+  ParameterVector3 origin;
+  ParameterIndex heading;
+  std::vector<std::array<ParameterIndex, 2>> segments;  ///< numberCount(type) of them per segment
+};
+
 struct Frame {
   std::string name;
   int element;  ///< the element whose exit this frame is; -1 for the ground
@@ -211,7 +224,9 @@ class Model {
                        const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity());
   FrameIndex addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
   FrameIndex addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
-  FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, std::shared_ptr<const Track> track,
+  /// A track for curve sliders; its numbers become parameters (see ModelTrack).
+  TrackIndex addTrack(const std::string& name, const Track& track);
+  FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, TrackIndex track,
                             SliderOrientation orientation = SliderOrientation::FollowTrack);
   /// A body attached to `frame` (it adds inertia to that frame; it does not create a frame). The inertia
   /// may be singular (a slender rod, a point mass); a motion nothing resists is refused by the integrator.
@@ -241,8 +256,7 @@ class Model {
   /// Cut curve-sliding joint: frame_a must ride `track` (fixed in frame `base`). Adds the arc length
   /// as a coordinate named `name`, carried by a massless slider from `base`; frame_a is welded to the
   /// slider frame (FollowTrack: 6 equations) or only its origin is held on the curve (Translate: 3).
-  void addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base,
-                         std::shared_ptr<const Track> track,
+  void addCurveSliderCut(const std::string& name, FrameIndex frame_a, FrameIndex base, TrackIndex track,
                          SliderOrientation orientation = SliderOrientation::FollowTrack);
 
   void addSensor(const std::string& name, SensorKind kind);
@@ -263,6 +277,8 @@ class Model {
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<ForceElement>& forces() const { return forces_; }
   const std::vector<CutJoint>& cuts() const { return cuts_; }
+  const std::vector<ModelTrack>& tracks() const { return tracks_; }
+  const Track& track(TrackIndex index) const { return tracks_[static_cast<std::size_t>(index)].geometry; }
   /// A frame a cut joint joins, with the elements on its path from the ground (those that move it):
   /// on_path[k] = 1 for element k on it, 0 for every other element.
   struct CutFramePath {
@@ -302,7 +318,7 @@ class Model {
   Eigen::Matrix3d inertia(const Body& body) const;
   double parameter(std::string_view dotted_name) const { return value(parameterIndex(dotted_name)); }
   /// Sets a parameter with the checks of the builder (finite; bodies keep a positive mass and a
-  /// positive semi-definite inertia); throws std::invalid_argument and leaves the model unchanged otherwise.
+  /// positive semi-definite inertia; tracks keep positive lengths and radii); throws std::invalid_argument and leaves the model unchanged otherwise.
   void setParameter(ParameterIndex parameter, double value);
   void setParameter(std::string_view dotted_name, double value) { setParameter(parameterIndex(dotted_name), value); }
 
@@ -321,6 +337,7 @@ class Model {
   std::vector<Body> bodies_;
   std::vector<ForceElement> forces_;
   std::vector<CutJoint> cuts_;
+  std::vector<ModelTrack> tracks_;
   std::vector<CutFramePath> cut_frame_paths_;
   std::vector<Sensor> sensors_;
   std::vector<Coordinate> coordinates_;
@@ -338,13 +355,15 @@ int equationCount(const CutKind& cut);
 /// The frame a of a cut joint, whose axes express its reaction (CutReactionSensor).
 FrameIndex cutFrameA(const CutKind& cut);
 
-/// Whether a parameter places frames: a component of an offset's translation, or a number of a driven
-/// joint's motion (drivingCoordinate). The kinematics, the loop closure and the sensors depend on it,
-/// not only the forces.
+/// Whether a parameter places frames: a component of an offset's translation, a number of a driven
+/// joint's motion (drivingCoordinate) or a number of a track (trackOf). The kinematics, the loop
+/// closure and the sensors depend on it, not only the forces.
 bool isGeometricParameter(const Model& model, ParameterIndex parameter);
-/// Whether a geometric parameter moves a frame that a cut joint joins (its offset or its driven joint
-/// lies on the path from the ground to one): then the loop closure b(q; b) depends on it.
+/// Whether a geometric parameter moves a frame that a cut joint joins (its offset, its driven joint
+/// or a curve slider on its track lies on the path from the ground to one): then the loop closure b(q; b) depends on it.
 bool movesLoopClosure(const Model& model, ParameterIndex parameter);
+/// The track one of whose numbers `parameter` is, or −1.
+int trackOf(const Model& model, ParameterIndex parameter);
 /// The driven coordinate whose motion reads `parameter`, or −1.
 int drivingCoordinate(const Model& model, ParameterIndex parameter);
 

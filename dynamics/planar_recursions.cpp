@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "dynamics/overloaded.hpp"
+#include "dynamics/track_state.hpp"
 
 namespace mbsopt {
 
@@ -100,13 +101,11 @@ void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Sca
                    },
                    [&](const CurveSliderJoint& j) {
                      // As placeExit (kinematics.cpp): dr/ds = t to first order, as the heading and curvature.
-                     const TrackState<Scalar> track = trackStateAt(*j.track, coordinate());
-                     const TrackPoint& point = track.point;
+                     const TrackPointTpl<Scalar> track = trackAt(model, ws, j.track, coordinate());
                      ws.slider_track[k] = {track.cos_heading, track.sin_heading, track.curvature};
-                     const auto [x, y] = inPlane(Re, Scalar(point.position.x()) + point.cos_heading * track.offset,
-                                                 Scalar(point.position.y()) + point.sin_heading * track.offset);
+                     const auto [x, y] = inPlane(Re, track.position.x(), track.position.y());
                      ws.position[s] = Vector3<Scalar>(ws.position[e].x() + x, ws.position[e].y() + y,
-                                                      ws.position[e].z() + point.position.z());
+                                                      ws.position[e].z() + track.position.z());
                      const bool turns = j.orientation != SliderOrientation::Translate;
                      if (axes) {
                        const auto [tx, ty] = inPlane(Re, track.cos_heading, track.sin_heading);  // a = t s̈ + κ ṡ² n
@@ -116,7 +115,7 @@ void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Sca
                        ws.bias_linear[k].y() = track.curvature * tx;
                        if (turns) {  // ω = κ ṡ z, α = (κ s̈ + κ' ṡ²) z
                          ws.motion_angular[k].z() = track.curvature;
-                         ws.bias_angular[k].z() = Scalar(point.curvature_derivative);
+                         ws.bias_angular[k].z() = track.curvature_derivative;
                        }
                      }
                      if (turns) turnInPlane(Re, track.cos_heading, track.sin_heading, ws.rotation[s]);

@@ -180,7 +180,7 @@ class SceneBuilder {
                           (names.empty() ? " (the scene has no cuts)" : ""));
   }
 
-  std::shared_ptr<const Track> track(const MapReader& entry) {
+  TrackIndex track(const MapReader& entry) {
     const std::string name = entry.name("track");
     const auto found = tracks_.find(name);
     if (found == tracks_.end()) {
@@ -253,7 +253,7 @@ class SceneBuilder {
       std::string name;
       const MapReader t = entry(node, "track", name);
       t.allowKeys({"name", "origin", "heading", "segments"});
-      auto track = std::make_shared<Track>(t.vector("origin", Eigen::Vector3d::Zero()), t.number("heading", 0.0));
+      Track track(t.vector("origin", Eigen::Vector3d::Zero()), t.number("heading", 0.0));
       const auto segments = readList(context_, t.required("segments"), t.what() + ".segments");
       if (segments.empty()) t.fail("segments", "a track needs at least one segment");
       for (const YamlNode& s : segments) {
@@ -261,20 +261,20 @@ class SceneBuilder {
         const std::string type = segment.choice("type", {"straight", "arc", "clothoid"});
         if (type == "straight") {
           segment.allowKeys({"type", "length"});
-          track->straight(segment.positive("length"));
+          track.straight(segment.positive("length"));
         } else if (type == "arc") {
           segment.allowKeys({"type", "radius", "angle"});
           const double radius = segment.positive("radius");
           const double angle = segment.number("angle");
           if (angle == 0.0) segment.fail("angle", "an arc must turn (angle ≠ 0)");
-          track->arc(radius, angle);
+          track.arc(radius, angle);
         } else {
           segment.allowKeys({"type", "length", "end_curvature"});
           const double length = segment.positive("length");
-          track->clothoid(length, segment.number("end_curvature"));
+          track.clothoid(length, segment.number("end_curvature"));
         }
       }
-      tracks_.emplace(name, std::move(track));
+      guarded(t, name, [&] { tracks_.emplace(name, model().addTrack(name, track)); });
     }
   }
 
@@ -540,7 +540,7 @@ class SceneBuilder {
   MapReader root_;
   LoadedScene result_;
   std::map<std::string, YamlMark> names_;
-  std::map<std::string, std::shared_ptr<const Track>> tracks_;
+  std::map<std::string, TrackIndex> tracks_;
   std::vector<InitialValue> initial_;
   std::vector<YamlMark> cut_marks_;  ///< per cut of the model: where the file declares it
 };

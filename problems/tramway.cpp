@@ -23,7 +23,7 @@ Eigen::Matrix3d isotropic(double inertia) { return inertia * Eigen::Matrix3d::Id
 
 }  // namespace
 
-std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options) {
+Track tramwayTrack(const TramwayOptions& options) {
   using tramway::kRadius;
   const double turn = options.arc_angle;
   const double Lt = options.transition_length;
@@ -31,22 +31,22 @@ std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options) {
   if (!(Lt >= 0.0 && Lt < kRadius * turn))
     throw std::invalid_argument("tramway: the transition length must lie in [0, R·angle) = [0, " +
                                 std::to_string(kRadius * turn) + ") m so that the two clothoids leave an arc");
-  auto track = std::make_shared<Track>();
-  track->straight(tramway::kFirstStraight);
+  Track track;
+  track.straight(tramway::kFirstStraight);
   if (Lt > 0.0) {
     // Each clothoid turns L_t / (2R); the arc keeps the rest of the turn.
-    track->clothoid(Lt, 1.0 / kRadius).arc(kRadius, turn - Lt / kRadius).clothoid(Lt, 0.0);
+    track.clothoid(Lt, 1.0 / kRadius).arc(kRadius, turn - Lt / kRadius).clothoid(Lt, 0.0);
   } else {
-    track->arc(kRadius, turn);
+    track.arc(kRadius, turn);
   }
-  track->straight(tramway::kLastStraight);
+  track.straight(tramway::kLastStraight);
   return track;
 }
 
 Scene tramwayScene(const TramwayDesign& design, const TramwayOptions& options) {
   Scene scene;
   Model& m = scene.model;
-  const std::shared_ptr<Track> track = tramwayTrack(options);
+  const TrackIndex track = m.addTrack("rail", tramwayTrack(options));
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
 
   const bool relative = options.chart == BogieYawChart::RelativeToTrack;

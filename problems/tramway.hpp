@@ -50,8 +50,8 @@ inline constexpr double kBogieSpacing = 9.0;    ///< pivot to articulation 4.5 m
 }  // namespace tramway
 
 /// Straight 12 m, optional clothoid, left arc R = 14 m (90° in all by default), optional clothoid,
-/// straight 30 m.
-std::shared_ptr<Track> tramwayTrack(const TramwayOptions& options = {});
+/// straight 30 m. The scene adds it as the track "rail" (its numbers are parameters rail.…).
+Track tramwayTrack(const TramwayOptions& options = {});
 
 /// The scene: coordinates s₁ (driven), bogie-1 yaw, front pivot, articulation, rear pivot,
 /// [bogie-2 yaw, RelativeToTrack chart only], s₂ (cut curve slider); sensors a_lat, yaw_front,

@@ -53,9 +53,9 @@ struct TransitionCurve {
   }
   double totalLength() const { return breaks().back(); }
 
-  std::shared_ptr<Track> build() const {
-    auto track = std::make_shared<Track>(origin, heading0);
-    track->straight(first_straight)
+  Track build() const {
+    Track track(origin, heading0);
+    track.straight(first_straight)
         .clothoid(clothoid_length, kappa())
         .arc(radius, turn * arc_angle)
         .clothoid(clothoid_length, 0.0)
@@ -166,7 +166,7 @@ Eigen::Vector3d referencePosition(const TransitionCurve& curve, double s) {
 class TrackGeometryTest : public ::testing::TestWithParam<double> {
  protected:
   TransitionCurve curve{GetParam()};
-  std::shared_ptr<Track> track = curve.build();
+  Track track = curve.build();
 
   /// 9 samples inside each of the five segments, plus the junctions themselves.
   std::vector<double> samples(double margin) const {
@@ -179,15 +179,15 @@ class TrackGeometryTest : public ::testing::TestWithParam<double> {
 };
 
 TEST_P(TrackGeometryTest, SegmentLayoutMatchesTheDescription) {
-  ASSERT_EQ(track->segments().size(), 5u);
+  ASSERT_EQ(track.segments().size(), 5u);
   // Lengths are sums of the given lengths and R·θ: exact to a few ulps of the total.
-  EXPECT_NEAR(track->length(), curve.totalLength(), 4.0 * kEps * curve.totalLength());
+  EXPECT_NEAR(track.length(), curve.totalLength(), 4.0 * kEps * curve.totalLength());
 }
 
 TEST_P(TrackGeometryTest, HeadingCurvatureAndItsDerivativeMatchClosedForms) {
   // ψ, κ, κ' are polynomials in σ evaluated in a handful of flops: agreement to round-off of ψ (~2 rad).
   for (double s : samples(0.0)) {
-    const TrackPoint p = track->at(s);
+    const TrackPoint p = track.at(s);
     EXPECT_NEAR(p.heading, curve.heading(s), 1e-13) << "s = " << s;
     EXPECT_NEAR(p.curvature, curve.curvature(s), 1e-15) << "s = " << s;
     EXPECT_NEAR(p.curvature_derivative, curve.curvatureDerivative(s), 1e-15) << "s = " << s;
@@ -201,7 +201,7 @@ TEST_P(TrackGeometryTest, PositionAgreesWithIndependentQuadratureOfTheHeading) {
   // Gauss-Legendre panels are exact to round-off. 1e-12 m bounds both with margin.
   for (double s : samples(0.0)) {
     const Eigen::Vector3d expected = referencePosition(curve, s);
-    EXPECT_LT((track->at(s).position - expected).norm(), 1e-12) << "s = " << s;
+    EXPECT_LT((track.at(s).position - expected).norm(), 1e-12) << "s = " << s;
   }
 }
 
@@ -217,7 +217,7 @@ TEST_P(TrackGeometryTest, ArcPointsLieOnTheCircleOfRadiusR) {
   on_arc.push_back(arc_start);
   on_arc.push_back(arc_end);
   for (double s : on_arc) {
-    const Eigen::Vector3d r = track->at(s).position;
+    const Eigen::Vector3d r = track.at(s).position;
     EXPECT_NEAR((r - centre).norm(), curve.radius, 1e-12) << "s = " << s;
     EXPECT_LT((r - (centre - unitNormal(curve.heading(s)) / curve.kappa())).norm(), 1e-12) << "s = " << s;
   }
@@ -232,8 +232,8 @@ TEST_P(TrackGeometryTest, PositionDerivativeIsTheUnitTangent) {
   const double largest_position = curve.origin.norm() + curve.totalLength();
   const double tolerance = 2.0 * (h * h / 6.0 * third_derivative + 2.0 * kEps * largest_position / h);
   for (double s : samples(0.0)) {
-    const Eigen::Vector3d slope = (track->at(s + h).position - track->at(s - h).position) / (2.0 * h);
-    EXPECT_LT((slope - track->at(s).tangent()).norm(), tolerance) << "s = " << s << ", tolerance " << tolerance;
+    const Eigen::Vector3d slope = (track.at(s + h).position - track.at(s - h).position) / (2.0 * h);
+    EXPECT_LT((slope - track.at(s).tangent()).norm(), tolerance) << "s = " << s << ", tolerance " << tolerance;
   }
 }
 
@@ -246,10 +246,10 @@ TEST_P(TrackGeometryTest, HeadingDerivativeIsTheCurvature) {
   const double tolerance = 4.0 * kEps * largest_heading / h;
   for (int k = 0; k < 5; ++k) {
     for (double s : curve.interiorSamples(k, 9, 2.0 * h)) {
-      const TrackPoint p = track->at(s);
-      EXPECT_NEAR((track->at(s + h).heading - track->at(s - h).heading) / (2.0 * h), p.curvature, tolerance)
+      const TrackPoint p = track.at(s);
+      EXPECT_NEAR((track.at(s + h).heading - track.at(s - h).heading) / (2.0 * h), p.curvature, tolerance)
           << "s = " << s;
-      EXPECT_NEAR((track->at(s + h).curvature - track->at(s - h).curvature) / (2.0 * h), p.curvature_derivative,
+      EXPECT_NEAR((track.at(s + h).curvature - track.at(s - h).curvature) / (2.0 * h), p.curvature_derivative,
                   tolerance)
           << "s = " << s;
     }
@@ -286,9 +286,9 @@ struct ArcRide {
   double speed(double t) const { return initial_speed + tangential_acceleration * t; }
   double heading(double t) const { return kHeading0 + kappa() * (s(t) - kLeadIn); }
 
-  std::shared_ptr<Track> track() const {
-    auto track = std::make_shared<Track>(kOrigin, kHeading0);
-    track->straight(kLeadIn).arc(kRadius, turn * kArcAngle).straight(10.0);
+  Track track() const {
+    Track track(kOrigin, kHeading0);
+    track.straight(kLeadIn).arc(kRadius, turn * kArcAngle).straight(10.0);
     return track;
   }
 
@@ -340,7 +340,7 @@ class DrivenCurveSliderTest : public ::testing::TestWithParam<ArcRide> {
  protected:
   void SetUp() override {
     const ArcRide& ride = GetParam();
-    slider_ = model_.addCurveSlider("slider", Model::ground, ride.track());
+    slider_ = model_.addCurveSlider("slider", Model::ground, model_.addTrack("rail", ride.track()));
     model_.addBody("cart", slider_, 50.0, Eigen::Vector3d(0.3, 0.1, 0.0), 4.0 * Eigen::Matrix3d::Identity());
     model_.drive("slider",
                  TimeFunction::polynomial({ArcRide::kStart, ride.initial_speed, 0.5 * ride.tangential_acceleration}));

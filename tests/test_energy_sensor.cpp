@@ -48,10 +48,10 @@ TEST(MechanicalEnergy, KineticAndGravityAgreeWithTheTestHelper) {
 
 // One spring of each kind, in a state where its stretch is known by construction.
 TEST(MechanicalEnergy, SpringPotentialsAreTheClosedForms) {
-  auto track = std::make_shared<Track>(Eigen::Vector3d::Zero(), 0.3);
-  track->arc(10.0, std::numbers::pi / 2);  // ψ(s) = 0.3 + s/10
+  Track track(Eigen::Vector3d::Zero(), 0.3);
+  track.arc(10.0, std::numbers::pi / 2);  // ψ(s) = 0.3 + s/10
   Model model;
-  const FrameIndex cart = model.addCurveSlider("cart", Model::ground, track, SliderOrientation::FollowTrack);
+  const FrameIndex cart = model.addCurveSlider("cart", Model::ground, model.addTrack("rail", track), SliderOrientation::FollowTrack);
   const FrameIndex yaw = model.addRevolute("yaw", cart, Eigen::Vector3d::UnitZ());
   const FrameIndex slide = model.addPrismatic("slide", Model::ground, Eigen::Vector3d::UnitX());
   model.addBody("body", yaw, 1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());

@@ -231,6 +231,36 @@ TEST(GeometricDesign, ADrivenJointsMotionIsADesignVariable) {
   EXPECT_NEAR(d_omega, 0.5 * d_phi, 1e-10 * std::abs(d_phi));  // τ = 0.5 s
 }
 
+// A track's numbers as design variables of the tram, whose rear bogie closes the loop on the track:
+// the arc's radius and the first straight's length move both sliders and the closure (∂b/∂b), the
+// guidance's heading ψ(s) and the curvature bias κ ṡ². Four seconds take both bogies into the arc;
+// the bounds of 0.2° on the yaw angles and an artificial variable of 0.3 m/s² make every measure
+// active, so each row has entries in the track's columns. Adjoint = direct to round-off; central
+// differences at the best step to 1e-6 (gradcheck measures 7e-9 to 6e-7, at relative steps 1e-4, 1e-5).
+TEST(GeometricDesign, ATracksNumbersAreDesignVariablesOfTheTramsLoop) {
+  SceneSource source = readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/tramway.yaml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = source.text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    source.text.replace(at, from.size(), to);
+  };
+  replace("    - {parameter: front_secondary.k, lower: 50e3, upper: 1000e3, scale: 100e3}\n",
+          "    - {parameter: rail.segments.1.radius, lower: 10, upper: 20, scale: 10}\n"
+          "    - {parameter: rail.segments.0.length, lower: 11, upper: 13}\n"
+          "    - {parameter: front_secondary.k, lower: 50e3, upper: 1000e3, scale: 100e3}\n");
+  replace("artificial: {initial: 3,", "artificial: {initial: 0.3,");
+  for (int i = 0; i < 2; ++i) replace("bound: 10 deg", "bound: 0.2 deg");
+  const DesignProblem problem = loadDesignProblem(source, {{"settings.end_time", 4.0}});
+  EXPECT_TRUE(designMovesLoopClosure(problem));
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  EXPECT_LE(relativeGap(directGradient(problem, functionals, x).constraints, adjoint.constraints), 1e-12);
+  EXPECT_GT(adjoint.constraints.col(0).cwiseAbs().maxCoeff(), 1e-2);  // the radius acts on every row
+  EXPECT_GT(adjoint.constraints.col(1).cwiseAbs().maxCoeff(), 1e-2);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+}
+
 // The continuous adjoint with variables that move the loop: its equations then carry B s = −∂b/∂b,
 // whose multiplier adds ∫νᵀ ∂b/∂b dt, the closure's b̈ in the acceleration responses (−b̄ ∂b̈/∂b),
 // and the initial state's S_q₀, S_v₀ (−p(0)ᵀS_q₀ − w(0)ᵀM S_v₀). It discretises the continuous

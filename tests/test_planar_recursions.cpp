@@ -184,8 +184,9 @@ Model everyPlanarElement(bool turned = false) {
   model.addBody("block", frame, 1.5, Eigen::Vector3d(-0.1, 0.2, 0.0), 0.5 * inertia);
   frame = model.addRevolute("swivel", frame, -Eigen::Vector3d::UnitZ());
   model.addBody("head", frame, 0.7, Eigen::Vector3d(0.2, -0.3, 0.1), 0.2 * inertia);
-  const auto track = std::make_shared<Track>(Eigen::Vector3d(0.1, -0.2, 0.0), 0.3);
-  track->straight(0.5).clothoid(1.0, 2.0).arc(0.5, 1.0);
+  Track curve(Eigen::Vector3d(0.1, -0.2, 0.0), 0.3);
+  curve.straight(0.5).clothoid(1.0, 2.0).arc(0.5, 1.0);
+  const TrackIndex track = model.addTrack("rail", curve);
   const FrameIndex rider = model.addCurveSlider("rider", frame, track, SliderOrientation::FollowTrack);
   model.addBody("bogie", rider, 1.1, Eigen::Vector3d(0.3, 0.1, 0.0), 0.3 * inertia);
   frame = model.addOffset("tail", rider, Eigen::Vector3d(-0.3, 0.5, 0.0));
