@@ -34,6 +34,8 @@ const fs::path kSuite = fs::path(MBSOPT_SOURCE_DIR) / "problems" / "suite";
 /// the grid maximum's peak moves between grid points (README): Ipopt on the shock isolator, CCSAQ
 /// and Ipopt on the parallelogram.
 const std::map<std::string, std::vector<std::string>> kReachedBy = {
+    // Ipopt reaches it too but runs to its iteration limit at the grid maximum's kink (README).
+    {"clothoid_transition", {"sdcc", "slsqp", "mma", "ccsaq"}},
     {"parallelogram_buffer", {"sdcc", "slsqp", "mma"}},
     // An equality, which MMA and CCSAQ cannot take; Ipopt stops by its own tolerance 1.5e-7 short
     // of the exact vertex, outside the reference's 1e-9 (README).
@@ -132,7 +134,7 @@ void expectSameNumbers(const nlohmann::json& a, const nlohmann::json& b, const s
 TEST(ProblemSuite, TheQuickReferencesAreWhatTheirScriptsPrint) {
   const fs::path directory = scratch();
   for (const std::string name :
-       {"press_slider_crank", "rest_to_rest", "spring_floor", "spring_preload", "spring_return", "train_couplers",
+       {"clothoid_transition", "press_slider_crank", "rest_to_rest", "spring_floor", "spring_preload", "spring_return", "train_couplers",
         "wrist_pin_balance"}) {
     const nlohmann::json reference = referenceOf(kSuite / (name + ".yaml"));
     const fs::path printed = directory / (name + ".json");
