@@ -24,7 +24,10 @@ void placeExit(const Model& model, const ElementKind& kind, std::size_t k, std::
                    const Vector3<Scalar> translation = seedsAny(ws, o.translation)
                                                            ? Vector3<Scalar>(Re * parameter(model, ws, o.translation))
                                                            : Vector3<Scalar>(Re * model.vector(o.translation));
-                   ws.rotation[s] = o.rotates ? Matrix3<Scalar>(Re * o.rotation) : Re;
+                   if (o.turn && seeds(ws, o.turn->angle))  // R(axis, angle) with its derivative
+                     ws.rotation[s] = turnedAbout(Re, o.turn->axis, parameter(model, ws, o.turn->angle));
+                   else
+                     ws.rotation[s] = o.rotates ? Matrix3<Scalar>(Re * o.rotation) : Re;
                    ws.position[s] = ws.position[e] + translation;
                  },
                  [&](const RevoluteJoint& j) {

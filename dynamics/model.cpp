@@ -56,12 +56,13 @@ FrameIndex cutFrameA(const CutKind& cut) {
 
 namespace {
 
-/// The element whose offset translation `parameter` is, or −1.
+/// The element whose offset translation or rotation angle `parameter` is, or −1.
 int offsetOf(const Model& model, ParameterIndex parameter) {
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k)
     if (const auto* offset = std::get_if<Offset>(&elements[k].kind))
-      if (std::find(offset->translation.begin(), offset->translation.end(), parameter) != offset->translation.end())
+      if (std::find(offset->translation.begin(), offset->translation.end(), parameter) != offset->translation.end() ||
+          (offset->turn && offset->turn->angle == parameter))
         return static_cast<int>(k);
   return -1;
 }
@@ -214,6 +215,8 @@ namespace {
 /// Exact comparisons: an axis a round-off away from z takes the general path, which is always right.
 bool movesInPlane(const ElementKind& kind) {
   return std::visit(Overloaded{[](const Offset& o) {
+                                 // A turn stays in the plane at every angle only about ±z.
+                                 if (o.turn) return o.turn->axis.x() == 0.0 && o.turn->axis.y() == 0.0;
                                  return !o.rotates || (o.rotation(2, 2) == 1.0 && o.rotation(0, 2) == 0.0 &&
                                                        o.rotation(1, 2) == 0.0 && o.rotation(2, 0) == 0.0 &&
                                                        o.rotation(2, 1) == 0.0);
@@ -272,6 +275,19 @@ FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Ei
   checkFrame(parent, name);
   const ParameterVector3 parameters = addParameters(name + ".translation.", {"x", "y", "z"}, translation);
   return addElement(name, parent, Offset{rotation, parameters, rotation != Eigen::Matrix3d::Identity()}, false);
+}
+
+FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,
+                            const Eigen::Vector3d& axis, double angle) {
+  checkFinite(angle, name + ": rotation angle");
+  const Eigen::Vector3d unit = unitAxis(axis, name);
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(angle, unit).toRotationMatrix();
+  if (!translation.allFinite()) throw std::invalid_argument(name + ": offset must be finite");
+  checkNewName(name);  // (before its parameters are added: a refused offset leaves none behind)
+  checkFrame(parent, name);
+  const ParameterVector3 parameters = addParameters(name + ".translation.", {"x", "y", "z"}, translation);
+  const OffsetTurn turn{unit, addParameter(name + ".rotation.angle", angle)};
+  return addElement(name, parent, Offset{rotation, parameters, true, turn}, false);
 }
 
 FrameIndex Model::addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis) {
@@ -486,6 +502,9 @@ void Model::setParameter(ParameterIndex parameter, double value) {
   if (!std::isfinite(value)) throw std::invalid_argument(name + " must be finite");
   const double previous = parameter_values_[i];
   parameter_values_[i] = value;
+  for (KinematicElement& element : elements_)  // a turned offset's rotation follows its angle
+    if (auto* offset = std::get_if<Offset>(&element.kind); offset && offset->turn && offset->turn->angle == parameter)
+      offset->rotation = Eigen::AngleAxisd(value, offset->turn->axis).toRotationMatrix();
   if (const int track = trackOf(*this, parameter); track >= 0) {  // rebuilt with the builders' checks
     ModelTrack& changed = tracks_[static_cast<std::size_t>(track)];
     TrackNumbers numbers = changed.geometry.numbers();

@@ -28,12 +28,20 @@ enum class ParameterIndex : int {};
 /// Three parameters that form a vector (a centre of mass, the moments of an inertia tensor, a translation).
 using ParameterVector3 = std::array<ParameterIndex, 3>;
 
-/// Passive: a constant rotation and a translation, both in the entry frame. The translation is a
-/// geometric parameter ("NAME.translation.x", …): a design variable may move it, with exact gradients.
+/// An offset's rotation written as an angle about a fixed unit axis of the entry frame: the angle is
+/// a geometric parameter ("NAME.rotation.angle").
+struct OffsetTurn {
+  Eigen::Vector3d axis;
+  ParameterIndex angle;
+};
+/// Passive: a rotation and a translation, both in the entry frame. The translation is a geometric
+/// parameter ("NAME.translation.x", …): a design variable may move it, with exact gradients; so is
+/// the angle of a rotation written as an axis and an angle (`turn`).
 struct Offset {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< R(axis, angle) of `turn` when it has one
   ParameterVector3 translation;  ///< Model::vector gives its value
-  bool rotates = false;  ///< rotation ≠ I: the kinematics multiply by it (most offsets only translate)
+  bool rotates = false;  ///< rotation ≠ I or a turn: the kinematics multiply by it (most offsets only translate)
+  std::optional<OffsetTurn> turn;  ///< empty for a constant rotation matrix
 };
 struct RevoluteJoint {  ///< active: rotation q about a unit axis of the entry frame
   Eigen::Vector3d axis;
@@ -222,6 +230,10 @@ class Model {
   // Chains: each call adds an element after frame `parent` and returns its exit frame.
   FrameIndex addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,
                        const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity());
+  /// An offset turned by `angle` about `axis` (normalised) of the entry frame, the angle a parameter
+  /// (NAME.rotation.angle, see OffsetTurn).
+  FrameIndex addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,
+                       const Eigen::Vector3d& axis, double angle);
   FrameIndex addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
   FrameIndex addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
   /// A track for curve sliders; its numbers become parameters (see ModelTrack).
@@ -355,8 +367,8 @@ int equationCount(const CutKind& cut);
 /// The frame a of a cut joint, whose axes express its reaction (CutReactionSensor).
 FrameIndex cutFrameA(const CutKind& cut);
 
-/// Whether a parameter places frames: a component of an offset's translation, a number of a driven
-/// joint's motion (drivingCoordinate) or a number of a track (trackOf). The kinematics, the loop
+/// Whether a parameter places frames: a component of an offset's translation or its rotation's angle,
+/// a number of a driven joint's motion (drivingCoordinate) or a number of a track (trackOf). The kinematics, the loop
 /// closure and the sensors depend on it, not only the forces.
 bool isGeometricParameter(const Model& model, ParameterIndex parameter);
 /// Whether a geometric parameter moves a frame that a cut joint joins (its offset, its driven joint

@@ -79,8 +79,15 @@ void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Sca
                      };
                      if (seedsAny(ws, o.translation)) place(parameter(model, ws, o.translation));
                      else place(model.vector(o.translation));
-                     if (o.rotates) turnInPlane(Re, Scalar(o.rotation(0, 0)), Scalar(o.rotation(1, 0)), ws.rotation[s]);
-                     else copyPlaneBlock(Re, ws.rotation[s]);
+                     if (o.turn && seeds(ws, o.turn->angle)) {  // about ±z (Model::planar): the angle ±θ
+                       const Scalar angle = parameter(model, ws, o.turn->angle);
+                       const Scalar c = cos(angle), sn = sin(angle);
+                       turnInPlane(Re, c, o.turn->axis.z() > 0.0 ? sn : Scalar(-sn), ws.rotation[s]);
+                     } else if (o.rotates) {
+                       turnInPlane(Re, Scalar(o.rotation(0, 0)), Scalar(o.rotation(1, 0)), ws.rotation[s]);
+                     } else {
+                       copyPlaneBlock(Re, ws.rotation[s]);
+                     }
                    },
                    [&](const RevoluteJoint& j) {  // about ±z: the angle ±q
                      const Scalar c = cos(coordinate()), sn = sin(coordinate());

@@ -120,17 +120,23 @@ Vector3<Scalar> parameter(const Model& model, const Workspace<Scalar>& ws, const
   return {parameter(model, ws, indices[0]), parameter(model, ws, indices[1]), parameter(model, ws, indices[2])};
 }
 
-/// Whether ws.parameter_seeds names one of the three (never in double): code that multiplies a
-/// constant vector takes its cheaper path in double otherwise.
+/// Whether ws.parameter_seeds names the parameter (never in double).
 template <class Scalar>
-bool seedsAny(const Workspace<Scalar>& ws, const ParameterVector3& indices) {
+bool seeds(const Workspace<Scalar>& ws, ParameterIndex index) {
   if constexpr (std::is_same_v<Scalar, double>) {
     return false;
   } else {
     for (const auto& [seeded, direction] : ws.parameter_seeds)
-      if (seeded == indices[0] || seeded == indices[1] || seeded == indices[2]) return true;
+      if (seeded == index) return true;
     return false;
   }
+}
+
+/// Whether ws.parameter_seeds names one of the three (never in double): code that multiplies a
+/// constant vector takes its cheaper path in double otherwise.
+template <class Scalar>
+bool seedsAny(const Workspace<Scalar>& ws, const ParameterVector3& indices) {
+  return seeds(ws, indices[0]) || seeds(ws, indices[1]) || seeds(ws, indices[2]);
 }
 
 }  // namespace mbsopt

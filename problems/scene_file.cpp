@@ -330,14 +330,16 @@ class SceneBuilder {
                   const std::string& parent_name) {
     const FrameIndex parent = parent_name == "ground" ? Model::ground : model().frame(parent_name);
     if (type == "offset") {
-      Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-      if (e.has("rotation")) {
+      const Eigen::Vector3d translation = e.vector("translation", Eigen::Vector3d::Zero());
+      if (e.has("rotation")) {  // its angle a parameter, NAME.rotation.angle
         const MapReader r(context_, e.node()["rotation"], e.what() + " rotation");
         r.allowKeys({"axis", "angle"});
-        rotation = Eigen::AngleAxisd(r.number("angle"), axis(r, "axis").normalized()).toRotationMatrix();
+        const Eigen::Vector3d turn_axis = axis(r, "axis");
+        const double angle = r.number("angle");
+        guarded(e, name, [&] { model().addOffset(name, parent, translation, turn_axis, angle); });
+      } else {
+        guarded(e, name, [&] { model().addOffset(name, parent, translation); });
       }
-      const Eigen::Vector3d translation = e.vector("translation", Eigen::Vector3d::Zero());
-      guarded(e, name, [&] { model().addOffset(name, parent, translation, rotation); });
       return;
     }
     if (type == "curve_slider") {

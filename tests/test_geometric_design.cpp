@@ -18,6 +18,7 @@
 #include "sensitivity/direct_sensitivity.hpp"
 #include "sensitivity/discrete_adjoint.hpp"
 #include "sensitivity/initial_state.hpp"
+#include "sensitivity/response_jacobian.hpp"
 #include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
@@ -30,21 +31,14 @@ SceneSource shippedScene(const std::string& name) {
   return readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/" + name + ".yaml");
 }
 
-/// The four-bar swinging under gravity for 1 s with its three link lengths, the coupler's end
-/// off its axis and a mass as the design: the cost on the crank's acceleration (active), a
-/// position's extreme, an integral and a final value.
-DesignProblem fourBarLengths(double step = 1e-3) {
-  SceneSource source = shippedScene("four_bar");
+/// The four-bar swinging under gravity for 1 s with `variables` as the design (a YAML list): the
+/// cost on the crank's acceleration (active), a position's extreme, an integral and a final value.
+DesignProblem fourBarDesign(SceneSource source, const std::string& variables, double step = 1e-3) {
   source.text += R"(  - {name: crank_rate, type: joint, joint: crank, quantity: velocity}
   - {name: crank_acc, type: joint, joint: crank, quantity: acceleration}
 design:
   variables:
-    - {parameter: crank_tip.translation.x, lower: 0.3, upper: 0.5}
-    - {parameter: rocker_pivot.translation.x, lower: 0.9, upper: 1.1}
-    - {parameter: rocker_tip.translation.x, lower: 0.7, upper: 0.9}
-    - {parameter: coupler_tip.translation.y, lower: -0.1, upper: 0.1}
-    - {parameter: coupler_bar.mass, lower: 1, upper: 3}
-  cost: {sensor: crank_acc, of: max_abs}
+)" + variables + R"(  cost: {sensor: crank_acc, of: max_abs}
   artificial: {initial: 5, lower: 0, upper: 200}
   constraints:
     - {sensor: joint_c_y, of: max_abs, bound: 0.7}
@@ -52,6 +46,17 @@ design:
     - {sensor: joint_c_x, of: final, bound: 0.9}
 )";
   return loadDesignProblem(source, {{"settings.end_time", 1.0}, {"settings.step", step}});
+}
+
+/// Its three link lengths, the coupler's end off its axis and a mass.
+DesignProblem fourBarLengths(double step = 1e-3) {
+  return fourBarDesign(shippedScene("four_bar"),
+                       "    - {parameter: crank_tip.translation.x, lower: 0.3, upper: 0.5}\n"
+                       "    - {parameter: rocker_pivot.translation.x, lower: 0.9, upper: 1.1}\n"
+                       "    - {parameter: rocker_tip.translation.x, lower: 0.7, upper: 0.9}\n"
+                       "    - {parameter: coupler_tip.translation.y, lower: -0.1, upper: 0.1}\n"
+                       "    - {parameter: coupler_bar.mass, lower: 1, upper: 3}\n",
+                       step);
 }
 
 TEST(GeometricDesign, AnOffsetsTranslationIsAParameterThatMovesItsFrame) {
@@ -229,6 +234,75 @@ TEST(GeometricDesign, ADrivenJointsMotionIsADesignVariable) {
   const double d_omega = adjoint.constraints(final_row, 1), d_phi = adjoint.constraints(final_row, 2);
   EXPECT_GT(std::abs(d_phi), 1e-3);
   EXPECT_NEAR(d_omega, 0.5 * d_phi, 1e-10 * std::abs(d_phi));  // τ = 0.5 s
+}
+
+// An offset's rotation angle turns the frames after it: a point one unit along x beyond an offset
+// turned by θ sits at (cos θ, sin θ, 0) about z (the planar recursions) and at (cos θ, 0, −sin θ)
+// about y (the spatial ones), at any state of the hinge behind it. So ∂y/∂θ is (−sin θ, cos θ, 0)
+// and (−sin θ, 0, −cos θ) exactly, from the explicit term alone; setting the angle moves the point.
+TEST(GeometricDesign, AnOffsetsRotationAngleTurnsTheFramesAfterIt) {
+  for (const bool about_z : {true, false}) {
+    SCOPED_TRACE(about_z ? "about z" : "about y");
+    Model model;
+    const Eigen::Vector3d axis = about_z ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
+    const FrameIndex bend = model.addOffset("bend", Model::ground, Eigen::Vector3d::Zero(), 2.0 * axis, 0.3);
+    const FrameIndex tip = model.addOffset("arm", bend, Eigen::Vector3d::UnitX());
+    const FrameIndex hinge = model.addRevolute("hinge", tip, axis);
+    model.addBody("bob", hinge, 1.0, Eigen::Vector3d(0.5, 0.0, 0.0), 0.1 * Eigen::Matrix3d::Identity());
+    for (int c = 0; c < 3; ++c)
+      model.addSensor(std::string("tip_") + "xyz"[c], PointSensor{tip, Eigen::Vector3d::Zero(), Derivative::Position,
+                                                                   Model::ground, c});
+    EXPECT_EQ(model.planar(), about_z);
+    const ParameterIndex angle = model.parameterIndex("bend.rotation.angle");
+    EXPECT_TRUE(isGeometricParameter(model, angle));
+    const auto expected = [&](double theta) {
+      return about_z ? Eigen::Vector3d(std::cos(theta), std::sin(theta), 0.0)
+                     : Eigen::Vector3d(std::cos(theta), 0.0, -std::sin(theta));
+    };
+    const auto slope = [&](double theta) {
+      return about_z ? Eigen::Vector3d(-std::sin(theta), std::cos(theta), 0.0)
+                     : Eigen::Vector3d(-std::sin(theta), 0.0, -std::cos(theta));
+    };
+    const Eigen::VectorXd q = Eigen::VectorXd::Constant(1, 0.4), v = Eigen::VectorXd::Constant(1, -0.7);
+    const Eigen::VectorXd a = Eigen::VectorXd::Constant(1, 1.3);
+    for (const double theta : {0.3, -1.1}) {
+      model.setParameter(angle, theta);
+      Workspace<AdScalar> ws(model);
+      std::vector<const Sensor*> sensors;
+      for (const Sensor& sensor : model.sensors()) sensors.push_back(&sensor);
+      std::vector<ResponseJacobian> J;
+      responseJacobians(model, ws, sensors, q, v, a, allCoordinates(model), J, {angle});
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(J[static_cast<std::size_t>(c)].value, expected(theta)[c], 1e-15) << c;
+        EXPECT_NEAR(J[static_cast<std::size_t>(c)].parameters[0], slope(theta)[c], 1e-15) << c;
+      }
+    }
+  }
+}
+
+// A bend in the crank (its tip turned by φ about z, the coupler's hinge with it) moves the four-bar's
+// loop: adjoint = direct to round-off, and central differences at the best step to 1e-6, at the
+// scene's straight crank and at a bend that opens the scene's loop (closed again by the design's
+// initial state).
+TEST(GeometricDesign, ABendInAFourBarsCrankMatchesCentralDifferences) {
+  SceneSource source = shippedScene("four_bar");
+  const std::string straight = "translation: [0.4, 0, 0]}";
+  source.text.replace(source.text.find(straight), straight.size(),
+                      "translation: [0.4, 0, 0], rotation: {axis: [0, 0, 1], angle: 0}}");
+  const DesignProblem problem = fourBarDesign(source,
+                                              "    - {parameter: crank_tip.rotation.angle, lower: -0.3, upper: 0.3}\n"
+                                              "    - {parameter: coupler_bar.mass, lower: 1, upper: 3}\n");
+  EXPECT_TRUE(designMovesLoopClosure(problem));
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  for (const double bend : {0.0, 0.1}) {
+    SCOPED_TRACE(bend);
+    Eigen::VectorXd x = initialPoint(problem);
+    x[0] = bend;
+    const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+    EXPECT_LE(relativeGap(directGradient(problem, functionals, x).constraints, adjoint.constraints), 1e-12);
+    EXPECT_GT(adjoint.constraints.col(0).cwiseAbs().maxCoeff(), 1e-2);
+    test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+  }
 }
 
 // A track's numbers as design variables of the tram, whose rear bogie closes the loop on the track:
