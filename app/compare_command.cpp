@@ -23,7 +23,7 @@ struct CompareOptions {
   std::vector<std::string> optimizers = optimizerNames();
   std::vector<std::string> gradients{"adjoint"};
   std::vector<std::string> formulations{""};  ///< "": the problem's own
-  double tolerance = 0.0;                     ///< ε of the formulations
+  std::optional<double> epsilon;              ///< ε of the formulations; empty: the problem's own
   int max_iterations = 100;
   std::vector<std::string> settings;  ///< passed to every optimizer that takes them
   std::string out;
@@ -33,9 +33,9 @@ struct CompareOptions {
 /// The formulation with its ε when there is one: "positive_part", "positive_part ε=1e-06".
 std::string formulationLabel(const RunChoice& c) {
   std::string label = c.formulation.empty() ? "problem's formulation" : c.formulation;
-  if (c.tolerance > 0.0) {
+  if (c.epsilon.value_or(0.0) > 0.0) {
     char epsilon[32];
-    std::snprintf(epsilon, sizeof epsilon, " ε=%g", c.tolerance);
+    std::snprintf(epsilon, sizeof epsilon, " ε=%g", *c.epsilon);
     label += epsilon;
   }
   return label;
@@ -46,9 +46,9 @@ std::string runName(const RunChoice& c) { return c.optimizer + "/" + c.gradient 
 /// The per-run JSON's name: OPTIMIZER-GRADIENT-FORMULATION[-epsTOLERANCE].json.
 std::string runFileName(const RunChoice& c) {
   std::string name = c.optimizer + "-" + c.gradient + "-" + c.formulation;
-  if (c.tolerance > 0.0) {
+  if (c.epsilon.value_or(0.0) > 0.0) {
     char epsilon[32];
-    std::snprintf(epsilon, sizeof epsilon, "-eps%g", c.tolerance);
+    std::snprintf(epsilon, sizeof epsilon, "-eps%g", *c.epsilon);
     name += epsilon;
   }
   return name + ".json";
@@ -142,7 +142,7 @@ void compare(const CompareOptions& options) {
   for (const std::string& formulation : options.formulations)
     for (const std::string& gradient : options.gradients)
       for (const std::string& optimizer : options.optimizers)
-        choices.push_back({optimizer, gradient, formulation, options.tolerance, options.max_iterations, options.settings});
+        choices.push_back({optimizer, gradient, formulation, options.epsilon, options.max_iterations, options.settings});
   // Each run on its own copy of the problem (its own model and workspaces): the runs are
   // independent, and their results do not depend on --jobs. A thread with no run left to start lends
   // itself to the gradients of those still going. The runs that take turns (Ipopt) start first:
@@ -199,10 +199,12 @@ void registerCompareCommand(CLI::App& app) {
                       "Formulations (see `mbsopt optimize --help`); default: the problem's own")
       ->delimiter(',')
       ->check(CLI::IsMember(formulationNames()));
-  command->add_option("--tolerance", options->tolerance,
-                      "ε ≥ 0 of every formulation given by --formulations (see `mbsopt optimize --help`)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  command
+      ->add_option_function<double>(
+          "--epsilon", [options](double epsilon) { options->epsilon = epsilon; },
+          "ε ≥ 0 of every run, with the problem's measure or each of --formulations (see `mbsopt optimize --help`); "
+          "default: the problem's own")
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--max-iter", options->max_iterations, "Iteration budget of each run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

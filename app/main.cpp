@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/compare_command.hpp"
+#include "app/exit_status.hpp"
 #include "app/gradcheck_command.hpp"
 #include "app/optimize_command.hpp"
 #include "app/parameters_command.hpp"
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const mbsopt::NotConverged& e) {  // the outputs are written; the summary said why
+    std::cerr << "mbsopt: " << e.what() << '\n';
+    return mbsopt::kExitNotConverged;
   } catch (const mbsopt::SceneError& e) {  // "file:line:column: error: what", one line
     std::cerr << e.what() << '\n';
     return 1;

@@ -144,13 +144,10 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 std::shared_ptr<ThreadBudget> shared_threads) {
   OptimizationRun run;
   run.choice = choice;
-  if (choice.formulation.empty()) {
-    run.choice.formulation = formulationName(problem.design.transcription.measure);
-    run.choice.tolerance = problem.design.transcription.tolerance;
-  } else {
-    problem.design.transcription.measure = formulationMeasure(choice.formulation);
-    problem.design.transcription.tolerance = choice.tolerance;
-  }
+  if (!choice.formulation.empty()) problem.design.transcription.measure = formulationMeasure(choice.formulation);
+  if (choice.epsilon) problem.design.transcription.tolerance = *choice.epsilon;
+  run.choice.formulation = formulationName(problem.design.transcription.measure);
+  run.choice.epsilon = problem.design.transcription.tolerance;
   if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
   DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
   OptimizerOptions options;
@@ -221,6 +218,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"optimizer", run.choice.optimizer},
           {"gradient", run.choice.gradient},
           {"formulation", run.choice.formulation},
+          {"epsilon", run.choice.epsilon.value_or(0.0)},
           {"status", toString(r.status)},
           {"message", r.message},
           {"design", run.design},
@@ -247,8 +245,10 @@ void addSettingOption(CLI::App& command, std::vector<std::string>& settings) {
                      "initial_step_bound, shrink_factor, growth_factor, growth_ratio, acceptance_ratio, "
                      "min_step_bound, stationarity_tolerance, initial_penalty, penalty_factor, weights (one per "
                      "variable, comma-separated) (optimizers/sdcc.hpp); ipopt: any Ipopt option, e.g. "
-                     "mu_strategy=adaptive; mma, ccsaq: inner_maxeval, dual_ftol_rel, verbosity; slsqp: none. An "
-                     "unknown name is an error")
+                     "mu_strategy=adaptive or tol=1e-10; slsqp, mma, ccsaq: NLopt's stopping criteria xtol_rel "
+                     "(default 1e-6), xtol_abs, ftol_rel (default 0: NLopt applies it at infeasible points too, where "
+                     "b_{k+1} stays put while feasibility is restored), ftol_abs, stopval, maxtime [s]; mma, ccsaq "
+                     "also inner_maxeval, dual_ftol_rel, verbosity. An unknown name is an error")
       ->allow_extra_args(false);
 }
 

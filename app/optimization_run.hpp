@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,10 +21,11 @@ namespace mbsopt {
 struct RunChoice {
   std::string optimizer = "sdcc";
   std::string gradient = "adjoint";  ///< a gradientMethodNames() entry, or "fd" (= fd_central)
-  /// positive_part | squared_positive_part | ks | grid_max; empty: the problem's own transcription
-  /// (measure and tolerance), as its scene file or C++ description says.
+  /// positive_part | squared_positive_part | ks | grid_max; empty: the problem's own measure, as
+  /// its scene file or C++ description says.
   std::string formulation;
-  double tolerance = 0.0;  ///< ε of the transcription, with a formulation
+  /// ε of the transcription (each measure ≤ ε); empty: the problem's own. After a run: the ε it used.
+  std::optional<double> epsilon;
   int max_iterations = 100;
   std::vector<std::string> settings;  ///< the optimizer's own settings, "NAME=VALUE" each
   /// The most threads a gradient takes (designGradient's jobs; no effect on results): its own, or

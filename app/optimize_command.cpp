@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/atomic_file.hpp"
+#include "app/exit_status.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
@@ -83,6 +84,8 @@ void optimize(const OptimizeOptions& options) {
     plotRun(options.out, source.path, run);
     std::printf("wrote %s/result.json, history.png, response.png (with their .dat and .gp)\n", options.out.c_str());
   }
+  if (r.status != OptimizerStatus::Converged)
+    throw NotConverged(r.optimizer + " did not converge: " + toString(r.status) + " (exit status 2)");
 }
 
 }  // namespace
@@ -93,7 +96,9 @@ void registerOptimizeCommand(CLI::App& app) {
       "optimize",
       "Minimise a design problem's cost (the paper's artificial variable b_{k+1}) subject to its constraints with "
       "one optimizer and one gradient method; prints an iteration table (cost, max violation, step, simulations and "
-      "gradients so far) and a summary with the final design and its responses");
+      "gradients so far) and a summary with the final design and its responses. Exit status: 0 when the optimizer "
+      "converged, 2 when it did not (failed, stopped by its budget, or cannot take the problem; the outputs are "
+      "written all the same), 1 on an error");
   addSceneArgument(*command, options->problem, true);
   command->add_option("--optimizer", options->choice.optimizer, "The optimizer")
       ->check(CLI::IsMember(optimizerNames()))
@@ -107,11 +112,13 @@ void registerOptimizeCommand(CLI::App& app) {
                       "grid_max (the maximum over the time grid); default: the problem's own (the scene file's "
                       "design.transcription)")
       ->check(CLI::IsMember(formulationNames()));
-  command->add_option("--tolerance", options->choice.tolerance,
-                      "ε ≥ 0 with --formulation: each transcribed constraint is measure ≤ ε (the paper's form has a "
-                      "zero gradient where satisfied; ε > 0 gives it an interior)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  command
+      ->add_option_function<double>(
+          "--epsilon", [options](double epsilon) { options->choice.epsilon = epsilon; },
+          "ε ≥ 0: each transcribed constraint becomes measure ≤ ε, with the problem's measure or --formulation's "
+          "(the paper's ∫⟨φ⟩dt has a zero gradient where satisfied; ε > 0 gives it an interior); default: the "
+          "problem's own (design.transcription.tolerance)")
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--max-iter", options->choice.max_iterations,
                       "Iteration budget (NLopt: objective evaluations; Ipopt and SDCC: their own iterations)")
       ->check(CLI::PositiveNumber)

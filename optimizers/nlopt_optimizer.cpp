@@ -79,16 +79,25 @@ void judge(nlopt::result code, const std::string& words, OptimizerResult& result
   }
 }
 
-/// NLopt 2.7's algorithm parameters (nlopt_set_param), of MMA and CCSAQ only; NLopt itself would
-/// accept any name and ignore the unknown ones, so they are checked here.
+/// NLopt's stopping criteria by their own names (nlopt_set_xtol_rel, …), for every algorithm, and
+/// NLopt 2.7's algorithm parameters (nlopt_set_param) of MMA and CCSAQ; NLopt itself would accept
+/// any parameter name and ignore the unknown ones, so they are checked here. A zero or negative
+/// tolerance, stopval −∞ or maxtime ≤ 0 switches that criterion off, as in NLopt.
 void setParameters(nlopt::algorithm algorithm, const NamedSettings& settings, nlopt::opt& opt) {
-  const std::vector<std::string> known =
-      algorithm == nlopt::LD_MMA || algorithm == nlopt::LD_CCSAQ
-          ? std::vector<std::string>{"inner_maxeval", "dual_ftol_rel", "verbosity"}
-          : std::vector<std::string>{};
+  const std::vector<std::pair<std::string, void (nlopt::opt::*)(double)>> stopping{
+      {"xtol_rel", &nlopt::opt::set_xtol_rel}, {"xtol_abs", &nlopt::opt::set_xtol_abs},
+      {"ftol_rel", &nlopt::opt::set_ftol_rel}, {"ftol_abs", &nlopt::opt::set_ftol_abs},
+      {"stopval", &nlopt::opt::set_stopval},   {"maxtime", &nlopt::opt::set_maxtime}};
+  std::vector<std::string> known;
+  for (const auto& criterion : stopping) known.push_back(criterion.first);
+  if (algorithm == nlopt::LD_MMA || algorithm == nlopt::LD_CCSAQ)
+    known.insert(known.end(), {"inner_maxeval", "dual_ftol_rel", "verbosity"});
   for (const auto& [name, value] : settings) {
     if (std::find(known.begin(), known.end(), name) == known.end()) throwUnknownSetting(opt.get_algorithm_name(), name, known);
-    opt.set_param(name.c_str(), settingNumber(name, value));
+    const double number = settingNumber(name, value);
+    const auto criterion = std::find_if(stopping.begin(), stopping.end(), [&](const auto& c) { return c.first == name; });
+    if (criterion != stopping.end()) (opt.*(criterion->second))(number);
+    else opt.set_param(name.c_str(), number);
   }
 }
 
@@ -122,7 +131,7 @@ OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& proble
   // every outer iteration, SLSQP after every line search), and a design problem's cost, the
   // artificial variable b_{k+1}, stays put while they restore feasibility. It ended MMA and CCSAQ at
   // the infeasible start of problems/suite/shock_isolator.yaml, and SLSQP at k's lower bound on an
-  // equality (tests/test_design_problem.cpp). They stop on x.
+  // equality (tests/test_design_problem.cpp). They stop on x. The settings may change either (below).
   opt.set_ftol_rel(0.0);
   opt.set_maxeval(options.max_iterations);
   setParameters(algorithm, options.settings, opt);

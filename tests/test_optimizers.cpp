@@ -220,6 +220,31 @@ TEST(Optimizers, IpoptTakesItsOwnOptionsByName) {
   EXPECT_EQ(r.iterations, 4);  // the start and three iterations
 }
 
+// NLopt's stopping criteria by NLopt's own names reach SLSQP, MMA and CCSAQ: stopval = 1e10, which the
+// start's f already meets, stops them at their first evaluation; a loose xtol_rel or ftol_rel stops
+// them sooner than the tight default on Rosenbrock's valley, which takes them dozens of evaluations.
+// An MMA parameter is still refused by SLSQP.
+TEST(Optimizers, NloptTakesItsStoppingCriteriaByTheirNames) {
+  for (const std::string optimizer : {"slsqp", "mma", "ccsaq"}) {
+    SCOPED_TRACE(optimizer);
+    const auto evaluations = [&](const NamedSettings& settings) {
+      test::RosenbrockInDisc problem;
+      OptimizerOptions options = tightOptions();
+      options.settings = settings;
+      return minimize(optimizer, problem, options).value_evaluations;
+    };
+    const long tight = evaluations({});
+    ASSERT_GT(tight, 10);
+    EXPECT_EQ(evaluations({{"stopval", "1e10"}}), 1);
+    EXPECT_LT(evaluations({{"xtol_rel", "1e-2"}}), tight);
+    EXPECT_LT(evaluations({{"ftol_rel", "1e-2"}, {"xtol_abs", "0"}, {"ftol_abs", "0"}, {"maxtime", "0"}}), tight);
+  }
+  test::BoundedQuadratic problem;
+  OptimizerOptions options = tightOptions();
+  options.settings = {{"inner_maxeval", "5"}};
+  EXPECT_THROW(minimize("slsqp", problem, options), std::invalid_argument);
+}
+
 TEST_P(EveryOptimizer, RefusesASettingItDoesNotKnowBeforeEvaluatingAnything) {
   Recording<test::BoundedQuadratic> problem;
   OptimizerOptions options = tightOptions();
