@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 
+#include "app/command_line.hpp"
 #include "app/compare_command.hpp"
 #include "app/exit_status.hpp"
 #include "app/gradcheck_command.hpp"
@@ -16,7 +17,9 @@ int main(int argc, char** argv) {
   CLI::App app{
       "mbsopt - simulate multibody systems described in scene files (Newmark, relative coordinates, closed loops by "
       "SVD), compute exact design gradients and optimise designs"};
+  app.set_version_flag("--version", std::string("mbsopt ") + MBSOPT_VERSION);
   app.require_subcommand(1);
+  mbsopt::recordCommandLine(argc, argv);
   mbsopt::registerSimulateCommand(app);
   mbsopt::registerParametersCommand(app);
   mbsopt::registerGradcheckCommand(app);

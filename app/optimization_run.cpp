@@ -1,5 +1,7 @@
 #include "app/optimization_run.hpp"
 
+#include "app/command_line.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <numbers>
@@ -169,9 +171,14 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
     options.settings.emplace_back(name, setting.substr(equals + 1));
   }
   run.result = minimize(choice.optimizer, nlp, options);
-  for (const DesignVariable& v : nlp.problem().design.variables) run.variables.push_back(v.parameter);
+  run.variables = nlp.problem().design.variables;
+  run.artificial = nlp.problem().design.artificial;
+  run.start = designInSi(nlp.problem(), nlp.start());
   if (run.result.x.size() == 0) run.result.x = nlp.start();  // nothing was evaluated (its error follows below)
   run.design = designInSi(nlp.problem(), run.result.x);
+  for (std::size_t k = 0; k < run.result.history.size(); ++k)
+    if (run.result.history[k].x.size() == run.result.x.size() && run.result.history[k].x == run.result.x)
+      run.reported_iteration = run.result.history[k].iteration;
   for (const IterationRecord& h : run.result.history)
     run.iterate_designs.push_back(h.x.size() > 0 ? designInSi(nlp.problem(), h.x) : std::vector<double>{});
   // The points the run knows are not simulated again; copies, as a new simulation may push one out.
@@ -214,7 +221,24 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
                        {"gradient_evaluations", h.gradient_evaluations},
                        {"design", run.iterate_designs[k].empty() ? nlohmann::json(nullptr) : nlohmann::json(run.iterate_designs[k])}});
   }
+  nlohmann::json variables = nlohmann::json::array();
+  for (std::size_t i = 0; i < run.variables.size(); ++i) {
+    const DesignVariable& v = run.variables[i];
+    variables.push_back({{"parameter", v.parameter}, {"lower", v.lower}, {"upper", v.upper}, {"scale", v.scale},
+                         {"start", run.start[i]}, {"final", run.design[i]}});
+  }
+  nlohmann::json settings = nlohmann::json::array();
+  for (const std::string& setting : run.choice.settings) settings.push_back(setting);
   return {{"problem", problem},
+          {"mbsopt_version", MBSOPT_VERSION},
+          {"command_line", commandLine()},
+          {"variables", variables},
+          {"artificial_variable", {{"start", run.artificial.initial}, {"lower", run.artificial.lower},
+                                   {"upper", run.artificial.upper}, {"scale", run.artificial.scale},
+                                   {"final", r.cost}}},
+          {"budget", {{"max_iterations", run.choice.max_iterations},
+                      {"counts", "NLopt: objective evaluations; Ipopt and SDCC: their own iterations"}}},
+          {"settings", settings},
           {"optimizer", run.choice.optimizer},
           {"gradient", run.choice.gradient},
           {"formulation", run.choice.formulation},
@@ -226,6 +250,11 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"limit_excess", run.limit_excess},
           {"initial_cost", run.initial_cost},
           {"cost", r.cost},
+          {"cost_functional", {{"name", run.cost_response}, {"start", run.initial_cost},
+                               {"final", run.responses[run.cost_response]}}},
+          {"reported_iterate", {{"iteration", run.reported_iteration < 0 ? nlohmann::json(nullptr)
+                                                                         : nlohmann::json(run.reported_iteration)},
+                                {"rule", "the best point evaluated: feasible first, then the lowest b_{k+1}"}}},
           {"max_violation", r.max_violation},
           {"iterations", r.iterations},
           {"simulations", r.value_evaluations},
@@ -261,7 +290,7 @@ std::vector<std::string> gradientChoices() {
 PlotPanel designPanel(const OptimizationRun& run) {
   PlotPanel panel{.xlabel = "iteration", .ylabel = "design variables (SI)", .log_y = true};
   for (std::size_t i = 0; i < run.variables.size(); ++i) {
-    PlotSeries series{run.variables[i], {}};
+    PlotSeries series{run.variables[i].parameter, {}};
     for (std::size_t k = 0; k < run.iterate_designs.size(); ++k)
       if (!run.iterate_designs[k].empty())
         series.points.emplace_back(run.result.history[k].iteration, run.iterate_designs[k][i]);

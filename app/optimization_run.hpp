@@ -42,7 +42,12 @@ const std::vector<std::string>& formulationNames();
 struct OptimizationRun {
   RunChoice choice;
   OptimizerResult result;
-  std::vector<std::string> variables;  ///< the design variables' parameter names
+  std::vector<DesignVariable> variables;  ///< the design variables: parameter names, bounds and scales (SI)
+  ArtificialVariable artificial;         ///< b_{k+1}'s start, bounds and scale
+  std::vector<double> start;  ///< the design variables at the start in SI units, without b_{k+1}
+  /// The history's record of the reported point (result.x: the best found, feasible first, then
+  /// lowest cost), or −1 where no record holds it.
+  int reported_iteration = -1;
   std::vector<double> design;  ///< the final design variables in SI units, without b_{k+1}
   /// The design (SI, without b_{k+1}) at each record of result.history; empty where the optimizer
   /// did not say which point an iteration was.

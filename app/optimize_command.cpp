@@ -53,14 +53,17 @@ void optimize(const OptimizeOptions& options) {
   const RunChoice& c = options.choice;
   std::printf("optimize %s with %s, %s gradients, %s formulation\n", source.path.c_str(), c.optimizer.c_str(),
               c.gradient.c_str(), c.formulation.empty() ? "the problem's" : c.formulation.c_str());
-  std::printf(" iter  cost            max_viol     step        sims   grads\n");
+  std::printf(" iter  b_{k+1}         max_viol     step        sims   grads\n");
   const OptimizationRun run = runOptimization(problem, c, printIteration);
   const OptimizerResult& r = run.result;
   std::printf("%s: %s (%s)\n", r.optimizer.c_str(), toString(r.status).c_str(), r.message.c_str());
-  std::printf("cost %.8g (at the start %.8g), max violation %.3g, %d iterations, %ld simulations, %ld gradients "
-              "(%.0f simulations' time in all), %.3g s\n",
-              r.cost, run.initial_cost, r.max_violation, r.iterations, r.value_evaluations, r.gradient_evaluations,
+  std::printf("b_{k+1} %.8g, max violation %.3g, %d iterations, %ld simulations, %ld gradients (%.0f simulations' "
+              "time in all), %.3g s\n",
+              r.cost, r.max_violation, r.iterations, r.value_evaluations, r.gradient_evaluations,
               run.simulation_equivalents, r.wall_time_s);
+  if (run.reported_iteration >= 0)
+    std::printf("reported: the best point evaluated (feasible first, then the lowest b_{k+1}), iteration %d\n",
+                run.reported_iteration);
   if (run.simulations_ahead > 0)
     std::printf("%ld of the simulations ran ahead on a spare core, while another point was evaluated (%ld more ran "
                 "ahead for a point not asked for after all)\n",
@@ -69,9 +72,9 @@ void optimize(const OptimizeOptions& options) {
     std::printf("  %s = %.8g\n", problem.design.variables[i].parameter.c_str(), run.design[i]);
   for (const auto& [name, value] : run.responses.items()) std::printf("  %s = %.6g\n", name.c_str(), value.get<double>());
   const double final_cost = run.responses[run.cost_response].get<double>();
-  std::printf("%s %s by %.4g %% from the start", run.cost_response.c_str(),
+  std::printf("%s = %.8g, %s by %.4g %% from %.8g at the start", run.cost_response.c_str(), final_cost,
               final_cost <= run.initial_cost ? "lowered" : "RAISED",
-              100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost);
+              100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost, run.initial_cost);
   if (std::isfinite(run.limit_excess))  // there are limits on extremes to check on the time grid
     std::printf("; on the time grid the limits are %s (largest excess %.3g, in degrees for angles)",
                 limitsMet(run) ? "met" : "NOT met", run.limit_excess);
@@ -135,8 +138,12 @@ void registerOptimizeCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--json", options->json,
-                      "Write the result as JSON: problem, optimizer, gradient, formulation, status, message, design "
-                      "(SI), responses, limit_excess, initial_cost, cost, max_violation, iterations, simulations, "
+                      "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, lower, "
+                      "upper, scale, start, final}] (SI), artificial_variable{start, lower, upper, scale, final}, "
+                      "budget{max_iterations, counts}, settings, optimizer, gradient, formulation, epsilon, status, "
+                      "message, design (SI), responses, limit_excess, initial_cost, cost (b_{k+1}), cost_functional{name, "
+                      "start, final} (the cost sensor's own functional), reported_iterate{iteration, rule} (the "
+                      "history's record of the reported design), max_violation, iterations, simulations, "
                       "gradient_evaluations, simulation_equivalents (the evaluations' thread time, each one's wall "
                       "time times the threads it held, over one simulation's, simulation_s), simulations_ahead "
                       "(run on a spare core for the point SDCC would try after a rejection) and "

@@ -95,7 +95,8 @@ void setParameters(nlopt::algorithm algorithm, const NamedSettings& settings, nl
   for (const auto& [name, value] : settings) {
     if (std::find(known.begin(), known.end(), name) == known.end()) throwUnknownSetting(opt.get_algorithm_name(), name, known);
     const double number = settingNumber(name, value);
-    const auto criterion = std::find_if(stopping.begin(), stopping.end(), [&](const auto& c) { return c.first == name; });
+    const std::string& key = name;  // (a structured binding cannot be captured before C++20's P1091 in clang)
+    const auto criterion = std::find_if(stopping.begin(), stopping.end(), [&](const auto& c) { return c.first == key; });
     if (criterion != stopping.end()) (opt.*(criterion->second))(number);
     else opt.set_param(name.c_str(), number);
   }

@@ -26,7 +26,8 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   const std::filesystem::path scene = directory / "chain.yaml", json = directory / "chain.json";
   std::ofstream(scene) << test::kOpenChainProblem;
   const std::string command = std::string(MBSOPT_EXECUTABLE) + " optimize " + scene.string() +
-                              " --optimizer slsqp --formulation ks --max-iter 15 --json " + json.string() + " > " +
+                              " --optimizer slsqp --formulation ks --max-iter 15 --setting xtol_rel=1e-7 --json " +
+                              json.string() + " > " +
                               (directory / "stdout").string();
   ASSERT_EQ(std::system(command.c_str()), 0);
   nlohmann::json r;
@@ -63,6 +64,40 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
       EXPECT_LE(record["design"][i].get<double>(), problem.design.variables[i].upper);
     }
   }
+  // The run describes itself: the variables with their bounds, scales, start and final values (the
+  // problem's own), b_{k+1}'s, the budget and the settings it ran with, the version and the command.
+  ASSERT_EQ(r["variables"].size(), design.size());
+  for (std::size_t i = 0; i < design.size(); ++i) {
+    const DesignVariable& v = problem.design.variables[i];
+    const auto& written = r["variables"][i];
+    EXPECT_EQ(written["parameter"], v.parameter);
+    EXPECT_EQ(written["lower"].get<double>(), v.lower);
+    EXPECT_EQ(written["upper"].get<double>(), v.upper);
+    EXPECT_EQ(written["scale"].get<double>(), v.scale);
+    EXPECT_EQ(written["start"].get<double>(), history[0]["design"][i].get<double>());
+    EXPECT_EQ(written["final"].get<double>(), design[i]);
+  }
+  EXPECT_EQ(r["artificial_variable"]["start"].get<double>(), problem.design.artificial.initial);
+  EXPECT_EQ(r["artificial_variable"]["final"].get<double>(), r["cost"].get<double>());
+  EXPECT_EQ(r["budget"]["max_iterations"], 15);
+  EXPECT_EQ(r["settings"], nlohmann::json::array({"xtol_rel=1e-7"}));
+  EXPECT_EQ(r["formulation"], "ks");
+  EXPECT_EQ(r["epsilon"].get<double>(), 0.0);
+  EXPECT_FALSE(r["mbsopt_version"].get<std::string>().empty());
+  EXPECT_NE(r["command_line"].get<std::string>().find(" optimize " + scene.string() + " --optimizer slsqp"),
+            std::string::npos);
+  // The reported iterate is named: the history's record at that iteration holds the final design;
+  // the cost's own functional is reported beside b_{k+1}.
+  ASSERT_TRUE(r["reported_iterate"]["iteration"].is_number());
+  bool found = false;
+  for (const auto& record : history)
+    if (record["iteration"] == r["reported_iterate"]["iteration"]) {
+      found = true;
+      EXPECT_EQ(record["design"].get<std::vector<double>>(), design);
+    }
+  EXPECT_TRUE(found);
+  EXPECT_EQ(r["cost_functional"]["name"], "max_abs_tip_acceleration");
+  EXPECT_EQ(r["cost_functional"]["final"], r["responses"]["max_abs_tip_acceleration"]);
   // Every evaluation costs at least one simulation, so their time is at least that of the
   // simulations asked for (up to timing noise, a quarter).
   EXPECT_GE(r["simulation_equivalents"].get<double>(), 0.75 * r["simulations"].get<double>());
