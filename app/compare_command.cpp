@@ -73,7 +73,7 @@ std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run,
   for (const auto& [name, value] : run.responses.items())
     if (name != cost_key) cells.emplace_back(name, number(value.get<double>(), "%.4g"));
   cells.insert(cells.end(), {
-          {"limits met", limitsMet(run) ? "yes" : "no"},
+          {"feasible", feasible(run) ? "yes" : "no"},
           {"max violation", number(r.max_violation, "%.2g")},
           {"iterations", std::to_string(r.iterations)},
           {"simulations", std::to_string(r.value_evaluations)},

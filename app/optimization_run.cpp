@@ -103,29 +103,6 @@ nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
   return out;
 }
 
-/// The largest excess of a constrained sensor over its bound on the time grid (angles in degrees),
-/// over every load case.
-double limitExcess(const DesignNlp& nlp, const DesignResponse& response) {
-  const DesignProblem& problem = nlp.problem();
-  double excess = -std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < std::max<std::size_t>(problem.load_cases.size(), 1); ++k) {
-    for (const ResponseConstraint& c : problem.design.constraints) {
-      const int index = sensorIndex(problem.scene.model, c.sensor);
-      const Trajectory& trajectory = caseTrajectory(response, k);
-      const Eigen::VectorXd y = trajectory.sensors.col(index);
-      double over = 0.0;  // how far the extreme lies beyond the bound
-      if (c.of == ResponseMeasure::MaxAbs) over = y.cwiseAbs().maxCoeff() - c.bound;
-      else if (c.of == ResponseMeasure::Max) over = y.maxCoeff() - c.bound;
-      else if (c.of == ResponseMeasure::Min) over = c.bound - y.minCoeff();
-      else if (c.of == ResponseMeasure::Rms) over = evaluateTimeFunctional(TimeMeasure::RootMeanSquare, trajectory.time, y).value - c.bound;
-      else continue;  // integral and final-value constraints are exact functionals, checked by the optimizer
-      const double unit = isAngle(problem.scene.model.sensors()[static_cast<std::size_t>(index)]) ? 180.0 / std::numbers::pi : 1.0;
-      excess = std::max(excess, over * unit);
-    }
-  }
-  return excess;
-}
-
 /// The design variables of the scaled x in SI units, without b_{k+1}.
 std::vector<double> designInSi(const DesignProblem& problem, const Eigen::VectorXd& x) {
   std::vector<double> design;
@@ -189,7 +166,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.simulations_ahead = nlp.simulationsAhead();
   run.simulations_ahead_used = nlp.simulationsAheadUsed();
   run.responses = responses(nlp, final);
-  run.limit_excess = limitExcess(nlp, final);
+  run.verdicts = constraintVerdicts(nlp.problem(), final);
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
   run.cost_response = costKey(nlp.problem());
   run.cost_sensor = nlp.problem().design.cost.sensor;
@@ -206,6 +183,14 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.initial_history = caseTrajectory(initial, worst).sensors.col(cost_sensor);
   run.final_history = caseTrajectory(final, worst).sensors.col(cost_sensor);
   return run;
+}
+
+nlohmann::json verdictsJson(const std::vector<ConstraintVerdict>& verdicts) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ConstraintVerdict& v : verdicts)
+    out.push_back({{"name", v.name}, {"unit", v.unit}, {"value", v.value}, {v.equality ? "equals" : "bound", v.bound},
+                   {"excess", v.excess}, {"tolerance", v.tolerance}, {"met", v.met()}});
+  return out;
 }
 
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
@@ -247,7 +232,8 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"message", r.message},
           {"design", run.design},
           {"responses", run.responses},
-          {"limit_excess", run.limit_excess},
+          {"constraints", verdictsJson(run.verdicts)},
+          {"feasible", feasible(run)},
           {"initial_cost", run.initial_cost},
           {"cost", r.cost},
           {"cost_functional", {{"name", run.cost_response}, {"start", run.initial_cost},

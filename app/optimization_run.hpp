@@ -7,12 +7,14 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/gnuplot.hpp"
 #include "optimizers/optimizer.hpp"
+#include "app/constraint_verdicts.hpp"
 #include "sensitivity/design_problem.hpp"
 #include "sensitivity/thread_budget.hpp"
 
@@ -56,10 +58,8 @@ struct OptimizationRun {
   /// functional the cost or a constraint takes (`integral_NAME`, `rms_NAME`, `final_NAME`); angles in degrees.
   nlohmann::json responses;
   std::string cost_response;   ///< the key in `responses` of the cost's own functional (max_abs_, rms_, integral_)
-  /// max over the problem's extreme and RMS constraints of (their value on the time grid) − bound, in
-  /// the sensor's units (angles in degrees): ≤ 0 when every such limit holds on the grid, whatever the
-  /// formulation. Integral and final-value constraints are exact functionals the optimizer checks.
-  double limit_excess = 0.0;
+  /// Every constraint judged at the final design in its own units, whatever the formulation.
+  std::vector<ConstraintVerdict> verdicts;
   std::string cost_sensor;     ///< the cost's sensor
   double initial_cost = 0.0;   ///< the cost's functional (cost_response) at the start
   double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
@@ -75,12 +75,10 @@ struct OptimizationRun {
   Eigen::VectorXd time, initial_history, final_history;
 };
 
-/// How far a limit may be exceeded on the time grid and still count as met, in the sensor's units
-/// (angles in degrees): the 1e-3 degree.
-inline constexpr double kLimitTolerance = 1e-3;
-
-/// Whether every max-type limit holds on the time grid at the final design, to kLimitTolerance.
-inline bool limitsMet(const OptimizationRun& run) { return run.limit_excess <= kLimitTolerance; }
+/// Whether the final design meets every constraint in its own units (ConstraintVerdict::met).
+inline bool feasible(const OptimizationRun& run) {
+  return std::all_of(run.verdicts.begin(), run.verdicts.end(), [](const ConstraintVerdict& v) { return v.met(); });
+}
 
 /// Runs `choice` on `problem` (its transcription replaced by the choice's formulation). With
 /// `shared_threads`, the threads its evaluations use beyond their own are borrowed from it while idle
@@ -91,6 +89,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
 
 /// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
+/// The verdicts as JSON: [{name, unit, value, bound | equals, excess, tolerance, met}].
+nlohmann::json verdictsJson(const std::vector<ConstraintVerdict>& verdicts);
 
 /// What the commands accept as a gradient method: gradientMethodNames() and "fd" (= fd_central).
 std::vector<std::string> gradientChoices();

@@ -1,5 +1,6 @@
 #include "app/optimize_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -41,6 +42,29 @@ void plotRun(const std::string& directory, const std::string& problem, const Opt
   plotPanels(directory + "/response", "the cost's sensor at the start and at the final design", {response});
 }
 
+/// Whether the final design meets each constraint in its own units: the unmet ones, or the one
+/// closest to its bound.
+void printVerdicts(const std::vector<ConstraintVerdict>& verdicts) {
+  if (verdicts.empty()) return;
+  const auto print = [](const ConstraintVerdict& v) {
+    std::printf("  %s = %.8g %s, %s %.8g, beyond it by %.3g (allowed %.3g)\n", v.name.c_str(), v.value, v.unit.c_str(),
+                v.equality ? "asked" : "bound", v.bound, v.excess, v.tolerance);
+  };
+  const auto unmet = std::count_if(verdicts.begin(), verdicts.end(), [](const ConstraintVerdict& v) { return !v.met(); });
+  if (unmet > 0) {
+    std::printf("NOT feasible in the problem's units: %ld of %zu constraints unmet\n", static_cast<long>(unmet),
+                verdicts.size());
+    for (const ConstraintVerdict& v : verdicts)
+      if (!v.met()) print(v);
+    return;
+  }
+  std::printf("feasible in the problem's units: every one of %zu constraints met; the closest to its bound:\n",
+              verdicts.size());
+  print(*std::max_element(verdicts.begin(), verdicts.end(), [](const ConstraintVerdict& a, const ConstraintVerdict& b) {
+    return a.excess - a.tolerance < b.excess - b.tolerance;
+  }));
+}
+
 void printIteration(const IterationRecord& r) {
   std::printf("%5d  %14.8e  %11.3e  %10.3e  %6ld  %6ld\n", r.iteration, r.cost, r.max_violation, r.step,
               r.value_evaluations, r.gradient_evaluations);
@@ -75,10 +99,8 @@ void optimize(const OptimizeOptions& options) {
   std::printf("%s = %.8g, %s by %.4g %% from %.8g at the start", run.cost_response.c_str(), final_cost,
               final_cost <= run.initial_cost ? "lowered" : "RAISED",
               100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost, run.initial_cost);
-  if (std::isfinite(run.limit_excess))  // there are limits on extremes to check on the time grid
-    std::printf("; on the time grid the limits are %s (largest excess %.3g, in degrees for angles)",
-                limitsMet(run) ? "met" : "NOT met", run.limit_excess);
   std::printf("\n");
+  printVerdicts(run.verdicts);
   if (!options.json.empty())
     writeAtomically(options.json, [&](std::ostream& out) { out << toJson(run, source.path).dump(2) << '\n'; });
   if (!options.out.empty()) {
@@ -141,7 +163,9 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, lower, "
                       "upper, scale, start, final}] (SI), artificial_variable{start, lower, upper, scale, final}, "
                       "budget{max_iterations, counts}, settings, optimizer, gradient, formulation, epsilon, status, "
-                      "message, design (SI), responses, limit_excess, initial_cost, cost (b_{k+1}), cost_functional{name, "
+                      "message, design (SI), responses, constraints[{name, unit, value, bound | equals, excess, tolerance, met}] "
+                      "(each constraint judged at the final design in its own units: angles in degrees; the "
+                      "tolerance is its own or 1e-4 |bound|, at least 1e-6 in SI units), feasible (all met), initial_cost, cost (b_{k+1}), cost_functional{name, "
                       "start, final} (the cost sensor's own functional), reported_iterate{iteration, rule} (the "
                       "history's record of the reported design), max_violation, iterations, simulations, "
                       "gradient_evaluations, simulation_equivalents (the evaluations' thread time, each one's wall "

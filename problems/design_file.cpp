@@ -75,7 +75,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
 
   for (const YamlNode& node : readList(context, design.node()["constraints"], "design.constraints")) {
     const MapReader c(context, node, "design constraint");
-    c.allowKeys({"sensor", "of", "bound", "equals"});
+    c.allowKeys({"sensor", "of", "bound", "equals", "tolerance"});
     ResponseConstraint constraint{readSensor(c, model), readMeasure(c, {"max_abs", "max", "min", "integral", "final", "rms"})};
     constraint.equality = c.has("equals");
     if (constraint.equality && c.has("bound")) c.fail("equals", "a constraint has a bound or 'equals', not both");
@@ -83,6 +83,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
     if (constraint.equality && constraint.of != ResponseMeasure::Integral && constraint.of != ResponseMeasure::FinalValue)
       c.fail("equals", "an equality needs an exact functional: of: integral or of: final");
     constraint.bound = c.number(constraint.equality ? "equals" : "bound");
+    if (c.has("tolerance")) constraint.tolerance = c.positive("tolerance");
     out.constraints.push_back(constraint);
   }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,9 @@ struct ResponseConstraint {
   ResponseMeasure of = ResponseMeasure::MaxAbs;
   double bound = 0.0;
   bool equality = false;  ///< Integral or FinalValue only
+  /// How far the reports let the constraint's value lie beyond its bound and still call the design
+  /// feasible, in SI units (the file's `tolerance:`); empty: the reports' default.
+  std::optional<double> tolerance;
 };
 
 /// How each "max over t of φ ≤ 0" becomes one number: measure(φ) ≤ tolerance.

@@ -136,7 +136,7 @@ nlohmann::json optimizeScene(const std::string& name, const std::string& text, c
 // An RMS cost and an RMS constraint on the oscillator x = cos(ωt), ω² = k: the JSON reports both
 // RMS values under rms_position, the closed form √(1/2 + sin(2ωτ)/(4ωτ)) at the final k within the
 // trapezoidal Newmark's phase error (a relative ω²h²/12 · ωτ, bounded by 2e-4 with a tenfold margin
-// for k ≤ 100), and limit_excess counts the RMS constraint: RMS − bound.
+// for k ≤ 100), and the RMS constraint's verdict is RMS − bound.
 TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
   const nlohmann::json r = optimizeScene("rms", std::string(test::kOscillator) + R"(design:
   variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
@@ -148,7 +148,9 @@ TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
   const double omega = std::sqrt(r["design"][0].get<double>()), tau = 0.8;
   const double rms = std::sqrt(0.5 + std::sin(2.0 * omega * tau) / (4.0 * omega * tau));
   EXPECT_NEAR(r["responses"]["rms_position"].get<double>(), rms, 2e-4);
-  EXPECT_NEAR(r["limit_excess"].get<double>(), r["responses"]["rms_position"].get<double>() - 0.6, 1e-12);
+  ASSERT_EQ(r["constraints"].size(), 1u);
+  EXPECT_EQ(r["constraints"][0]["name"], "position_rms");
+  EXPECT_NEAR(r["constraints"][0]["excess"].get<double>(), r["responses"]["rms_position"].get<double>() - 0.6, 1e-12);
 }
 
 // With load cases, every response is reported per case (KEY_CASE) and for the worst case (KEY, the
@@ -173,8 +175,68 @@ design:
     EXPECT_NEAR(far, 2.0 * near, 1e-12 * far);
     EXPECT_EQ(r["responses"][key].get<double>(), far);
   }
-  // The far case's RMS is over its bound for any k (it is about 0.71), the near one's below.
-  EXPECT_NEAR(r["limit_excess"].get<double>(), r["responses"]["rms_position_far"].get<double>() - 0.6, 1e-12);
+  // The far case's RMS is over its bound for any k (it is about 0.71), the near one's below: one
+  // verdict per case, named with it.
+  ASSERT_EQ(r["constraints"].size(), 2u);
+  EXPECT_EQ(r["constraints"][0]["name"], "position_rms_far");
+  EXPECT_NEAR(r["constraints"][0]["excess"].get<double>(), r["responses"]["rms_position_far"].get<double>() - 0.6, 1e-12);
+  EXPECT_FALSE(r["constraints"][0]["met"].get<bool>());
+  EXPECT_EQ(r["constraints"][1]["name"], "position_rms_near");
+  EXPECT_TRUE(r["constraints"][1]["met"].get<bool>());
+  EXPECT_FALSE(r["feasible"].get<bool>());
+}
+
+// Every kind of constraint is judged at the final design in its own units, integral, final value
+// and equality included: the oscillator x = cos(ωt) over one period, a minimum bound it misses by
+// about 0.1 m, a final value asked to be 1 m with a tolerance of 1 cm, an integral that stays near
+// 0 m·s, and an angle (zero: the mass only slides) bounded by 1°, reported in degrees with the default
+// tolerance 1e-4 of its bound. The values are those of an independent evaluation of the final
+// design in this process (the same simulation: to round-off), with the functionals taken here.
+TEST(OptimizeCommand, JudgesEveryConstraintInItsOwnUnits) {
+  const std::string text = std::string(test::kOscillator) + R"(  - {name: twist, type: relative_angle, frame_a: ground, frame_b: x, axis: [0, 0, 1]}
+design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: max}
+  artificial: {initial: 1.5, lower: -2, upper: 2}
+  constraints:
+    - {sensor: position, of: min, bound: -0.9}
+    - {sensor: position, of: final, equals: 1, tolerance: 0.01}
+    - {sensor: position, of: integral, bound: 0.1}
+    - {sensor: twist, of: max_abs, bound: 1 deg}
+)";
+  const nlohmann::json r = optimizeScene("verdicts", text, "--optimizer slsqp --max-iter 1");
+  const DesignProblem problem = loadDesignProblem({"verdicts.yaml", text});
+  Eigen::VectorXd x = initialPoint(problem);
+  x[0] = r["design"][0].get<double>() / problem.design.variables[0].scale;
+  x[1] = r["cost"].get<double>() / problem.design.artificial.scale;
+  const Trajectory trajectory = evaluateDesign(problem, transcribe(problem), x).trajectory;
+  const Eigen::VectorXd y = trajectory.sensors.col(0);
+  const Eigen::Index n = y.size() - 1;
+  double integral = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) integral += 0.5 * (y[k] + y[k + 1]) * (trajectory.time[k + 1] - trajectory.time[k]);
+  const auto& v = r["constraints"];
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_EQ(v[0]["name"], "position_min");
+  EXPECT_EQ(v[0]["unit"], "m");
+  EXPECT_NEAR(v[0]["value"].get<double>(), y.minCoeff(), 1e-12);
+  EXPECT_NEAR(v[0]["excess"].get<double>(), -0.9 - y.minCoeff(), 1e-12);  // a minimum: bound − value
+  EXPECT_EQ(v[0]["tolerance"].get<double>(), 1e-4 * 0.9);
+  EXPECT_FALSE(v[0]["met"].get<bool>());
+  EXPECT_EQ(v[1]["name"], "position_final");
+  EXPECT_EQ(v[1]["equals"].get<double>(), 1.0);
+  EXPECT_NEAR(v[1]["excess"].get<double>(), std::abs(y[n] - 1.0), 1e-12);
+  EXPECT_EQ(v[1]["tolerance"].get<double>(), 0.01);
+  EXPECT_TRUE(v[1]["met"].get<bool>());
+  EXPECT_EQ(v[2]["name"], "position_integral");
+  EXPECT_EQ(v[2]["unit"], "m·s");
+  EXPECT_NEAR(v[2]["value"].get<double>(), integral, 1e-12);
+  EXPECT_TRUE(v[2]["met"].get<bool>());
+  EXPECT_EQ(v[3]["name"], "twist_max_abs");
+  EXPECT_EQ(v[3]["unit"], "deg");
+  EXPECT_NEAR(v[3]["bound"].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(v[3]["tolerance"].get<double>(), 1e-4, 1e-16);
+  EXPECT_EQ(v[3]["value"].get<double>(), 0.0);
+  EXPECT_FALSE(r["feasible"].get<bool>());
 }
 
 }  // namespace

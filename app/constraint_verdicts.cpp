@@ -1,0 +1,96 @@
+#include "app/constraint_verdicts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "dynamics/overloaded.hpp"
+#include "sensitivity/time_functional.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+/// The default tolerance: a relative 1e-4 of the bound (1e-3° on a 10° limit), at least 1e-6 in SI
+/// units (the optimizers' feasibility tolerance on a transcribed value).
+constexpr double kRelativeTolerance = 1e-4, kAbsoluteTolerance = 1e-6;
+
+const char* measureName(ResponseMeasure of) {
+  switch (of) {
+    case ResponseMeasure::MaxAbs: return "max_abs";
+    case ResponseMeasure::Max: return "max";
+    case ResponseMeasure::Min: return "min";
+    case ResponseMeasure::Integral: return "integral";
+    case ResponseMeasure::FinalValue: return "final";
+    case ResponseMeasure::Rms: return "rms";
+  }
+  return "";
+}
+
+/// The constraint's functional of y on the time grid.
+double functionalValue(ResponseMeasure of, const Eigen::VectorXd& time, const Eigen::VectorXd& y) {
+  switch (of) {
+    case ResponseMeasure::MaxAbs: return y.cwiseAbs().maxCoeff();
+    case ResponseMeasure::Max: return y.maxCoeff();
+    case ResponseMeasure::Min: return y.minCoeff();
+    case ResponseMeasure::Integral: return evaluateTimeFunctional(TimeMeasure::Integral, time, y).value;
+    case ResponseMeasure::FinalValue: return y[y.size() - 1];
+    case ResponseMeasure::Rms: return evaluateTimeFunctional(TimeMeasure::RootMeanSquare, time, y).value;
+  }
+  return 0.0;
+}
+
+/// m, m/s, m/s² (or rad, …) for a sensed position, velocity, acceleration.
+std::string derivativeUnit(Derivative d, bool angular) {
+  const std::string base = angular ? "rad" : "m";
+  return d == Derivative::Position ? base : d == Derivative::Velocity ? base + "/s" : base + "/s²";
+}
+
+}  // namespace
+
+std::string sensorUnit(const Model& model, const Sensor& sensor) {
+  return std::visit(
+      Overloaded{[](const PointSensor& s) -> std::string { return derivativeUnit(s.quantity, false); },
+                 [&](const JointSensor& s) -> std::string {
+                   const KinematicElement& joint =
+                       model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(s.coordinate)].element)];
+                   return derivativeUnit(s.quantity, std::holds_alternative<RevoluteJoint>(joint.kind));
+                 },
+                 [](const RelativeAngleSensor&) -> std::string { return "deg"; },
+                 [](const EnergySensor&) -> std::string { return "J"; },
+                 [](const CutReactionSensor& s) -> std::string {
+                   return s.quantity == ReactionQuantity::Force ? "N" : "N·m";
+                 }},
+      sensor.kind);
+}
+
+std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, const DesignResponse& response) {
+  const Model& model = problem.scene.model;
+  const std::size_t cases = std::max<std::size_t>(problem.load_cases.size(), 1);
+  std::vector<ConstraintVerdict> out;
+  for (std::size_t k = 0; k < cases; ++k) {
+    const Trajectory& trajectory = caseTrajectory(response, k);
+    for (const ResponseConstraint& c : problem.design.constraints) {
+      const int index = sensorIndex(model, c.sensor);
+      const Sensor& sensor = model.sensors()[static_cast<std::size_t>(index)];
+      const bool angle = std::holds_alternative<RelativeAngleSensor>(sensor.kind);
+      const double unit = angle ? 180.0 / std::numbers::pi : 1.0;  // SI → the reported unit
+      ConstraintVerdict v;
+      v.name = c.sensor + "_" + measureName(c.of) + (problem.load_cases.empty() ? "" : "_" + problem.load_cases[k].name);
+      v.unit = sensorUnit(model, sensor) + (c.of == ResponseMeasure::Integral ? "·s" : "");
+      const double value = functionalValue(c.of, trajectory.time, trajectory.sensors.col(index));
+      const double excess = c.equality ? std::abs(value - c.bound)
+                            : c.of == ResponseMeasure::Min ? c.bound - value
+                                                            : value - c.bound;
+      v.value = value * unit;
+      v.bound = c.bound * unit;
+      v.equality = c.equality;
+      v.excess = excess * unit;
+      v.tolerance = unit * c.tolerance.value_or(std::max(kRelativeTolerance * std::abs(c.bound), kAbsoluteTolerance));
+      out.push_back(v);
+    }
+  }
+  return out;
+}
+
+}  // namespace mbsopt
