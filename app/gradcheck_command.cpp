@@ -76,6 +76,15 @@ void gradcheck(const GradcheckOptions& options) {
   // Text report.
   std::printf("gradcheck %s: %zu design variables + b_{k+1}, %zu constraints; one simulation %.3g s\n",
               source.path.c_str(), problem.design.variables.size(), functionals.size(), simulation);
+  // The gradients' columns: ∂/∂x_i, x_i = value_i / scale_i (the units the optimizers see).
+  nlohmann::json json_variables = nlohmann::json::array();
+  std::printf("columns, d/dx with x = value/scale:");
+  for (const DesignVariable& v : problem.design.variables) {
+    std::printf(" %s (scale %g),", v.parameter.c_str(), v.scale);
+    json_variables.push_back({{"name", v.parameter}, {"scale", v.scale}});
+  }
+  std::printf(" b_{k+1} (scale %g)\n", problem.design.artificial.scale);
+  json_variables.push_back({{"name", "b_{k+1}"}, {"scale", problem.design.artificial.scale}});
   for (const MethodResult& m : methods) {
     if (!m.gradient) {
       std::printf("  %-19s not available: %s\n", m.name.c_str(), m.unavailable.c_str());
@@ -115,6 +124,7 @@ void gradcheck(const GradcheckOptions& options) {
     for (const MethodResult& m : methods)
       if (m.gradient && m.name != "fd_forward") timings[m.name] = m.seconds;
     const nlohmann::json document = {{"problem", source.path},
+                                     {"variables", json_variables},
                                      {"design_point", toVector(x)},
                                      {"functionals", json_functionals},
                                      {"timings_s", timings}};
@@ -137,7 +147,8 @@ void registerGradcheckCommand(CLI::App& app) {
   command->add_option("--fd-step", options->fd_step, "Relative step of the forward and central differences")
       ->check(CLI::PositiveNumber);
   command->add_option("--json", options->json,
-                      "Write the results as JSON: functionals[{name, value, gradients{method: [..]}, "
+                      "Write the results as JSON: variables[{name, scale}] (the gradients' columns, d/dx with x = "
+                      "value/scale, b_{k+1} last), design_point (x), functionals[{name, value, gradients{method: [..]}, "
                       "fd_sweep[{relative_step, gradient}]}], timings_s{simulation, method: seconds}");
   command->callback([options] { gradcheck(*options); });
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "problems/scene_file.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -47,6 +48,18 @@ TEST(GradcheckCommand, WritesEveryMethodUnderTheDocumentedKeys) {
     EXPECT_EQ(f["fd_sweep"].size(), 8u);  // relative steps 1e-2 … 1e-9
     EXPECT_EQ(f["fd_sweep"][0]["relative_step"].get<double>(), 1e-2);
   }
+  // The columns are named: the problem's variables with their scales, then b_{k+1}; the cost is
+  // b_{k+1} = x·scale, so its derivative in the last column is that scale, zero in the others.
+  const DesignProblem problem = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
+  ASSERT_EQ(document["variables"].size(), problem.design.variables.size() + 1);
+  for (std::size_t i = 0; i < problem.design.variables.size(); ++i) {
+    EXPECT_EQ(document["variables"][i]["name"], problem.design.variables[i].parameter);
+    EXPECT_EQ(document["variables"][i]["scale"].get<double>(), problem.design.variables[i].scale);
+  }
+  EXPECT_EQ(document["variables"].back()["name"], "b_{k+1}");
+  const auto cost = document["functionals"][0]["gradients"]["adjoint"].get<std::vector<double>>();
+  EXPECT_EQ(cost.back(), document["variables"].back()["scale"].get<double>());
+  EXPECT_EQ(cost.front(), 0.0);
   for (const char* key : {"simulation", "adjoint", "continuous-adjoint", "direct", "fd_central"})
     EXPECT_GT(document["timings_s"][key].get<double>(), 0.0) << key;
   std::filesystem::remove_all(directory);
