@@ -86,12 +86,13 @@ int trackOf(const Model& model, ParameterIndex parameter) {
   const auto& tracks = model.tracks();
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     const ModelTrack& track = tracks[i];
-    const bool reads = parameter == track.heading ||
-                       std::find(track.origin.begin(), track.origin.end(), parameter) != track.origin.end() ||
-                       std::any_of(track.segments.begin(), track.segments.end(), [&](const auto& numbers) {
-                         return std::find(numbers.begin(), numbers.end(), parameter) != numbers.end();
-                       });
-    if (reads) return static_cast<int>(i);
+    if (parameter == track.heading || std::find(track.origin.begin(), track.origin.end(), parameter) != track.origin.end())
+      return static_cast<int>(i);
+    // Only the numbers a segment has: a straight's second index is unused (not a parameter of it).
+    const std::vector<TrackSegmentType>& types = track.geometry.numbers().types;
+    for (std::size_t k = 0; k < track.segments.size(); ++k)
+      for (int n = 0; n < numberCount(types[k]); ++n)
+        if (track.segments[k][static_cast<std::size_t>(n)] == parameter) return static_cast<int>(i);
   }
   return -1;
 }

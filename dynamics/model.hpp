@@ -205,7 +205,8 @@ struct ModelTrack {
   Track geometry;  ///< built from the parameters' values; rebuilt by Model::setParameter
   ParameterVector3 origin;
   ParameterIndex heading;
-  std::vector<std::array<ParameterIndex, 2>> segments;  ///< numberCount(type) of them per segment
+  /// Per segment, its numberCount(type) numbers' indices; a straight's second entry is unused.
+  std::vector<std::array<ParameterIndex, 2>> segments;
 };
 
 struct Frame {

@@ -151,6 +151,9 @@ TEST(TrackNumbers, AreModelParametersUnderTheSceneFilesNames) {
   EXPECT_EQ(model.track(rail).length(), 8.0 + 10.0 + 25.0 * 0.8);
   EXPECT_TRUE(isGeometricParameter(model, model.parameterIndex("rail.segments.2.angle")));
   EXPECT_EQ(trackOf(model, model.parameterIndex("rail.heading")), 0);
+  // A straight has one number: no other parameter (gravity.x, index 0) is taken for its second.
+  EXPECT_EQ(trackOf(model, model.parameterIndex("gravity.x")), -1);
+  EXPECT_FALSE(isGeometricParameter(model, model.parameterIndex("gravity.x")));
 }
 
 }  // namespace
