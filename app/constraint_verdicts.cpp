@@ -48,6 +48,10 @@ std::string derivativeUnit(Derivative d, bool angular) {
 
 }  // namespace
 
+bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngleSensor>(sensor.kind); }
+
+double inUnits(const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; }
+
 std::string sensorUnit(const Model& model, const Sensor& sensor) {
   return std::visit(
       Overloaded{[](const PointSensor& s) -> std::string { return derivativeUnit(s.quantity, false); },
@@ -73,8 +77,7 @@ std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, 
     for (const ResponseConstraint& c : problem.design.constraints) {
       const int index = sensorIndex(model, c.sensor);
       const Sensor& sensor = model.sensors()[static_cast<std::size_t>(index)];
-      const bool angle = std::holds_alternative<RelativeAngleSensor>(sensor.kind);
-      const double unit = angle ? 180.0 / std::numbers::pi : 1.0;  // SI → the reported unit
+      const double unit = inUnits(sensor, 1.0);  // SI → the reported unit
       ConstraintVerdict v;
       v.name = c.sensor + "_" + measureName(c.of) + (problem.load_cases.empty() ? "" : "_" + problem.load_cases[k].name);
       v.unit = sensorUnit(model, sensor) + (c.of == ResponseMeasure::Integral ? "·s" : "");

@@ -30,4 +30,9 @@ std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, 
 /// The unit of a sensor's value as the verdicts and reports give it ("m", "rad/s", "deg", "N", …).
 std::string sensorUnit(const Model& model, const Sensor& sensor);
 
+/// Whether the reports give the sensor in degrees (a relative angle).
+bool isAngle(const Sensor& sensor);
+/// A sensor's SI value in the reports' unit: degrees for an angle, its own otherwise.
+double inUnits(const Sensor& sensor, double value);
+
 }  // namespace mbsopt

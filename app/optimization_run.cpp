@@ -33,8 +33,6 @@ std::string formulationName(TimeMeasure measure) {
   throw std::invalid_argument("the problem's transcription is not one of the formulations");
 }
 
-bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngleSensor>(sensor.kind); }
-
 /// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
 std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
 
@@ -51,9 +49,6 @@ std::string functionalKey(const Sensor& sensor, TimeMeasure measure) {
   const char* prefix = measure == TimeMeasure::Integral ? "integral_" : measure == TimeMeasure::RootMeanSquare ? "rms_" : "final_";
   return prefix + sensor.name + (isAngle(sensor) ? "_deg" : "");
 }
-
-/// A value of an angle sensor in degrees, of any other in its own units.
-double inUnits(const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; }
 
 /// The key of the cost's own functional: its sensor's responseKey for an extreme, functionalKey for
 /// an exact cost.
