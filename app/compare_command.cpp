@@ -23,9 +23,9 @@ struct CompareOptions {
   std::vector<std::string> optimizers = optimizerNames();
   std::vector<std::string> gradients{"adjoint"};
   std::vector<std::string> formulations{""};  ///< "": the problem's own
-  std::optional<double> epsilon;              ///< ε of the formulations; empty: the problem's own
-  int max_iterations = 100;
-  std::vector<std::string> settings;  ///< passed to every optimizer that takes them
+  /// What every run shares: ε of the formulations (empty: the problem's own), the budget and the
+  /// iteration limit, the settings (passed to every optimizer that takes them).
+  RunChoice shared;
   std::string out;
   int jobs = machineThreads();  ///< runs at once
 };
@@ -78,7 +78,7 @@ std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run,
           {"iterations", std::to_string(r.iterations)},
           {"simulations", std::to_string(r.value_evaluations)},
           {"gradients", std::to_string(r.gradient_evaluations)},
-          {"in simulations", number(run.simulation_equivalents, "%.0f")},
+          {"sim.-equivalents", number(r.simulation_equivalents, "%.0f")},
           {"wall time [s]", number(r.wall_time_s, "%.1f")}});
   return cells;
 }
@@ -141,8 +141,16 @@ void compare(const CompareOptions& options) {
   std::vector<RunChoice> choices;
   for (const std::string& formulation : options.formulations)
     for (const std::string& gradient : options.gradients)
-      for (const std::string& optimizer : options.optimizers)
-        choices.push_back({optimizer, gradient, formulation, options.epsilon, options.max_iterations, options.settings});
+      for (const std::string& optimizer : options.optimizers) {
+        RunChoice choice = options.shared;
+        choice.optimizer = optimizer;
+        choice.gradient = gradient;
+        choice.formulation = formulation;
+        choices.push_back(choice);
+      }
+  // Each gradient method's cost measured once, before the runs and alone on the machine, so that
+  // every optimizer's budget counts its gradients alike.
+  measureGradientCosts(problem, choices);
   // Each run on its own copy of the problem (its own model and workspaces): the runs are
   // independent, and their results do not depend on --jobs. A thread with no run left to start lends
   // itself to the gradients of those still going. The runs that take turns (Ipopt) start first:
@@ -184,8 +192,8 @@ void registerCompareCommand(CLI::App& app) {
       "compare",
       "Run every combination of optimizers, gradient methods and formulations on one design problem from its start "
       "and tabulate them: status, final cost (the cost sensor's max |y|) and how much it fell, max violation, "
-      "iterations, simulations, gradients, the evaluations' thread time (each one's wall time times the threads it "
-      "held) in simulations, wall time");
+      "iterations, simulations, gradients, simulation-equivalents (the budget's count: simulations plus gradients at "
+      "their cost), wall time");
   addSceneArgument(*command, options->problem, true);
   command->add_option("--optimizers", options->optimizers, "Optimizers to run")
       ->delimiter(',')
@@ -201,14 +209,12 @@ void registerCompareCommand(CLI::App& app) {
       ->check(CLI::IsMember(formulationNames()));
   command
       ->add_option_function<double>(
-          "--epsilon", [options](double epsilon) { options->epsilon = epsilon; },
+          "--epsilon", [options](double epsilon) { options->shared.epsilon = epsilon; },
           "ε ≥ 0 of every run, with the problem's measure or each of --formulations (see `mbsopt optimize --help`); "
           "default: the problem's own")
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--max-iter", options->max_iterations, "Iteration budget of each run")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  addSettingOption(*command, options->settings);
+  addBudgetOptions(*command, options->shared);
+  addSettingOption(*command, options->shared.settings);
   command->add_option("--jobs", options->jobs,
                       "Threads (default: this machine's hardware threads): runs at once, each on its own thread, and "
                       "when no run is left to start, the idle threads help the gradients of the runs still going. Ipopt "

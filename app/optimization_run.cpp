@@ -3,9 +3,13 @@
 #include "app/command_line.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <variant>
 
 #include "problems/design_nlp.hpp"
@@ -15,6 +19,13 @@
 namespace mbsopt {
 
 namespace {
+
+/// Four significant digits, for messages.
+std::string shortNumber(double value) {
+  std::ostringstream out;
+  out << std::setprecision(4) << value;
+  return out.str();
+}
 
 /// The transcription measures in the order of formulationNames().
 constexpr TimeMeasure kFormulationMeasures[] = {TimeMeasure::PositivePart, TimeMeasure::SquaredPositivePart,
@@ -35,14 +46,6 @@ std::string formulationName(TimeMeasure measure) {
 
 /// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
 std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
-
-/// The exact functional of an integral, RMS or final-value measure; none for an extreme.
-std::optional<TimeMeasure> exactMeasure(ResponseMeasure of) {
-  if (of == ResponseMeasure::Integral) return TimeMeasure::Integral;
-  if (of == ResponseMeasure::Rms) return TimeMeasure::RootMeanSquare;
-  if (of == ResponseMeasure::FinalValue) return TimeMeasure::FinalValue;
-  return std::nullopt;
-}
 
 /// The key of a sensor's exact functional: `integral_NAME`, `rms_NAME` or `final_NAME` (`_deg` for angles).
 std::string functionalKey(const Sensor& sensor, TimeMeasure measure) {
@@ -124,8 +127,23 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.choice.epsilon = problem.design.transcription.tolerance;
   if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
   DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
+  if (choice.gradient_cost) {
+    nlp.setGradientCost(*choice.gradient_cost);
+    run.gradient_cost_source = "given";
+  } else if (run.choice.gradient == "fd_forward" || run.choice.gradient == "fd_central") {
+    run.gradient_cost_source = "counted";
+  } else {
+    try {
+      nlp.setGradientCost(nlp.measureGradientCost(nlp.start()));
+      run.gradient_cost_source = "measured";
+    } catch (const std::exception&) {  // the start cannot be simulated: the run itself says so below
+      run.gradient_cost_source = "not measured (the start could not be evaluated)";
+    }
+  }
+  run.gradient_cost = nlp.gradientCost();
   OptimizerOptions options;
   options.max_iterations = choice.max_iterations;
+  options.budget = choice.budget;
   options.on_iteration = on_iteration;
   for (const std::string& setting : choice.settings) {
     const std::size_t equals = setting.find('=');
@@ -157,7 +175,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const DesignResponse initial = nlp.simulation(nlp.start());
   const DesignResponse final = nlp.simulation(run.result.x);
   run.simulation_s = nlp.simulationSeconds();  // the fastest: interference only ever slows a run down
-  run.simulation_equivalents = nlp.evaluationThreadSeconds() / run.simulation_s;
+  run.thread_time_simulations = nlp.evaluationThreadSeconds() / run.simulation_s;
   run.simulations_ahead = nlp.simulationsAhead();
   run.simulations_ahead_used = nlp.simulationsAheadUsed();
   run.responses = responses(nlp, final);
@@ -166,6 +184,19 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.cost_response = costKey(nlp.problem());
   run.cost_sensor = nlp.problem().design.cost.sensor;
   run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
+  const Model& model = nlp.problem().scene.model;
+  const Sensor& sensor = model.sensors()[static_cast<std::size_t>(cost_sensor)];
+  for (const IterationRecord& h : run.result.history) run.iterate_costs.push_back(inUnits(sensor, h.reported_cost));
+  // An algorithm's own convergence test knows only the transcription: its "converged" stands only
+  // where every constraint is met in its own units.
+  if (run.result.status == OptimizerStatus::Converged && !feasible(run)) {
+    const auto unmet = std::find_if(run.verdicts.begin(), run.verdicts.end(), [](const ConstraintVerdict& v) { return !v.met(); });
+    run.result.status = OptimizerStatus::Failed;
+    run.result.message += "; its own test passed, but " + unmet->name + " = " + shortNumber(unmet->value) + " " +
+                          unmet->unit + " is beyond its " + (unmet->equality ? "target " : "bound ") +
+                          shortNumber(unmet->bound) + " by more than " + shortNumber(unmet->tolerance) +
+                          " (the formulation's transcription is not the constraint)";
+  }
   // The cost's history in the load case where the final design's cost is largest (the only one without cases).
   std::size_t worst = 0;
   for (std::size_t c = 1; c < nlp.problem().load_cases.size(); ++c) {
@@ -178,6 +209,27 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.initial_history = caseTrajectory(initial, worst).sensors.col(cost_sensor);
   run.final_history = caseTrajectory(final, worst).sensors.col(cost_sensor);
   return run;
+}
+
+namespace {
+nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
+}  // namespace
+
+void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& choices) {
+  std::map<std::string, double> measured;
+  for (RunChoice& choice : choices) {
+    const std::string method = choice.gradient == "fd" ? "fd_central" : choice.gradient;
+    if (choice.gradient_cost || method == "fd_forward" || method == "fd_central") continue;
+    if (!measured.contains(method)) {
+      const DesignNlp nlp(problem, method, 1e-6, choice.gradient_jobs);
+      try {
+        measured[method] = nlp.measureGradientCost(nlp.start());
+      } catch (const std::exception&) {  // the start cannot be simulated: each run says so
+        continue;
+      }
+    }
+    choice.gradient_cost = measured[method];
+  }
 }
 
 nlohmann::json verdictsJson(const std::vector<ConstraintVerdict>& verdicts) {
@@ -197,8 +249,10 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
                        {"cost", h.cost},
                        {"max_violation", h.max_violation},
                        {"step", h.step},
+                       {"cost_functional", run.iterate_costs[k]},
                        {"simulations", h.value_evaluations},
                        {"gradient_evaluations", h.gradient_evaluations},
+                       {"simulation_equivalents", h.simulation_equivalents},
                        {"design", run.iterate_designs[k].empty() ? nlohmann::json(nullptr) : nlohmann::json(run.iterate_designs[k])}});
   }
   nlohmann::json variables = nlohmann::json::array();
@@ -216,8 +270,14 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"artificial_variable", {{"start", run.artificial.initial}, {"lower", run.artificial.lower},
                                    {"upper", run.artificial.upper}, {"scale", run.artificial.scale},
                                    {"final", r.cost}}},
-          {"budget", {{"max_iterations", run.choice.max_iterations},
-                      {"counts", "NLopt: objective evaluations; Ipopt and SDCC: their own iterations"}}},
+          {"budget", {{"simulation_equivalents", finiteOrNull(run.choice.budget.simulation_equivalents)},
+                      {"wall_time_s", finiteOrNull(run.choice.budget.wall_time_s)},
+                      {"gradient_cost", run.gradient_cost},
+                      {"gradient_cost_source", run.gradient_cost_source},
+                      {"spent", r.simulation_equivalents},
+                      {"unit", "simulation-equivalents: one per simulation, gradient_cost per gradient"},
+                      {"max_iterations", run.choice.max_iterations},
+                      {"max_iterations_counts", "NLopt: objective evaluations; Ipopt and SDCC: their own iterations"}}},
           {"settings", settings},
           {"optimizer", run.choice.optimizer},
           {"gradient", run.choice.gradient},
@@ -240,12 +300,36 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"iterations", r.iterations},
           {"simulations", r.value_evaluations},
           {"gradient_evaluations", r.gradient_evaluations},
-          {"simulation_equivalents", run.simulation_equivalents},
+          {"simulation_equivalents", r.simulation_equivalents},
+          {"thread_time_simulations", run.thread_time_simulations},
           {"simulation_s", run.simulation_s},
           {"simulations_ahead", run.simulations_ahead},
           {"simulations_ahead_used", run.simulations_ahead_used},
           {"wall_time_s", r.wall_time_s},
           {"history", history}};
+}
+
+void addBudgetOptions(CLI::App& command, RunChoice& choice) {
+  command.add_option("--budget", choice.budget.simulation_equivalents,
+                     "The budget of each run in simulation-equivalents, alike for every optimizer: a simulation "
+                     "counts 1, a gradient --gradient-cost; an evaluation that would exceed it is not made, and the "
+                     "run ends with its best point, status max_iterations (default: none)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--wall-time", choice.budget.wall_time_s,
+                     "The wall time of each run's optimizer [s]: no evaluation starts after it (default: none)")
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option_function<double>(
+          "--gradient-cost", [&choice](double cost) { choice.gradient_cost = cost; },
+          "What one gradient counts in simulation-equivalents (default: for finite differences their simulations, "
+          "one per design variable or two with fd_central; for an exact method the median of three timed "
+          "gradient/simulation pairs on one thread at the start with b_{k+1} = 0, where the whole backward sweep runs)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--max-iter", choice.max_iterations,
+                     "Each optimizer's own limit (NLopt: objective evaluations; Ipopt and SDCC: their own "
+                     "iterations); --budget is the one that counts alike for all")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 void addSettingOption(CLI::App& command, std::vector<std::string>& settings) {
@@ -281,15 +365,16 @@ PlotPanel designPanel(const OptimizationRun& run) {
 }
 
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
-                                         bool against_simulations) {
-  const std::string x = against_simulations ? "simulations" : "iteration";
-  PlotPanel cost{.xlabel = x, .ylabel = "cost"};
+                                         bool against_simulation_equivalents) {
+  const std::string x = against_simulation_equivalents ? "simulation-equivalents (simulations + gradients at their cost)" : "iteration";
+  PlotPanel cost{.xlabel = x, .ylabel = runs.empty() ? "cost" : runs.front().second->cost_response};
   PlotPanel violation{.xlabel = x, .ylabel = "max violation (0 drawn at 1e-12)", .log_y = true};
   for (const auto& [title, run] : runs) {
     PlotSeries c{title, {}}, v{title, {}};
-    for (const IterationRecord& h : run->result.history) {
-      const double at = against_simulations ? static_cast<double>(h.value_evaluations) : h.iteration;
-      c.points.emplace_back(at, h.cost);
+    for (std::size_t k = 0; k < run->result.history.size(); ++k) {
+      const IterationRecord& h = run->result.history[k];
+      const double at = against_simulation_equivalents ? h.simulation_equivalents : h.iteration;
+      if (!std::isnan(run->iterate_costs[k])) c.points.emplace_back(at, run->iterate_costs[k]);
       v.points.emplace_back(at, std::max(h.max_violation, 1e-12));
     }
     cost.series.push_back(c);

@@ -28,12 +28,20 @@ struct RunChoice {
   std::string formulation;
   /// ε of the transcription (each measure ≤ ε); empty: the problem's own. After a run: the ε it used.
   std::optional<double> epsilon;
-  int max_iterations = 100;
+  int max_iterations = 100;  ///< each optimizer's own count (OptimizerOptions::max_iterations)
+  Budget budget;             ///< the common budget (simulation-equivalents, wall time), alike for every optimizer
+  /// What one gradient costs in simulation-equivalents (the budget's unit); empty: counted for finite
+  /// differences, measured at the start for an exact method (DesignNlp::measureGradientCost).
+  std::optional<double> gradient_cost;
   std::vector<std::string> settings;  ///< the optimizer's own settings, "NAME=VALUE" each
   /// The most threads a gradient takes (designGradient's jobs; no effect on results): its own, or
   /// with runOptimization's shared_threads, those idle at the time.
   int gradient_jobs = 1;
 };
+
+/// Adds the limits of a run to a command: --budget (simulation-equivalents), --wall-time, --gradient-cost
+/// (alike for every optimizer) and --max-iter (each optimizer's own count).
+void addBudgetOptions(CLI::App& command, RunChoice& choice);
 
 /// Adds --setting (repeatable NAME=VALUE, the optimizer's own settings) to a command.
 void addSettingOption(CLI::App& command, std::vector<std::string>& settings);
@@ -54,6 +62,13 @@ struct OptimizationRun {
   /// The design (SI, without b_{k+1}) at each record of result.history; empty where the optimizer
   /// did not say which point an iteration was.
   std::vector<std::vector<double>> iterate_designs;
+  /// The cost's own functional (cost_response's unit) at each record of result.history; NaN where
+  /// the optimizer did not say which point an iteration was.
+  std::vector<double> iterate_costs;
+  /// The gradient cost the budget counted with (RunChoice::gradient_cost), and where it came from:
+  /// "given", "counted" (finite differences) or "measured".
+  double gradient_cost = 1.0;
+  std::string gradient_cost_source;
   /// max |y| of each sensor of the cost and constraints (`max_abs_NAME`), and the value of each exact
   /// functional the cost or a constraint takes (`integral_NAME`, `rms_NAME`, `final_NAME`); angles in degrees.
   nlohmann::json responses;
@@ -63,10 +78,11 @@ struct OptimizationRun {
   std::string cost_sensor;     ///< the cost's sensor
   double initial_cost = 0.0;   ///< the cost's functional (cost_response) at the start
   double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
-  /// The optimizer's evaluations (simulations and gradients) in simulations: their thread time
-  /// (DesignNlp::evaluationThreadSeconds: each one's wall time times the threads it held) over
-  /// simulation_s, so that runs with different numbers of threads compare.
-  double simulation_equivalents = 0.0;
+  /// The optimizer's evaluations (simulations and gradients) in simulations as timed: their thread
+  /// time (DesignNlp::evaluationThreadSeconds: each one's wall time times the threads it held) over
+  /// simulation_s, so that runs with different numbers of threads compare. The budget's count is
+  /// result.simulation_equivalents.
+  double thread_time_simulations = 0.0;
   /// Simulations run ahead on a spare core for a point the optimizer might ask next (SDCC's trial
   /// after a rejection, DesignNlp::anticipate), and how many of them it did ask for (those are
   /// among result.value_evaluations; the others only kept an idle core busy).
@@ -87,6 +103,11 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 const std::function<void(const IterationRecord&)>& on_iteration,
                                 std::shared_ptr<ThreadBudget> shared_threads = nullptr);
 
+/// Sets the gradient_cost of every choice that has none and takes an exact method: measured once per
+/// gradient method at the problem's start (DesignNlp::measureGradientCost), so that runs going on
+/// at once, whose timings would disturb one another, count their gradients alike.
+void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& choices);
+
 /// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
 /// The verdicts as JSON: [{name, unit, value, bound | equals, excess, tolerance, met}].
@@ -99,9 +120,10 @@ std::vector<std::string> gradientChoices();
 /// (the paper's figure 7).
 PlotPanel designPanel(const OptimizationRun& run);
 
-/// Two panels, the cost and the max violation (zero drawn at 1e-12 on the logarithmic axis),
-/// against iterations or against simulations, one curve per (title, run).
+/// Two panels, the cost's own functional (OptimizationRun::iterate_costs) and the max violation
+/// (zero drawn at 1e-12 on the logarithmic axis), against iterations or against the budget's
+/// simulation-equivalents, one curve per (title, run).
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
-                                         bool against_simulations);
+                                         bool against_simulation_equivalents);
 
 }  // namespace mbsopt

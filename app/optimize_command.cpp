@@ -81,10 +81,11 @@ void optimize(const OptimizeOptions& options) {
   const OptimizationRun run = runOptimization(problem, c, printIteration);
   const OptimizerResult& r = run.result;
   std::printf("%s: %s (%s)\n", r.optimizer.c_str(), toString(r.status).c_str(), r.message.c_str());
-  std::printf("b_{k+1} %.8g, max violation %.3g, %d iterations, %ld simulations, %ld gradients (%.0f simulations' "
-              "time in all), %.3g s\n",
+  std::printf("b_{k+1} %.8g, max violation %.3g, %d iterations, %ld simulations, %ld gradients: %.4g "
+              "simulation-equivalents (a gradient counted %.3g, %s; %.0f simulations' thread time), %.3g s\n",
               r.cost, r.max_violation, r.iterations, r.value_evaluations, r.gradient_evaluations,
-              run.simulation_equivalents, r.wall_time_s);
+              r.simulation_equivalents, run.gradient_cost, run.gradient_cost_source.c_str(), run.thread_time_simulations,
+              r.wall_time_s);
   if (run.reported_iteration >= 0)
     std::printf("reported: the best point evaluated (feasible first, then the lowest b_{k+1}), iteration %d\n",
                 run.reported_iteration);
@@ -144,10 +145,7 @@ void registerOptimizeCommand(CLI::App& app) {
           "(the paper's ∫⟨φ⟩dt has a zero gradient where satisfied; ε > 0 gives it an interior); default: the "
           "problem's own (design.transcription.tolerance)")
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--max-iter", options->choice.max_iterations,
-                      "Iteration budget (NLopt: objective evaluations; Ipopt and SDCC: their own iterations)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  addBudgetOptions(*command, options->choice);
   addSettingOption(*command, options->choice.settings);
   options->choice.gradient_jobs = machineThreads();
   command->add_option("--jobs", options->choice.gradient_jobs,
@@ -155,28 +153,31 @@ void registerOptimizeCommand(CLI::App& app) {
                       "finite differences, the step derivatives of adjoint and direct (their sweep itself is "
                       "sequential; continuous-adjoint runs on one); with 2 or more, SDCC's next trial point is "
                       "simulated on a spare core while the current one is. The results do not depend on it, and "
-                      "simulation_equivalents (thread time) only through the threads' overheads and the "
+                      "thread_time_simulations only through the threads' overheads and the "
                       "simulations run ahead for nothing")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, lower, "
                       "upper, scale, start, final}] (SI), artificial_variable{start, lower, upper, scale, final}, "
-                      "budget{max_iterations, counts}, settings, optimizer, gradient, formulation, epsilon, status, "
+                      "budget{simulation_equivalents, wall_time_s (the limits, null: none), gradient_cost, gradient_cost_source, "
+                      "spent, unit, max_iterations, max_iterations_counts}, settings, optimizer, gradient, formulation, epsilon, status, "
                       "message, design (SI), responses, constraints[{name, unit, value, bound | equals, excess, tolerance, met}] "
                       "(each constraint judged at the final design in its own units: angles in degrees; the "
                       "tolerance is its own or 1e-4 |bound|, at least 1e-6 in SI units), feasible (all met), initial_cost, cost (b_{k+1}), cost_functional{name, "
                       "start, final} (the cost sensor's own functional), reported_iterate{iteration, rule} (the "
                       "history's record of the reported design), max_violation, iterations, simulations, "
-                      "gradient_evaluations, simulation_equivalents (the evaluations' thread time, each one's wall "
-                      "time times the threads it held, over one simulation's, simulation_s), simulations_ahead "
+                      "gradient_evaluations, simulation_equivalents (the budget's count), thread_time_simulations (the "
+                      "evaluations' thread time, each one's wall time times the threads it held, over one simulation's, "
+                      "simulation_s), simulations_ahead "
                       "(run on a spare core for the point SDCC would try after a rejection) and "
                       "simulations_ahead_used (those among the simulations), "
-                      "wall_time_s, history[{iteration, cost, max_violation, step, "
-                      "simulations, gradient_evaluations, design (SI, null where the optimizer does not say)}]");
+                      "wall_time_s, history[{iteration, cost (b_{k+1}), max_violation, step, cost_functional (the cost's own, "
+                      "in cost_functional.name's unit), simulations, gradient_evaluations, simulation_equivalents, design "
+                      "(SI; null, as cost_functional, where the optimizer does not say which point it is)}]");
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
-                      "history.png (cost, max violation and design variables against iterations) and response.png "
+                      "history.png (the cost's own functional, max violation and design variables against iterations) and response.png "
                       "(the cost's sensor over time at the start and at the final design)");
   command->callback([options] { optimize(*options); });
 }

@@ -4,12 +4,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 namespace mbsopt {
 
 namespace {
 constexpr std::size_t kCachedPoints = 8;
+
+std::string shortNumber(double value) {
+  std::ostringstream out;
+  out << std::setprecision(4) << value;
+  return out.str();
+}
 }  // namespace
 
 double maxViolation(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& values) {
@@ -28,16 +36,34 @@ const NlpEvaluation& EvaluationCache::at(const Eigen::VectorXd& x, bool gradient
   const auto hit = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.x == x; });
   if (hit != entries_.end() && (hit->has_gradients || !gradients)) return hit->values;
   const bool values_known = hit != entries_.end() || (has_best_ && best_.x == x);
+  // The gradients of a known point reuse its simulation: they cost their own share only.
+  const double cost = (values_known ? 0.0 : 1.0) + (gradients ? problem_.gradientCost() : 0.0);
+  refuseBeyondBudget(cost);
   if (hit != entries_.end()) entries_.erase(hit);
   Entry entry{x, {}, gradients, 0.0};
   problem_.evaluate(x, gradients, entry.values);
-  if (!values_known) ++value_evaluations_;  // the gradients of a known point: its simulation is reused
+  if (!values_known) ++value_evaluations_;
   if (gradients) ++gradient_evaluations_;
+  simulation_equivalents_ += cost;
   entry.violation = maxViolation(problem_, x, entry.values);
   consider(entry);
   entries_.push_front(std::move(entry));
   if (entries_.size() > kCachedPoints) entries_.pop_back();
   return entries_.front().values;
+}
+
+void EvaluationCache::refuseBeyondBudget(double cost) {
+  if (reviewing_) return;
+  const Budget& budget = options_.budget;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time_).count();
+  if (simulation_equivalents_ + cost > budget.simulation_equivalents)
+    budget_spent_ = "the budget of " + shortNumber(budget.simulation_equivalents) + " simulation-equivalents is spent (" +
+                    shortNumber(simulation_equivalents_) + " spent, the next evaluation costs " + shortNumber(cost) + ")";
+  else if (elapsed >= budget.wall_time_s)
+    budget_spent_ = "the budget of " + shortNumber(budget.wall_time_s) + " s wall time is spent";
+  else
+    return;
+  throw BudgetSpent(budget_spent_);
 }
 
 void EvaluationCache::anticipate(const Eigen::VectorXd& x) {
@@ -63,20 +89,23 @@ void EvaluationCache::recordIteration(const Eigen::VectorXd& x, OptimizerResult&
   const NlpEvaluation& values = at(x, false);
   const double step = previous_iterate_.size() == x.size() ? (x - previous_iterate_).cwiseAbs().maxCoeff() : 0.0;
   previous_iterate_ = x;
-  record(values.cost, maxViolation(problem_, x, values), step, x, result);
+  record(values.cost, maxViolation(problem_, x, values), step, x, values.reported_cost, result);
 }
 
 void EvaluationCache::recordIteration(double cost, double max_violation, double step, OptimizerResult& result) {
   const auto iterate = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) {
     return std::abs(e.values.cost - cost) <= 1e-14 * std::max(1.0, std::abs(cost));  // Ipopt's unscaling
   });
-  record(cost, max_violation, step, iterate != entries_.end() ? iterate->x : Eigen::VectorXd(), result);
+  const bool known = iterate != entries_.end();
+  record(cost, max_violation, step, known ? iterate->x : Eigen::VectorXd(),
+         known ? iterate->values.reported_cost : std::numeric_limits<double>::quiet_NaN(), result);
 }
 
 void EvaluationCache::record(double cost, double max_violation, double step, const Eigen::VectorXd& x,
-                             OptimizerResult& result) {
+                             double reported_cost, OptimizerResult& result) {
   const IterationRecord record{static_cast<int>(result.history.size()), cost, max_violation, step, value_evaluations_,
-                               gradient_evaluations_, x};
+                               gradient_evaluations_, simulation_equivalents_,
+                               x.size() > 0 && std::isnan(reported_cost) ? cost : reported_cost, x};
   result.history.push_back(record);
   if (options_.on_iteration) options_.on_iteration(record);
 }
@@ -84,6 +113,7 @@ void EvaluationCache::record(double cost, double max_violation, double step, con
 void EvaluationCache::finish(OptimizerResult& result) const {
   result.value_evaluations = value_evaluations_;
   result.gradient_evaluations = gradient_evaluations_;
+  result.simulation_equivalents = simulation_equivalents_;
   result.iterations = static_cast<int>(result.history.size());
   if (!has_best_) return;
   result.x = best_.x;
@@ -92,7 +122,12 @@ void EvaluationCache::finish(OptimizerResult& result) const {
 }
 
 void EvaluationCache::review(OptimizerResult& result) {
-  if (result.status == OptimizerStatus::Failed || result.status == OptimizerStatus::Unsupported) return;
+  if (result.status == OptimizerStatus::Unsupported) return;
+  if (!budget_spent_.empty()) {
+    result.status = OptimizerStatus::MaxIterations;
+    if (result.message.find(budget_spent_) == std::string::npos) result.message += "; stopped: " + budget_spent_;
+  }
+  if (result.status == OptimizerStatus::Failed) return;
   if (result.max_violation > options_.feasibility_tolerance) {
     result.status = OptimizerStatus::Failed;
     result.message += "; no point it evaluated is feasible (max violation " + std::to_string(result.max_violation) + ")";
@@ -100,9 +135,11 @@ void EvaluationCache::review(OptimizerResult& result) {
   }
   if (result.status != OptimizerStatus::Converged) return;
   const double active = std::max(100.0 * options_.feasibility_tolerance, 1e-6);
+  reviewing_ = true;  // the verdict's gradient is not the run's: no budget refuses it
   const double residual = firstOrderResidual(problem_, result.x, at(result.x, true), active);
   result.value_evaluations = value_evaluations_;
   result.gradient_evaluations = gradient_evaluations_;
+  result.simulation_equivalents = simulation_equivalents_;
   if (residual <= kFirstOrderTolerance) return;
   result.status = OptimizerStatus::Failed;
   result.message += "; but the point is not first-order optimal (KKT residual " + std::to_string(residual) +

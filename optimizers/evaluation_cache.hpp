@@ -3,7 +3,10 @@
 // of them pays twice for a point), the evaluation counts, the best point seen, and the history.
 #pragma once
 
+#include <chrono>
 #include <deque>
+#include <stdexcept>
+#include <string>
 
 #include "optimizers/nlp_problem.hpp"
 #include "optimizers/optimizer.hpp"
@@ -15,14 +18,27 @@ namespace mbsopt {
 /// piecewise smooth; a point where no active constraint balances the cost gradient scores 1.
 inline constexpr double kFirstOrderTolerance = 1e-2;
 
+/// What EvaluationCache::at throws instead of an evaluation beyond the run's Budget; each adapter
+/// stops its algorithm on it as on any failed evaluation, and review() then names the limit.
+struct BudgetSpent : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 class EvaluationCache {
  public:
-  EvaluationCache(NlpProblem& problem, const OptimizerOptions& options) : problem_(problem), options_(options) {}
+  /// The run's wall-time budget counts from here.
+  EvaluationCache(NlpProblem& problem, const OptimizerOptions& options)
+      : problem_(problem), options_(options), start_time_(std::chrono::steady_clock::now()) {}
 
   NlpProblem& problem() { return problem_; }
 
   /// The values at x (with gradients when asked), from the cache when x was evaluated before.
+  /// Throws BudgetSpent, evaluating nothing, when the evaluation would take the run beyond
+  /// options.budget: its simulation-equivalents (1 for the values of a new point, plus
+  /// NlpProblem::gradientCost() for gradients), or its wall time (already spent).
   const NlpEvaluation& at(const Eigen::VectorXd& x, bool gradients);
+  /// Why the budget refused an evaluation; empty while it has not.
+  const std::string& budgetSpent() const { return budget_spent_; }
   /// Passes the hint on to the problem (NlpProblem::anticipate) unless x's values are known.
   void anticipate(const Eigen::VectorXd& x);
 
@@ -36,7 +52,8 @@ class EvaluationCache {
   /// within the options' tolerance with the lowest cost, else the least violation).
   void finish(OptimizerResult& result) const;
 
-  /// After finish(): the algorithm's verdict, checked. An infeasible best point is a failure that
+  /// After finish(): the algorithm's verdict, checked. A run the budget stopped has status
+  /// MaxIterations, its message naming the limit (whatever the algorithm made of the refusal). An infeasible best point is a failure that
   /// says so; a "converged" point that fails the first-order conditions (residual above
   /// kFirstOrderTolerance, first_order_check.hpp) is a failure that says the algorithm could not
   /// move from it. May cost one gradient evaluation at the best point.
@@ -53,12 +70,19 @@ class EvaluationCache {
     double violation = 0.0;
   };
   void consider(const Entry& entry);
-  void record(double cost, double max_violation, double step, const Eigen::VectorXd& x, OptimizerResult& result);
+  /// Throws BudgetSpent when an evaluation costing `cost` simulation-equivalents would exceed the budget.
+  void refuseBeyondBudget(double cost);
+  void record(double cost, double max_violation, double step, const Eigen::VectorXd& x, double reported_cost,
+              OptimizerResult& result);
 
   NlpProblem& problem_;
   const OptimizerOptions& options_;
   std::deque<Entry> entries_;  ///< the most recent points, newest first
+  const std::chrono::steady_clock::time_point start_time_;
   long value_evaluations_ = 0, gradient_evaluations_ = 0;
+  double simulation_equivalents_ = 0.0;
+  std::string budget_spent_;
+  bool reviewing_ = false;  ///< review() evaluates: outside the budget
   bool has_best_ = false;
   Entry best_;
   Eigen::VectorXd previous_iterate_;

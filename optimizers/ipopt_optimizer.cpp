@@ -87,7 +87,9 @@ class ProblemAsTnlp : public Ipopt::TNLP {
                              Number d_norm, Number, Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
     cache_.recordIteration(obj_value, inf_pr, d_norm, result_);
-    return true;  // never stop early (returning nothing here is Ipopt#661's undefined behaviour)
+    // Stops only when the budget refused an evaluation (returning nothing here is Ipopt#661's
+    // undefined behaviour): Ipopt would otherwise shorten its step against every refusal.
+    return cache_.budgetSpent().empty();
   }
 
  private:

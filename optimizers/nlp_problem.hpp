@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 
 namespace mbsopt {
@@ -16,6 +17,9 @@ struct NlpEvaluation {
   Eigen::VectorXd constraints;          ///< the inequalities g first, then the equalities h
   Eigen::VectorXd cost_gradient;        ///< empty unless gradients were requested
   Eigen::MatrixXd constraint_jacobian;  ///< empty unless gradients were requested
+  /// The quantity the problem reports as its cost, where that is not f itself (a design problem: its
+  /// cost sensor's functional, which the artificial variable f = b_{k+1} bounds); NaN: f.
+  double reported_cost = std::numeric_limits<double>::quiet_NaN();
 };
 
 class NlpProblem {
@@ -44,6 +48,12 @@ class NlpProblem {
   /// in the background, so that evaluate(x) then finds them ready. It never changes what evaluate()
   /// returns; the default ignores it.
   virtual void anticipate(const Eigen::VectorXd& /*x*/) {}
+
+  /// What one gradient evaluation costs beyond the simulation of its values, in simulation-
+  /// equivalents (one value evaluation = 1): the unit of OptimizerOptions::budget. Counted, not
+  /// timed while a run goes on, so that a budget stops a run at the same evaluation whatever the
+  /// machine's load. The default: as much as a value evaluation.
+  virtual double gradientCost() const { return 1.0; }
 };
 
 /// max(0, max g, max |h|, bound violations): how far x is from feasible.

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,11 +30,26 @@ struct IterationRecord {
   double step = 0.0;  ///< ‖x_k − x_{k−1}‖∞ (0 for the first record)
   long value_evaluations = 0;
   long gradient_evaluations = 0;
+  /// value_evaluations + gradient_evaluations × NlpProblem::gradientCost(): the budget spent so far
+  double simulation_equivalents = 0.0;
+  /// NlpEvaluation::reported_cost at the iterate (NaN where the algorithm does not say which point it is)
+  double reported_cost = std::numeric_limits<double>::quiet_NaN();
   Eigen::VectorXd x;  ///< the iterate (empty where the algorithm does not say which point it is)
 };
 
+/// The limits every optimizer is held to alike (EvaluationCache::at): an evaluation that would take
+/// the run beyond either is not made, and the run ends with the best point so far (status
+/// MaxIterations, its message naming the limit). Infinite: no limit.
+struct Budget {
+  /// Value evaluations plus gradient evaluations × NlpProblem::gradientCost()
+  double simulation_equivalents = std::numeric_limits<double>::infinity();
+  /// Since the run began [s]
+  double wall_time_s = std::numeric_limits<double>::infinity();
+};
+
 struct OptimizerOptions {
-  int max_iterations = 100;
+  int max_iterations = 100;  ///< each algorithm's own count (NLopt: evaluations; Ipopt, SDCC: iterations)
+  Budget budget;             ///< the common budget, counted alike for every algorithm
   double tolerance = 1e-6;              ///< relative, on x and on f (each algorithm's own test)
   double feasibility_tolerance = 1e-6;  ///< max violation a converged point may have
   /// Algorithm-specific settings by name, as text: SDCC's SdccSettings fields, any Ipopt option,
@@ -54,6 +70,7 @@ struct OptimizerResult {
   int iterations = 0;
   long value_evaluations = 0;
   long gradient_evaluations = 0;
+  double simulation_equivalents = 0.0;  ///< the budget spent (Budget::simulation_equivalents)
   double wall_time_s = 0.0;  ///< filled by minimize(), around whichever adapter runs
   std::vector<IterationRecord> history;
 };

@@ -246,6 +246,7 @@ class SdccRun {
       if (stationarity <= settings_.stationarity_tolerance * stationarity_scale_ &&
           violation_ <= options_.feasibility_tolerance)
         return stop(OptimizerStatus::Converged, "a feasible KKT point: " + where);
+      if (!cache_.budgetSpent().empty()) return stop(OptimizerStatus::MaxIterations, cache_.budgetSpent() + ", " + where);
       if (trial == options_.max_iterations)
         return stop(OptimizerStatus::MaxIterations, std::to_string(trial) + " trial steps, " + where);
       if (step_bound_ < stepFloor()) {
@@ -344,6 +345,8 @@ class SdccRun {
       if (!(ratio >= settings_.acceptance_ratio)) return reject();  // NaN is rejected too
       accept(trial.point, cache_.at(trial.point, true));
       if (ratio >= settings_.growth_ratio) step_bound_ *= settings_.growth_factor;
+    } catch (const BudgetSpent&) {
+      // run() stops at its next trial
     } catch (const std::exception& e) {
       last_failure_ = e.what();
       reject();

@@ -53,6 +53,17 @@ class DesignNlp : public NlpProblem {
   /// left idle.
   void anticipate(const Eigen::VectorXd& x) override;
 
+  /// NlpProblem::gradientCost: finite differences count their simulations (one per design
+  /// variable, two central); an exact method's gradient costs what setGradientCost said (a
+  /// measurement, measureGradientCost), as much as a simulation until then.
+  double gradientCost() const override;
+  void setGradientCost(double simulation_equivalents) { gradient_cost_ = simulation_equivalents; }
+  /// What one gradient costs at x in simulation-equivalents: for finite differences their count,
+  /// else the median over `repetitions` of a gradient's wall time on one thread (its work, whatever
+  /// the threads a run gives it) over a simulation's, each run afresh at x with b_{k+1} = 0 (every time point of the cost active: the whole backward
+  /// sweep). Outside every count of evaluate(); nothing is kept.
+  double measureGradientCost(const Eigen::VectorXd& x, int repetitions = 3) const;
+
   const DesignProblem& problem() const { return problem_; }
   /// The thread time evaluate() has taken so far [s], whatever the number of threads: each of its
   /// simulations' wall time, each gradient's times the threads it held, and the wall time of every
@@ -90,6 +101,7 @@ class DesignNlp : public NlpProblem {
   double evaluation_thread_seconds_ = 0.0;       ///< on the caller's thread
   std::atomic<double> ahead_thread_seconds_ = 0.0;  ///< on the threads of the simulations ahead
   double fastest_simulation_s_ = 0.0;
+  std::optional<double> gradient_cost_;
   /// Simulations by point: the first one evaluated, then the most recent, newest first. The
   /// gradients of a point whose values were asked for first reuse its simulation.
   std::optional<std::pair<Eigen::VectorXd, DesignResponse>> first_;

@@ -1,6 +1,8 @@
 #include "sensitivity/design_evaluation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -29,6 +31,21 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
 
 const Trajectory& caseTrajectory(const DesignResponse& response, std::size_t c) {
   return response.load_cases.empty() ? response.trajectory : response.load_cases.at(c).trajectory;
+}
+
+double costFunctional(const DesignProblem& problem, const DesignResponse& response) {
+  const ResponseCost& cost = problem.design.cost;
+  const int sensor = sensorIndex(problem.scene.model, cost.sensor);
+  const std::optional<TimeMeasure> exact = exactMeasure(cost.of);
+  double worst = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < std::max<std::size_t>(problem.load_cases.size(), 1); ++c) {
+    const Trajectory& trajectory = caseTrajectory(response, c);
+    const auto y = trajectory.sensors.col(sensor);
+    const double value = exact ? evaluateTimeFunctional(*exact, trajectory.time, y).value
+                         : cost.of == ResponseMeasure::Max ? y.maxCoeff() : y.cwiseAbs().maxCoeff();
+    worst = std::max(worst, value);
+  }
+  return worst;
 }
 
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,

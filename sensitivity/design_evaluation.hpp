@@ -41,6 +41,11 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
                     const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
                     bool keep_step_matrices = false);
 
+/// The cost's own functional at a response, in SI: its sensor's max |y| or max y over the time grid,
+/// its integral or its RMS (ResponseCost); with load cases the largest over them, the worst case that
+/// b_{k+1} bounds. What an optimizer's progress is judged by, b_{k+1} being only its bound.
+double costFunctional(const DesignProblem& problem, const DesignResponse& response);
+
 /// The cost and the constraints at one point (DesignResponse without the histories).
 struct DesignValues {
   double cost = 0.0;

@@ -13,6 +13,13 @@
 
 namespace mbsopt {
 
+std::optional<TimeMeasure> exactMeasure(ResponseMeasure of) {
+  if (of == ResponseMeasure::Integral) return TimeMeasure::Integral;
+  if (of == ResponseMeasure::Rms) return TimeMeasure::RootMeanSquare;
+  if (of == ResponseMeasure::FinalValue) return TimeMeasure::FinalValue;
+  return std::nullopt;
+}
+
 int sensorIndex(const Model& model, const std::string& name) {
   for (std::size_t s = 0; s < model.sensors().size(); ++s)
     if (model.sensors()[s].name == name) return static_cast<int>(s);

@@ -137,6 +137,9 @@ std::pair<Eigen::Index, Eigen::Index> windowPoints(int window, int windows, Eige
 /// The index of the sensor `name` in the model; throws std::invalid_argument naming it if absent.
 int sensorIndex(const Model& model, const std::string& name);
 
+/// The exact functional of an integral, RMS or final-value measure; none for an extreme.
+std::optional<TimeMeasure> exactMeasure(ResponseMeasure of);
+
 /// Empty when a cost or constraint may use `sensor`, i.e. when the design gradients can
 /// differentiate it (a function of the state alone, isStateSensor, or a cut reaction, which also
 /// reads the multipliers λ); otherwise why not.

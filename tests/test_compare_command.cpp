@@ -45,7 +45,7 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
     return static_cast<std::size_t>(at - header.begin());
   };
   for (const char* name : {"optimizer", "gradient", "formulation", "status", "feasible", "max violation", "iterations",
-                           "simulations", "gradients", "in simulations", "wall time [s]"})
+                           "simulations", "gradients", "sim.-equivalents", "wall time [s]"})
     column(name);
   std::vector<std::vector<std::string>> rows;
   while (std::getline(csv, line)) rows.push_back(splitCsv(line));
@@ -62,6 +62,11 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
     EXPECT_EQ(std::stol(rows[r][column("simulations")]), run["simulations"].get<long>());
     EXPECT_EQ(std::stol(rows[r][column("iterations")]), run["iterations"].get<long>());
     EXPECT_EQ(rows[r][column("feasible")], run["feasible"].get<bool>() ? "yes" : "no");
+    // The budget's count: a simulation 1, a gradient its cost, measured once for both optimizers.
+    const double equivalents = run["simulations"].get<double>() +
+                               run["gradient_evaluations"].get<double>() * run["budget"]["gradient_cost"].get<double>();
+    EXPECT_NEAR(run["simulation_equivalents"].get<double>(), equivalents, 1e-9 * equivalents);
+    EXPECT_NEAR(std::stod(rows[r][column("sim.-equivalents")]), equivalents, 0.5 + 1e-9);
     // The cost column is the cost sensor's max |y| at the final design, printed to 5 digits.
     const double cost = run["responses"]["max_abs_tip_acceleration"].get<double>();
     EXPECT_NEAR(std::stod(rows[r][column("max_abs_tip_acceleration")]), cost, 5e-5 * cost);

@@ -3,8 +3,10 @@
 // equality constraints); it never calls an infeasible point converged; it pays once per point.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <set>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "optimizers/optimizer.hpp"
@@ -204,6 +206,64 @@ TEST_P(EveryOptimizer, ReportsAFailedEvaluationWithItsReason) {
     EXPECT_NE(r.message.find("simulation diverged"), std::string::npos) << r.message;
   }
   EXPECT_LE(r.x[0], 0.9);  // the best point is one that was evaluated successfully
+}
+
+/// A problem whose gradient costs 2.5 simulation-equivalents (an exact method's measured figure).
+template <class Problem>
+class CostlyGradients : public Recording<Problem> {
+ public:
+  double gradientCost() const override { return 2.5; }
+};
+
+/// A problem that takes 20 ms an evaluation.
+template <class Problem>
+class Slow : public Recording<Problem> {
+ public:
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation& out) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    Recording<Problem>::evaluate(x, gradients, out);
+  }
+};
+
+// The common budget stops every algorithm alike: no evaluation takes a run beyond it, its count is
+// the problem's own calls (1 for a new point's values, 2.5 for a gradient), the status and message
+// say why, and every record lies within it. Unbounded, every algorithm needs more (checked first).
+TEST_P(EveryOptimizer, StopsWithinItsBudgetOfSimulationEquivalents) {
+  const double budget = 12.0, gradient_cost = 2.5;
+  CostlyGradients<test::RosenbrockInDisc> unbounded;
+  ASSERT_GT(minimize(GetParam(), unbounded, tightOptions()).simulation_equivalents, budget);
+  CostlyGradients<test::RosenbrockInDisc> problem;
+  OptimizerOptions options = tightOptions();
+  options.budget.simulation_equivalents = budget;
+  const OptimizerResult r = minimize(GetParam(), problem, options);
+  EXPECT_EQ(r.status, OptimizerStatus::MaxIterations) << r.message;
+  EXPECT_NE(r.message.find("the budget of 12 simulation-equivalents is spent"), std::string::npos) << r.message;
+  double spent = 0.0;
+  std::set<std::vector<double>> evaluated;
+  for (const auto& [x, gradients] : problem.calls) {
+    const bool known = !evaluated.insert(asKey(x)).second;
+    spent += (known && gradients ? 0.0 : 1.0) + (gradients ? gradient_cost : 0.0);
+  }
+  EXPECT_LE(spent, budget);
+  EXPECT_GT(spent, budget - 1.0 - gradient_cost);  // it stopped when the next evaluation did not fit
+  EXPECT_DOUBLE_EQ(r.simulation_equivalents, spent);
+  for (const IterationRecord& h : r.history) EXPECT_LE(h.simulation_equivalents, budget);
+  EXPECT_EQ(r.x.size(), 2);  // the best point within the budget
+}
+
+// The wall-time budget: no evaluation starts after 0.1 s, and each takes at least 20 ms, so at most
+// five are made (at 0, 20, 40, 60 and 80 ms at the earliest), where the run unbounded makes more.
+TEST_P(EveryOptimizer, StartsNoEvaluationAfterItsWallTime) {
+  Recording<test::RosenbrockInDisc> unbounded;
+  minimize(GetParam(), unbounded, tightOptions());
+  ASSERT_GT(unbounded.calls.size(), 5u);
+  Slow<test::RosenbrockInDisc> problem;
+  OptimizerOptions options = tightOptions();
+  options.budget.wall_time_s = 0.1;
+  const OptimizerResult r = minimize(GetParam(), problem, options);
+  EXPECT_EQ(r.status, OptimizerStatus::MaxIterations) << r.message;
+  EXPECT_NE(r.message.find("the budget of 0.1 s wall time is spent"), std::string::npos) << r.message;
+  EXPECT_LE(problem.calls.size(), 5u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Optimizers, EveryOptimizer, testing::ValuesIn(optimizerNames()),
