@@ -27,7 +27,10 @@ std::string quoted(std::string_view argument) {
 void recordCommandLine(int argc, const char* const* argv) {
   std::string& line = recorded();
   line.clear();
-  for (int i = 0; i < argc; ++i) line += (i > 0 ? " " : "") + quoted(argv[i]);
+  for (int i = 0; i < argc; ++i) {
+    if (i > 0) line += ' ';
+    line += quoted(argv[i]);
+  }
 }
 
 const std::string& commandLine() { return recorded(); }

@@ -20,9 +20,7 @@ namespace {
 
 struct CompareOptions {
   SceneArgument problem;
-  std::vector<std::string> optimizers = optimizerNames();
-  std::vector<std::string> gradients{"adjoint"};
-  std::vector<std::string> formulations{""};  ///< "": the problem's own
+  SweepAxes axes;
   /// What every run shares: ε of the formulations (empty: the problem's own), the budget and the
   /// iteration limit, the settings (passed to every optimizer that takes them).
   RunChoice shared;
@@ -30,29 +28,6 @@ struct CompareOptions {
   int jobs = machineThreads();  ///< runs at once
 };
 
-/// The formulation with its ε when there is one: "positive_part", "positive_part ε=1e-06".
-std::string formulationLabel(const RunChoice& c) {
-  std::string label = c.formulation.empty() ? "problem's formulation" : c.formulation;
-  if (c.epsilon.value_or(0.0) > 0.0) {
-    char epsilon[32];
-    std::snprintf(epsilon, sizeof epsilon, " ε=%g", *c.epsilon);
-    label += epsilon;
-  }
-  return label;
-}
-
-std::string runName(const RunChoice& c) { return c.optimizer + "/" + c.gradient + "/" + formulationLabel(c); }
-
-/// The per-run JSON's name: OPTIMIZER-GRADIENT-FORMULATION[-epsTOLERANCE].json.
-std::string runFileName(const RunChoice& c) {
-  std::string name = c.optimizer + "-" + c.gradient + "-" + c.formulation;
-  if (c.epsilon.value_or(0.0) > 0.0) {
-    char epsilon[32];
-    std::snprintf(epsilon, sizeof epsilon, "-eps%g", *c.epsilon);
-    name += epsilon;
-  }
-  return name + ".json";
-}
 
 /// The table's columns, as (header, value) per run; the same for Markdown and CSV.
 std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run, const std::string& cost_key) {
@@ -138,16 +113,7 @@ void compare(const CompareOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
   if (!options.out.empty()) std::filesystem::create_directories(options.out);
-  std::vector<RunChoice> choices;
-  for (const std::string& formulation : options.formulations)
-    for (const std::string& gradient : options.gradients)
-      for (const std::string& optimizer : options.optimizers) {
-        RunChoice choice = options.shared;
-        choice.optimizer = optimizer;
-        choice.gradient = gradient;
-        choice.formulation = formulation;
-        choices.push_back(choice);
-      }
+  std::vector<RunChoice> choices = sweepChoices(options.axes, options.shared);
   // Each gradient method's cost measured once, before the runs and alone on the machine, so that
   // every optimizer's budget counts its gradients alike.
   measureGradientCosts(problem, choices);
@@ -167,10 +133,10 @@ void compare(const CompareOptions& options) {
     runs[i] = runOptimization(problem, choices[i], {}, idle_threads);
     const OptimizerResult& r = runs[i].result;
     if (!options.out.empty())
-      writeAtomically(options.out + "/" + runFileName(runs[i].choice),
+      writeAtomically(options.out + "/" + runFileStem(runs[i].choice) + ".json",
                       [&](std::ostream& out) { out << toJson(runs[i], source.path).dump(2) << '\n'; });
     const std::scoped_lock lock(output);
-    std::printf("%-40s %-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", runName(choices[i]).c_str(),
+    std::printf("%-40s %-14s cost %-12.6g violation %-9.2g %4ld simulations %7.1f s\n", runLabel(choices[i]).c_str(),
                 toString(r.status).c_str(), r.cost, r.max_violation, r.value_evaluations, r.wall_time_s);
     std::fflush(stdout);
   }, idle_threads.get());
@@ -195,24 +161,7 @@ void registerCompareCommand(CLI::App& app) {
       "iterations, simulations, gradients, simulation-equivalents (the budget's count: simulations plus gradients at "
       "their cost), wall time");
   addSceneArgument(*command, options->problem, true);
-  command->add_option("--optimizers", options->optimizers, "Optimizers to run")
-      ->delimiter(',')
-      ->check(CLI::IsMember(optimizerNames()))
-      ->capture_default_str();
-  command->add_option("--gradients", options->gradients, "Gradient methods (fd = fd_central)")
-      ->delimiter(',')
-      ->check(CLI::IsMember(gradientChoices()))
-      ->capture_default_str();
-  command->add_option("--formulations", options->formulations,
-                      "Formulations (see `mbsopt optimize --help`); default: the problem's own")
-      ->delimiter(',')
-      ->check(CLI::IsMember(formulationNames()));
-  command
-      ->add_option_function<double>(
-          "--epsilon", [options](double epsilon) { options->shared.epsilon = epsilon; },
-          "ε ≥ 0 of every run, with the problem's measure or each of --formulations (see `mbsopt optimize --help`); "
-          "default: the problem's own")
-      ->check(CLI::NonNegativeNumber);
+  addSweepOptions(*command, options->axes, options->shared);
   addBudgetOptions(*command, options->shared);
   addSettingOption(*command, options->shared.settings);
   command->add_option("--jobs", options->jobs,

@@ -54,8 +54,13 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
           << quoted(panel.ylabel) << '\n'
           << (panel.log_y ? "set logscale y\nset format y \"%.0e\"\n" : "unset logscale y\nset format y\n")
           << (panel.log_x ? "set logscale x\nset format x \"%.0e\"\n" : "unset logscale x\nset format x\n");
-      if (std::isnan(panel.y_max)) out << "set yrange [*:*]\n";
-      else out << "set yrange [*:" << panel.y_max << "]\n";
+      out << "set yrange [";
+      if (std::isnan(panel.y_min)) out << '*';
+      else out << panel.y_min;
+      out << ':';
+      if (std::isnan(panel.y_max)) out << '*';
+      else out << panel.y_max;
+      out << "]\n";
       out << "plot ";
       for (std::size_t s = 0; s < panel.series.size(); ++s, ++block)
         out << (s ? ", " : "") << quoted(std::filesystem::path(data).filename().string()) << " index " << block

@@ -21,6 +21,7 @@ struct PlotPanel {
   bool markers = true;  ///< a marker at each point (iterations); plain lines for dense series
   std::string title{};  ///< above the panel; may be empty
   double y_max = std::numeric_limits<double>::quiet_NaN();  ///< the top of the y axis; NaN: gnuplot's choice
+  double y_min = std::numeric_limits<double>::quiet_NaN();  ///< the bottom of the y axis; NaN: gnuplot's choice
   bool log_x = false;
 };
 

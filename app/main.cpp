@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 
+#include "app/benchmark_command.hpp"
 #include "app/command_line.hpp"
 #include "app/compare_command.hpp"
 #include "app/exit_status.hpp"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   mbsopt::registerGradcheckCommand(app);
   mbsopt::registerOptimizeCommand(app);
   mbsopt::registerCompareCommand(app);
+  mbsopt::registerBenchmarkCommand(app);
   mbsopt::registerPrecisionCommand(app);
   try {
     app.parse(argc, argv);

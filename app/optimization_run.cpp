@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -116,16 +117,78 @@ const std::vector<std::string>& formulationNames() {
   return names;
 }
 
+RunChoice resolvedChoice(const DesignProblem& problem, RunChoice choice) {
+  if (choice.formulation.empty()) choice.formulation = formulationName(problem.design.transcription.measure);
+  else formulationMeasure(choice.formulation);  // an unknown name throws
+  if (!choice.epsilon) choice.epsilon = problem.design.transcription.tolerance;
+  if (choice.gradient == "fd") choice.gradient = "fd_central";
+  return choice;
+}
+
+void addSweepOptions(CLI::App& command, SweepAxes& axes, RunChoice& shared) {
+  command.add_option("--optimizers", axes.optimizers, "Optimizers to run")
+      ->delimiter(',')
+      ->check(CLI::IsMember(optimizerNames()))
+      ->capture_default_str();
+  command.add_option("--gradients", axes.gradients, "Gradient methods (fd = fd_central)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(gradientChoices()))
+      ->capture_default_str();
+  command.add_option("--formulations", axes.formulations,
+                     "Formulations (see `mbsopt optimize --help`); default: each problem's own")
+      ->delimiter(',')
+      ->check(CLI::IsMember(formulationNames()));
+  command
+      .add_option_function<double>(
+          "--epsilon", [&shared](double epsilon) { shared.epsilon = epsilon; },
+          "ε ≥ 0 of every run, with the problem's measure or each of --formulations (see `mbsopt optimize --help`); "
+          "default: each problem's own")
+      ->check(CLI::NonNegativeNumber);
+}
+
+std::vector<RunChoice> sweepChoices(const SweepAxes& axes, const RunChoice& shared) {
+  std::vector<RunChoice> choices;
+  for (const std::string& formulation : axes.formulations)
+    for (const std::string& gradient : axes.gradients)
+      for (const std::string& optimizer : axes.optimizers) {
+        RunChoice choice = shared;
+        choice.optimizer = optimizer;
+        choice.gradient = gradient;
+        choice.formulation = formulation;
+        choices.push_back(choice);
+      }
+  return choices;
+}
+
+std::string formulationLabel(const RunChoice& c) {
+  std::string label = c.formulation.empty() ? "problem's formulation" : c.formulation;
+  if (c.epsilon.value_or(0.0) > 0.0) {
+    char epsilon[32];
+    std::snprintf(epsilon, sizeof epsilon, " ε=%g", *c.epsilon);
+    label += epsilon;
+  }
+  return label;
+}
+
+std::string runLabel(const RunChoice& c) { return c.optimizer + "/" + c.gradient + "/" + formulationLabel(c); }
+
+std::string runFileStem(const RunChoice& c) {
+  std::string name = c.optimizer + "-" + c.gradient + "-" + c.formulation;
+  if (c.epsilon.value_or(0.0) > 0.0) {
+    char epsilon[32];
+    std::snprintf(epsilon, sizeof epsilon, "-eps%g", *c.epsilon);
+    name += epsilon;
+  }
+  return name;
+}
+
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 const std::function<void(const IterationRecord&)>& on_iteration,
                                 std::shared_ptr<ThreadBudget> shared_threads) {
   OptimizationRun run;
-  run.choice = choice;
-  if (!choice.formulation.empty()) problem.design.transcription.measure = formulationMeasure(choice.formulation);
-  if (choice.epsilon) problem.design.transcription.tolerance = *choice.epsilon;
-  run.choice.formulation = formulationName(problem.design.transcription.measure);
-  run.choice.epsilon = problem.design.transcription.tolerance;
-  if (run.choice.gradient == "fd") run.choice.gradient = "fd_central";
+  run.choice = resolvedChoice(problem, choice);
+  problem.design.transcription.measure = formulationMeasure(run.choice.formulation);
+  problem.design.transcription.tolerance = *run.choice.epsilon;
   DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
   if (choice.gradient_cost) {
     nlp.setGradientCost(*choice.gradient_cost);

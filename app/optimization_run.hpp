@@ -96,6 +96,33 @@ inline bool feasible(const OptimizationRun& run) {
   return std::all_of(run.verdicts.begin(), run.verdicts.end(), [](const ConstraintVerdict& v) { return v.met(); });
 }
 
+/// The combinations a sweep runs (`mbsopt compare`, `mbsopt benchmark`): formulations outermost,
+/// then gradient methods, then optimizers.
+struct SweepAxes {
+  std::vector<std::string> optimizers = optimizerNames();
+  std::vector<std::string> gradients{"adjoint"};
+  std::vector<std::string> formulations{""};  ///< "": the problem's own
+};
+
+/// Adds --optimizers, --gradients, --formulations and --epsilon (into `shared`) to a command.
+void addSweepOptions(CLI::App& command, SweepAxes& axes, RunChoice& shared);
+
+/// Every combination of the axes, in their order, each `shared` with its optimizer, gradient and formulation.
+std::vector<RunChoice> sweepChoices(const SweepAxes& axes, const RunChoice& shared);
+
+/// The formulation with its ε where ε > 0: "positive_part", "positive_part ε=1e-06"
+/// ("problem's formulation" before resolvedChoice).
+std::string formulationLabel(const RunChoice& choice);
+/// OPTIMIZER/GRADIENT/formulationLabel.
+std::string runLabel(const RunChoice& choice);
+
+/// The choice as it runs on `problem`: the problem's own formulation and ε where the choice names
+/// none, "fd" as fd_central. Throws std::invalid_argument for an unknown formulation.
+RunChoice resolvedChoice(const DesignProblem& problem, RunChoice choice);
+
+/// A resolved choice's file name without extension: OPTIMIZER-GRADIENT-FORMULATION[-epsE].
+std::string runFileStem(const RunChoice& choice);
+
 /// Runs `choice` on `problem` (its transcription replaced by the choice's formulation). With
 /// `shared_threads`, the threads its evaluations use beyond their own are borrowed from it while idle
 /// (runs at once lend theirs to one another; thread_budget.hpp).

@@ -16,6 +16,7 @@ packages=(
   coinor-libipopt-dev       # Ipopt 3.11
   gnuplot-nox               # plots
   pkg-config                # finds Ipopt
+  libopenmpi-dev openmpi-bin  # `mpirun -n N mbsopt benchmark` (the sweep over MPI ranks)
   libsimbody-dev            # the peer engine of bench/peer (scripts/peer_comparison.sh); optional for the build
   python3-scipy python3-mpmath  # hard-case references (scripts/hard_cases/make_references.py)
 )

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "optimizers/latin_hypercube.hpp"
 #include "optimizers/optimizer.hpp"
 #include "tests/analytic_problems.hpp"
 
@@ -311,6 +313,30 @@ TEST_P(EveryOptimizer, RefusesASettingItDoesNotKnowBeforeEvaluatingAnything) {
   options.settings = {{"no_such_setting", "1"}};
   EXPECT_THROW(minimize(GetParam(), problem, options), std::invalid_argument);
   EXPECT_TRUE(problem.calls.empty());
+}
+
+// A Latin hypercube: every point in the box, and each of the count equal strata of every variable
+// holding exactly one point; the same seed gives the same points, another seed other points.
+TEST(LatinHypercube, PutsOnePointInEveryStratumOfEveryVariable) {
+  const Eigen::VectorXd lower = test::values({-1.0, 0.0, 1e3}), upper = test::values({1.0, 0.5, 5e4});
+  const int count = 7;
+  const std::vector<Eigen::VectorXd> points = latinHypercube(lower, upper, count, 42);
+  ASSERT_EQ(points.size(), 7u);
+  for (Eigen::Index j = 0; j < lower.size(); ++j) {
+    std::set<int> strata;
+    for (const Eigen::VectorXd& p : points) {
+      EXPECT_GE(p[j], lower[j]);
+      EXPECT_LE(p[j], upper[j]);
+      strata.insert(static_cast<int>(std::floor(count * (p[j] - lower[j]) / (upper[j] - lower[j]))));
+    }
+    EXPECT_EQ(strata.size(), 7u) << "variable " << j;
+  }
+  const std::vector<Eigen::VectorXd> again = latinHypercube(lower, upper, count, 42), other = latinHypercube(lower, upper, count, 43);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    EXPECT_EQ(points[k], again[k]);
+    EXPECT_NE(points[k], other[k]);
+  }
+  EXPECT_THROW(latinHypercube(lower, test::values({1.0, 0.5, INFINITY}), count, 1), std::invalid_argument);
 }
 
 TEST(Optimizers, AnUnknownNameIsAnErrorThatListsTheKnownOnes) {
