@@ -77,7 +77,7 @@ BenchmarkPlan benchmarkPlan(const BenchmarkOptions& options) {
         const RunChoice choice = resolvedChoice(plan.problems[i].problem, unresolved);
         const std::string file =
             "runs/" + plan.problems[i].name + "/" + runFileStem(choice) + "-s" + std::to_string(start) + ".json";
-        plan.runs.push_back({i, start, choice, file});
+        plan.runs.push_back({i, start, choice, runLabel(unresolved), file});
       }
   return plan;
 }

@@ -39,6 +39,9 @@ struct BenchmarkRun {
   std::size_t problem = 0;  ///< into the problems
   int start = 0;
   RunChoice choice;         ///< resolved (resolvedChoice), its gradient_cost the sweep's
+  /// The solver the report compares: runLabel of the choice as the sweep names it, before it is
+  /// resolved ("sdcc/adjoint/problem's formulation" for each problem's own).
+  std::string solver;
   std::string file;         ///< relative to the output directory: runs/NAME/STEM-sK.json
 };
 

@@ -104,8 +104,7 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
   // The solvers in the plan's order, and each problem's best known optimum.
   std::vector<std::string> solvers;
   for (const BenchmarkRun& run : plan.runs)
-    if (std::find(solvers.begin(), solvers.end(), runLabel(run.choice)) == solvers.end())
-      solvers.push_back(runLabel(run.choice));
+    if (std::find(solvers.begin(), solvers.end(), run.solver) == solvers.end()) solvers.push_back(run.solver);
   std::vector<double> best(plan.problems.size(), kInfinity);
   std::vector<std::string> best_source(plan.problems.size(), "no feasible run");
   std::vector<std::string> cost_key(plan.problems.size());
@@ -128,7 +127,7 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
     return run.problem * static_cast<std::size_t>(options.starts) + static_cast<std::size_t>(run.start);
   };
   const auto solverOf = [&](const BenchmarkRun& run) {
-    return static_cast<std::size_t>(std::find(solvers.begin(), solvers.end(), runLabel(run.choice)) - solvers.begin());
+    return static_cast<std::size_t>(std::find(solvers.begin(), solvers.end(), run.solver) - solvers.begin());
   };
   std::vector<std::vector<std::vector<double>>> t(
       std::size(kProfileTolerances), std::vector<std::vector<double>>(instances, std::vector<double>(solvers.size(), kInfinity)));
@@ -173,16 +172,18 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
   for (std::size_t p = 0; p < plan.problems.size(); ++p) {
     const BenchmarkProblem& problem = plan.problems[p];
     md << "## " << problem.name << "\n\n" << cost_key[p] << ": best known " << number(best[p], "%.8g") << " ("
-       << best_source[p] << ")\n\n| solver | converged | feasible | best | median (feasible) | median sim.-eq. | "
-                            "solved τ=1e-3 |\n|---|---|---|---|---|---|---|\n";
+       << best_source[p] << ")\n\n| solver | formulation | converged | feasible | best | median (feasible) | "
+                            "median sim.-eq. | solved τ=1e-3 |\n|---|---|---|---|---|---|---|---|\n";
     std::vector<std::string> reasons;
     for (std::size_t s = 0; s < solvers.size(); ++s) {
       std::size_t converged = 0, feasible = 0, solved = 0, runs = 0;
       std::vector<double> costs, spent;
       double lowest = kInfinity;
+      std::string formulation;
       for (const Record& r : records) {
         if (r.run->problem != p || solverOf(*r.run) != s || r.json.is_null()) continue;
         ++runs;
+        formulation = formulationLabel(r.run->choice);
         const nlohmann::json& j = r.json;
         const std::string status = j["status"];
         converged += status == "converged";
@@ -206,7 +207,8 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
         for (std::size_t k = 0; k < 3; ++k) csv << ',' << number(t[k][instanceOf(*r.run)][s], "%.2f");
         csv << '\n';
       }
-      md << "| " << solvers[s] << " | " << converged << "/" << runs << " | " << feasible << "/" << runs << " | "
+      if (runs == 0) continue;
+      md << "| " << solvers[s] << " | " << formulation << " | " << converged << "/" << runs << " | " << feasible << "/" << runs << " | "
          << number(lowest, "%.8g") << " | " << number(median(costs), "%.8g") << " | " << number(median(spent), "%.0f")
          << " | " << solved << "/" << runs << " |\n";
     }

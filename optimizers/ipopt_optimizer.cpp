@@ -24,7 +24,6 @@ class ProblemAsTnlp : public Ipopt::TNLP {
   ProblemAsTnlp(EvaluationCache& cache, OptimizerResult& result) : cache_(cache), result_(result) {}
 
   std::string error;           ///< the last evaluation's failure, if any
-  Ipopt::SolverReturn status = Ipopt::UNASSIGNED;
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& index_style) override {
     n = static_cast<Index>(problem().variableCount());
@@ -77,11 +76,10 @@ class ProblemAsTnlp : public Ipopt::TNLP {
     });
   }
 
-  void finalize_solution(Ipopt::SolverReturn solver_status, Index, const Number*, const Number*, const Number*, Index,
+  /// The best point is the cache's (EvaluationCache::finish), the verdict OptimizeTNLP's return.
+  void finalize_solution(Ipopt::SolverReturn, Index, const Number*, const Number*, const Number*, Index,
                          const Number*, const Number*, Number, const Ipopt::IpoptData*,
-                         Ipopt::IpoptCalculatedQuantities*) override {
-    status = solver_status;
-  }
+                         Ipopt::IpoptCalculatedQuantities*) override {}
 
   bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number obj_value, Number inf_pr, Number, Number,
                              Number d_norm, Number, Number, Number, Index, const Ipopt::IpoptData*,
@@ -112,6 +110,32 @@ class ProblemAsTnlp : public Ipopt::TNLP {
   OptimizerResult& result_;
 };
 
+/// Ipopt's name of its return status (IpReturnCodes_inc.h).
+std::string returnStatusName(Ipopt::ApplicationReturnStatus code) {
+  switch (code) {
+    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed: return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option: return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
+    case Ipopt::Internal_Error: return "Internal_Error";
+  }
+  return "return status " + std::to_string(static_cast<int>(code));
+}
+
 /// Ipopt's return (EvaluationCache::review checks it).
 void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, OptimizerResult& result) {
   switch (code) {
@@ -126,8 +150,7 @@ void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, Optim
     default:
       result.status = OptimizerStatus::Failed;
   }
-  result.message = "Ipopt: return status " + std::to_string(static_cast<int>(code)) + ", solver status " +
-                   std::to_string(static_cast<int>(tnlp.status));
+  result.message = "Ipopt: " + returnStatusName(code) + " (" + std::to_string(static_cast<int>(code)) + ")";
   if (!tnlp.error.empty()) result.message += "; last failed evaluation: " + tnlp.error;
 }
 
