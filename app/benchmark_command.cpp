@@ -1,6 +1,7 @@
 #include "app/benchmark_command.hpp"
 
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -42,7 +43,8 @@ void benchmark(const BenchmarkOptions& options) {
   }
   if (mpi) costs = mpi->broadcast(costs);
   setGradientCosts(nlohmann::json::parse(costs), plan);
-  // The runs left: all but those an earlier sweep finished; Ipopt's first, as they take turns here.
+  // The runs left: all but those an earlier sweep finished; Ipopt's first (over MPI each rank is a
+  // process of its own, and the longest runs are best started first).
   std::vector<std::size_t> todo;
   if (root)
     for (std::size_t i = 0; i < plan.runs.size(); ++i)
@@ -69,13 +71,32 @@ void benchmark(const BenchmarkOptions& options) {
         [&](std::size_t i, const std::string& text) { store(i, nlohmann::json::parse(text)); });
   } else {
     // As `mbsopt compare`: each run on its own thread, the idle ones lent to the gradients of the
-    // runs still going; the records do not depend on --jobs.
+    // runs still going; the records do not depend on --jobs. Runs that take turns in a process
+    // (Ipopt's) go to one thread at a time: a thread takes one when none is running, else any other
+    // run, and only when nothing else is left waits for its turn.
     const auto idle_threads = std::make_shared<ThreadBudget>();
-    std::mutex output;
-    runInParallel(todo.size(), options.jobs, [&](std::size_t k) {
-      const nlohmann::json record = executeRun(options, plan, plan.runs[todo[k]], idle_threads);
+    std::mutex lock_queue, output;
+    std::deque<std::size_t> in_turn, free_runs;
+    for (const std::size_t i : todo) (runsOneAtATime(plan.runs[i].choice.optimizer) ? in_turn : free_runs).push_back(i);
+    int turns_running = 0;
+    runInParallel(todo.size(), options.jobs, [&](std::size_t) {
+      std::size_t i = 0;
+      bool takes_turn = false;
+      {
+        const std::scoped_lock lock(lock_queue);
+        takes_turn = !in_turn.empty() && (turns_running == 0 || free_runs.empty());
+        std::deque<std::size_t>& queue = takes_turn ? in_turn : free_runs;
+        i = queue.front();
+        queue.pop_front();
+        turns_running += takes_turn;
+      }
+      const nlohmann::json record = executeRun(options, plan, plan.runs[i], idle_threads);
+      {
+        const std::scoped_lock lock(lock_queue);
+        turns_running -= takes_turn;
+      }
       const std::scoped_lock lock(output);
-      store(todo[k], record);
+      store(i, record);
     }, idle_threads.get());
   }
   if (!root) return;

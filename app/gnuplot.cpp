@@ -39,6 +39,7 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
       for (const PlotSeries& series : panel.series) {
         out << "# " << series.title << '\n';
         for (const auto& [x, y] : series.points) out << x << ' ' << y << '\n';
+        if (series.points.empty()) out << "NaN NaN\n";  // a block all the same: gnuplot's index counts only blocks with lines
         out << "\n\n";
       }
   });
@@ -61,11 +62,16 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
       if (std::isnan(panel.y_max)) out << '*';
       else out << panel.y_max;
       out << "]\n";
-      out << "plot ";
+      // An empty series is left out of the plot, and each series keeps its line type: the n-th of
+      // every panel has the same colour whichever are empty.
+      std::string plots;
       for (std::size_t s = 0; s < panel.series.size(); ++s, ++block)
-        out << (s ? ", " : "") << quoted(std::filesystem::path(data).filename().string()) << " index " << block
-            << (panel.markers ? " with linespoints" : " with lines") << " title " << quoted(panel.series[s].title);
-      out << '\n';
+        if (!panel.series[s].points.empty())
+          plots += (plots.empty() ? "" : ", ") + quoted(std::filesystem::path(data).filename().string()) + " index " +
+                   std::to_string(block) + (panel.markers ? " with linespoints" : " with lines") + " lt " +
+                   std::to_string(s + 1) + " title " + quoted(panel.series[s].title);
+      if (plots.empty()) out << "set label 1 'no data' at graph 0.5, 0.5 center\nplot [0:1] NaN notitle\nunset label 1\n";
+      else out << "plot " << plots << '\n';
     }
     out << "unset multiplot\n";
   });
