@@ -8,8 +8,8 @@
 // optimizer's terms (max violation ≤ the optimizers' feasibility tolerance) with the cost's own
 // functional f ≤ f_L + τ |f_L|, and the run ends feasible in the problem's own units; its cost is
 // the simulation-equivalents spent by then. f_L is the best known optimum: the problem's reference
-// (NAME.reference.json beside its file), or the best feasible final cost of any run where that is
-// lower or there is none. Moré and Wild (2009) measure f(x₀) − f ≤ (1 − τ)(f(x₀) − f_L) instead; with
+// (NAME.reference.json beside its file), or where there is none the best feasible final cost of any
+// run (docs/benchmarking.md). Moré and Wild (2009) measure f(x₀) − f ≤ (1 − τ)(f(x₀) − f_L) instead; with
 // constraints the start may be infeasible and its cost below f_L, which that test cannot take.
 #pragma once
 
