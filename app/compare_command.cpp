@@ -90,7 +90,8 @@ std::string csvTable(const std::vector<OptimizationRun>& runs, const std::string
 /// Cost and max violation against simulations: one row of two panels per (formulation, gradient),
 /// one curve per optimizer, in the same colour in every row. A violation of exactly zero is drawn at
 /// 1e-12 so that the logarithmic axis can show it (the axis label says so); costs above the start's
-/// are cut off, so that an excursion of b_{k+1} does not flatten the rest.
+/// (the cost's own functional at the start, the same point for every run) are cut off, so that an
+/// excursion does not flatten the rest.
 void plotConvergence(const std::string& stem, const std::string& problem, const std::vector<OptimizationRun>& runs) {
   std::vector<PlotPanel> panels;
   for (std::size_t first = 0; first < runs.size();) {
@@ -99,7 +100,7 @@ void plotConvergence(const std::string& stem, const std::string& problem, const 
     double start_cost = 0.0;
     for (; first < runs.size() && formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient == group; ++first) {
       titled.emplace_back(runs[first].choice.optimizer, &runs[first]);
-      if (!runs[first].result.history.empty()) start_cost = std::max(start_cost, runs[first].result.history.front().cost);
+      start_cost = std::max(start_cost, runs[first].initial_cost);
     }
     std::vector<PlotPanel> row = convergencePanels(titled, true);
     for (PlotPanel& panel : row) panel.title = group;

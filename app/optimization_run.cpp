@@ -255,10 +255,12 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   if (run.result.status == OptimizerStatus::Converged && !feasible(run)) {
     const auto unmet = std::find_if(run.verdicts.begin(), run.verdicts.end(), [](const ConstraintVerdict& v) { return !v.met(); });
     run.result.status = OptimizerStatus::Failed;
-    run.result.message += "; its own test passed, but " + unmet->name + " = " + shortNumber(unmet->value) + " " +
-                          unmet->unit + " is beyond its " + (unmet->equality ? "target " : "bound ") +
-                          shortNumber(unmet->bound) + " by more than " + shortNumber(unmet->tolerance) +
-                          " (the formulation's transcription is not the constraint)";
+    std::ostringstream why;
+    why << "; its own test passed, but " << unmet->name << " = " << std::setprecision(8) << unmet->value << ' '
+        << unmet->unit << " is " << shortNumber(unmet->excess) << " beyond its " << (unmet->equality ? "target " : "bound ")
+        << shortNumber(unmet->bound) << ", more than its tolerance " << shortNumber(unmet->tolerance)
+        << " (the formulation's transcription is not the constraint)";
+    run.result.message += why.str();
   }
   // The cost's history in the load case where the final design's cost is largest (the only one without cases).
   std::size_t worst = 0;

@@ -239,5 +239,31 @@ design:
   EXPECT_FALSE(r["feasible"].get<bool>());
 }
 
+// A run is "converged" only where every constraint is met in its own units. On the oscillator
+// x = cos(√k t) over [0, 1 s], minimising the RMS of x pushes k up against min x ≥ −0.5, which the
+// grid's last point decides: cos(ω_h · 1 s) = −0.5 with the trapezoidal rule's frequency
+// ω_h = (2/h) atan(ωh/2) = ω(1 − ω²h²/12 + …), so k* = (2π/3)² (1 + (2π/3)² h²/6) = 4.386493. The
+// KS aggregate over the time mean under-estimates the extreme: SLSQP's own test passes at a point
+// where min x is far below −0.5, and the run is a failure that says which constraint and by how much.
+TEST(OptimizeCommand, AConvergedRunThatBreaksALimitInItsOwnUnitsFails) {
+  const std::string text = std::string(test::kOscillator) + R"(design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: rms}
+  artificial: {initial: 1, lower: -2, upper: 2}
+  constraints:
+    - {sensor: position, of: min, bound: -0.5}
+)";
+  const nlohmann::json grid = optimizeScene("grid", text, "--set spring.k=2 --optimizer slsqp --formulation grid_max");
+  EXPECT_EQ(grid["status"], "converged") << grid["message"];
+  EXPECT_TRUE(grid["feasible"].get<bool>());
+  EXPECT_NEAR(grid["design"][0].get<double>(), 4.386493, 1e-5 * 4.386493);
+  const nlohmann::json ks = optimizeScene("ks", text, "--set spring.k=2 --optimizer slsqp --formulation ks");
+  EXPECT_EQ(ks["status"], "failed");
+  EXPECT_FALSE(ks["feasible"].get<bool>());
+  EXPECT_GT(ks["constraints"][0]["excess"].get<double>(), 100 * ks["constraints"][0]["tolerance"].get<double>());
+  const std::string message = ks["message"];
+  EXPECT_NE(message.find("its own test passed, but position_min = "), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace mbsopt
