@@ -48,6 +48,10 @@ std::string derivativeUnit(Derivative d, bool angular) {
 
 }  // namespace
 
+std::string measureUnit(const Model& model, const Sensor& sensor, ResponseMeasure of) {
+  return sensorUnit(model, sensor) + (of == ResponseMeasure::Integral ? "·s" : "");
+}
+
 bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngleSensor>(sensor.kind); }
 
 double inUnits(const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; }
@@ -80,7 +84,7 @@ std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, 
       const double unit = inUnits(sensor, 1.0);  // SI → the reported unit
       ConstraintVerdict v;
       v.name = c.sensor + "_" + measureName(c.of) + (problem.load_cases.empty() ? "" : "_" + problem.load_cases[k].name);
-      v.unit = sensorUnit(model, sensor) + (c.of == ResponseMeasure::Integral ? "·s" : "");
+      v.unit = measureUnit(model, sensor, c.of);
       const double value = functionalValue(c.of, trajectory.time, trajectory.sensors.col(index));
       const double excess = c.equality ? std::abs(value - c.bound)
                             : c.of == ResponseMeasure::Min ? c.bound - value

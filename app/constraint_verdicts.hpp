@@ -30,6 +30,9 @@ std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, 
 /// The unit of a sensor's value as the verdicts and reports give it ("m", "rad/s", "deg", "N", …).
 std::string sensorUnit(const Model& model, const Sensor& sensor);
 
+/// The unit of a measure of a sensor as the reports give it: sensorUnit, times s for an integral.
+std::string measureUnit(const Model& model, const Sensor& sensor, ResponseMeasure of);
+
 /// Whether the reports give the sensor in degrees (a relative angle).
 bool isAngle(const Sensor& sensor);
 /// A sensor's SI value in the reports' unit: degrees for an angle, its own otherwise.

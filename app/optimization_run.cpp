@@ -249,6 +249,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
   const Model& model = nlp.problem().scene.model;
   const Sensor& sensor = model.sensors()[static_cast<std::size_t>(cost_sensor)];
+  run.cost_unit = measureUnit(model, sensor, nlp.problem().design.cost.of);
   for (const IterationRecord& h : run.result.history) run.iterate_costs.push_back(inUnits(sensor, h.reported_cost));
   // An algorithm's own convergence test knows only the transcription: its "converged" stands only
   // where every constraint is met in its own units.
@@ -332,6 +333,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"mbsopt_version", MBSOPT_VERSION},
           {"command_line", commandLine()},
           {"variables", variables},
+          {"variables_unit", "SI (m, kg, s, N, rad) of each parameter"},
           {"artificial_variable", {{"start", run.artificial.initial}, {"lower", run.artificial.lower},
                                    {"upper", run.artificial.upper}, {"scale", run.artificial.scale},
                                    {"final", r.cost}}},
@@ -356,7 +358,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"feasible", feasible(run)},
           {"initial_cost", run.initial_cost},
           {"cost", r.cost},
-          {"cost_functional", {{"name", run.cost_response}, {"start", run.initial_cost},
+          {"cost_functional", {{"name", run.cost_response}, {"unit", run.cost_unit}, {"start", run.initial_cost},
                                {"final", run.responses[run.cost_response]}}},
           {"reported_iterate", {{"iteration", run.reported_iteration < 0 ? nlohmann::json(nullptr)
                                                                          : nlohmann::json(run.reported_iteration)},

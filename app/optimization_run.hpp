@@ -76,6 +76,7 @@ struct OptimizationRun {
   /// Every constraint judged at the final design in its own units, whatever the formulation.
   std::vector<ConstraintVerdict> verdicts;
   std::string cost_sensor;     ///< the cost's sensor
+  std::string cost_unit;       ///< the unit of cost_response (sensorUnit; ·s for an integral)
   double initial_cost = 0.0;   ///< the cost's functional (cost_response) at the start
   double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
   /// The optimizer's evaluations (simulations and gradients) in simulations as timed: their thread

@@ -159,13 +159,13 @@ void registerOptimizeCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, lower, "
-                      "upper, scale, start, final}] (SI), artificial_variable{start, lower, upper, scale, final}, "
+                      "upper, scale, start, final}] (SI), variables_unit, artificial_variable{start, lower, upper, scale, final}, "
                       "budget{simulation_equivalents, wall_time_s (the limits, null: none), gradient_cost, gradient_cost_source, "
                       "spent, unit, max_iterations, max_iterations_counts}, settings, optimizer, gradient, formulation, epsilon, status, "
                       "message, design (SI), responses, constraints[{name, unit, value, bound | equals, excess, tolerance, met}] "
                       "(each constraint judged at the final design in its own units: angles in degrees; the "
                       "tolerance is its own or 1e-4 |bound|, at least 1e-6 in SI units), feasible (all met), initial_cost, cost (b_{k+1}), cost_functional{name, "
-                      "start, final} (the cost sensor's own functional), reported_iterate{iteration, rule} (the "
+                      "unit, start, final} (the cost sensor's own functional), reported_iterate{iteration, rule} (the "
                       "history's record of the reported design), max_violation, iterations, simulations, "
                       "gradient_evaluations, simulation_equivalents (the budget's count), thread_time_simulations (the "
                       "evaluations' thread time, each one's wall time times the threads it held, over one simulation's, "

@@ -34,8 +34,10 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
   std::ifstream(json) >> r;
   for (const char* key : {"problem", "optimizer", "gradient", "formulation", "status", "design", "responses", "cost",
                           "max_violation", "iterations", "simulations", "gradient_evaluations", "simulation_equivalents",
-                          "wall_time_s", "history"})
+                          "thread_time_simulations", "wall_time_s", "history", "variables", "variables_unit", "budget",
+                          "cost_functional", "constraints", "reported_iterate"})
     EXPECT_TRUE(r.contains(key)) << key;
+  EXPECT_EQ(r["cost_functional"]["unit"], "m/s²");  // the cost's sensor: the tip's acceleration
   EXPECT_EQ(r["optimizer"], "slsqp");
   EXPECT_EQ(r["gradient"], "adjoint");
   const DesignProblem problem = loadDesignProblem({"chain.yaml", test::kOpenChainProblem});
