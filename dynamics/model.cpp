@@ -275,7 +275,7 @@ FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Ei
   checkNewName(name);  // (before its parameters are added: a refused offset leaves none behind)
   checkFrame(parent, name);
   const ParameterVector3 parameters = addParameters(name + ".translation.", {"x", "y", "z"}, translation);
-  return addElement(name, parent, Offset{rotation, parameters, rotation != Eigen::Matrix3d::Identity()}, false);
+  return addElement(name, parent, Offset{rotation, parameters, rotation != Eigen::Matrix3d::Identity(), std::nullopt}, false);
 }
 
 FrameIndex Model::addOffset(const std::string& name, FrameIndex parent, const Eigen::Vector3d& translation,

@@ -146,7 +146,10 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   // beside the cost's): a repeated name gets its rank, "travel_above_2".
   std::map<std::string, int> seen;
   for (ConstraintFunctional& f : functionals)
-    if (const int rank = ++seen[f.name]; rank > 1) f.name += "_" + std::to_string(rank);
+    if (const int rank = ++seen[f.name]; rank > 1) {
+      f.name += '_';
+      f.name += std::to_string(rank);
+    }
   return functionals;
 }
 

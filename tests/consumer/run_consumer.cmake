@@ -1,0 +1,20 @@
+# ctest's driver of tests/consumer: cmake -DBUILD=<mbsopt build tree> -DPREFIX=<scratch directory>
+#   -DSOURCE=<tests/consumer> -DCXX=<compiler> -DFLAGS=<CMAKE_CXX_FLAGS> -DLINKER_FLAGS=<...> -P run_consumer.cmake
+# Installs BUILD into PREFIX/install (fresh), configures SOURCE against it with the compiler and the
+# flags given (the build's own CMAKE_CXX_FLAGS: empty in Release, the sanitizers' in the sanitizer
+# build; never -march=native, which the libraries' directory adds for themselves), builds, runs.
+function(run step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  message("${output}")
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${step} failed (${result})")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE ${PREFIX})
+run("install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${PREFIX}/install)
+run("configure" ${CMAKE_COMMAND} -S ${SOURCE} -B ${PREFIX}/build -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_PREFIX_PATH=${PREFIX}/install -DCMAKE_CXX_COMPILER=${CXX} "-DCMAKE_CXX_FLAGS=${FLAGS}"
+    "-DCMAKE_EXE_LINKER_FLAGS=${LINKER_FLAGS}")
+run("build" ${CMAKE_COMMAND} --build ${PREFIX}/build)
+run("run" ${PREFIX}/build/consumer)
