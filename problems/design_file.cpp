@@ -76,7 +76,9 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   for (const YamlNode& node : readList(context, design.node()["constraints"], "design.constraints")) {
     const MapReader c(context, node, "design constraint");
     c.allowKeys({"sensor", "of", "bound", "equals", "tolerance"});
-    ResponseConstraint constraint{readSensor(c, model), readMeasure(c, {"max_abs", "max", "min", "integral", "final", "rms"})};
+    ResponseConstraint constraint;
+    constraint.sensor = readSensor(c, model);
+    constraint.of = readMeasure(c, {"max_abs", "max", "min", "integral", "final", "rms"});
     constraint.equality = c.has("equals");
     if (constraint.equality && c.has("bound")) c.fail("equals", "a constraint has a bound or 'equals', not both");
     if (!constraint.equality && !c.has("bound")) c.fail("sensor", "a constraint needs a bound (or 'equals')");

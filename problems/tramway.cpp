@@ -105,7 +105,7 @@ Scene tramwayScene(const TramwayDesign& design, const TramwayOptions& options) {
 }
 
 DesignProblem tramwayDesignProblem(const TramwayDesign& design, const TramwayOptions& options) {
-  DesignProblem problem{tramwayScene(design, options), {}};
+  DesignProblem problem{tramwayScene(design, options), {}, {}};
   DesignDescription& d = problem.design;
   // Scales of 100 kN·m/rad and 10 kN·m·s/rad put every variable between 0.5 and 10, like b5 (README:
   // in kN units, 50 to 1000 beside b5 ≈ 2, SLSQP's identity start of its BFGS Hessian stalls it).
@@ -114,7 +114,8 @@ DesignProblem tramwayDesignProblem(const TramwayDesign& design, const TramwayOpt
   d.cost = {"a_lat", ResponseMeasure::MaxAbs};
   d.artificial = {3.0, 0.0, 10.0, 1.0};
   const double ten_degrees = 10.0 / 180.0 * std::numbers::pi;
-  d.constraints = {{"yaw_front", ResponseMeasure::MaxAbs, ten_degrees}, {"yaw_rear", ResponseMeasure::MaxAbs, ten_degrees}};
+  d.constraints = {{"yaw_front", ResponseMeasure::MaxAbs, ten_degrees, false, std::nullopt},
+                   {"yaw_rear", ResponseMeasure::MaxAbs, ten_degrees, false, std::nullopt}};
   return problem;
 }
 

@@ -17,6 +17,8 @@ packages=(
   gnuplot-nox               # plots
   pkg-config                # finds Ipopt
   libopenmpi-dev openmpi-bin  # `mpirun -n N mbsopt benchmark` (the sweep over MPI ranks)
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/)
+  python3-matplotlib        # its example, python/examples/tramway_comparison.py
   libsimbody-dev            # the peer engine of bench/peer (scripts/peer_comparison.sh); optional for the build
   python3-scipy python3-mpmath  # hard-case references (scripts/hard_cases/make_references.py)
 )

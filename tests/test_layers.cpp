@@ -36,9 +36,10 @@ TEST(Layers, EveryIncludePointsDownwards) {
       std::string line;
       for (int number = 1; std::getline(in, line); ++number) {
         std::smatch match;
-        if (std::regex_search(line, match, project_include))
+        if (std::regex_search(line, match, project_include)) {
           EXPECT_TRUE(allowed.count(match[1].str()))
               << entry.path().string() << ":" << number << ": " << folder << "/ includes " << match[1].str() << "/";
+        }
       }
     }
   }

@@ -1,0 +1,83 @@
+"""The Python module against the command line on the same problems (run by ctest with the module's
+directory on PYTHONPATH and MBSOPT_EXECUTABLE naming the program): the same records, trajectories
+and errors, and exact gradients that agree with each other."""
+import csv
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy
+
+import mbsopt
+
+EXECUTABLE = os.environ["MBSOPT_EXECUTABLE"]
+
+
+def command(*arguments):
+    return subprocess.run([EXECUTABLE, *arguments], capture_output=True, text=True)
+
+
+class ModuleAgainstTheCommandLine(unittest.TestCase):
+    def test_optimize_gives_the_record_of_mbsopt_optimize(self):
+        # The same run in both (the results do not depend on the gradients' threads): the same
+        # designs, status and history to the bit; the tramway's optimum, 2.18936 m/s².
+        record = mbsopt.optimize("tramway", optimizer="sdcc", gradient="adjoint", jobs=1)
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "result.json")
+            self.assertEqual(command("optimize", "tramway", "--jobs", "1", "--json", path).returncode, 0)
+            with open(path) as f:
+                expected = json.load(f)
+        for key in ("status", "design", "cost", "responses", "constraints", "feasible", "simulations",
+                    "gradient_evaluations", "iterations", "cost_functional", "variables"):
+            self.assertEqual(record[key], expected[key], key)
+        self.assertEqual([h["design"] for h in record["history"]], [h["design"] for h in expected["history"]])
+        self.assertAlmostEqual(record["cost_functional"]["final"], 2.18936, delta=5e-6)
+
+    def test_simulate_gives_the_trajectory_of_mbsopt_simulate(self):
+        trajectory = mbsopt.simulate("pendulum", set={"settings.end_time": 1})
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "pendulum.csv")
+            result = command("simulate", "pendulum", "--set", "settings.end_time=1", "--out", path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(path, newline="") as f:
+                rows = list(csv.reader(f))
+        header, values = rows[0], numpy.array(rows[1:], dtype=float)
+        self.assertEqual(header, ["t", *trajectory["coordinates"], *trajectory["sensor_names"]])
+        columns = numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]])
+        self.assertEqual(columns.shape, values.shape)
+        # The CSV prints 17 significant digits: it reads back to the same doubles.
+        numpy.testing.assert_array_equal(columns, values)
+
+    def test_parameters_and_overrides(self):
+        self.assertEqual(mbsopt.parameters("tramway")["front_secondary.k"], 246000.0)
+        self.assertEqual(mbsopt.parameters("tramway", set={"front_secondary.k": 1.5e5})["front_secondary.k"], 1.5e5)
+
+    def test_errors_are_exceptions_with_the_command_lines_words(self):
+        result = command("simulate", "no_such_scene")
+        self.assertEqual(result.returncode, 1)
+        with self.assertRaises(Exception) as raised:
+            mbsopt.simulate("no_such_scene")
+        self.assertIn(str(raised.exception), result.stderr)
+        with self.assertRaises(ValueError):
+            mbsopt.optimize("tramway", optimizer="bfgs")
+
+
+class Gradients(unittest.TestCase):
+    def test_adjoint_and_direct_agree_on_the_tramway(self):
+        # Two independent exact methods: equal to round-off (1e-10 of the largest entry).
+        design = [2.0e5, 1.0e5, 3.0e4, 2.0e4]
+        adjoint = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="adjoint")
+        direct = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="direct")
+        self.assertEqual(adjoint["variables"][-1], "b_{k+1}")
+        self.assertEqual(adjoint["constraint_jacobian"].shape, (len(adjoint["constraint_names"]), 5))
+        scale = numpy.abs(direct["constraint_jacobian"]).max()
+        self.assertGreater(scale, 0.0)
+        numpy.testing.assert_allclose(adjoint["constraint_jacobian"], direct["constraint_jacobian"], rtol=0,
+                                      atol=1e-10 * scale)
+        numpy.testing.assert_array_equal(adjoint["constraints"], direct["constraints"])
+
+
+if __name__ == "__main__":
+    unittest.main()
