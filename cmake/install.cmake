@@ -9,7 +9,7 @@ target_link_libraries(mbsopt_all INTERFACE mbsopt_problems mbsopt_optimizers mbs
 set_target_properties(mbsopt_all PROPERTIES EXPORT_NAME mbsopt)
 add_library(mbsopt::mbsopt ALIAS mbsopt_all)
 
-install(TARGETS mbsopt_dynamics mbsopt_sensitivity mbsopt_optimizers mbsopt_problems mbsopt_all
+install(TARGETS mbsopt_eigen mbsopt_dynamics mbsopt_sensitivity mbsopt_optimizers mbsopt_problems mbsopt_all
         EXPORT mbsoptTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
