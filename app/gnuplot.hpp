@@ -1,4 +1,4 @@
-// Plots drawn by gnuplot (DESIGN.md §6: a real plotting tool): the data and the script are written
+// Plots drawn by gnuplot (docs/design.md §6: a real plotting tool): the data and the script are written
 // beside the PNG, so that a figure can be redrawn or restyled without rerunning anything.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The immutable description of a mechanism (the "model" of the model/workspace split, DESIGN.md §2):
+// The immutable description of a mechanism (the "model" of the model/workspace split, docs/design.md §2):
 // frames linked by kinetostatic elements in chains from the ground (paper §4.1), bodies, force
 // elements with named parameters, drivers, cut joints closing loops (§4.4) and sensors.
 #pragma once

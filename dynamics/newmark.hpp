@@ -1,7 +1,7 @@
 // Implicit Newmark integration in residual form (paper §4.3, (26)-(33)) with Newton iterations on
 // the accelerations at t + h, and closed loops through the SVD partition (41)-(48).
 //
-// Per step (DESIGN.md §3): unknowns q̈ₙ₊₁ (free coordinates) and λₙ₊₁, with
+// Per step (docs/design.md §3): unknowns q̈ₙ₊₁ (free coordinates) and λₙ₊₁, with
 //     qₙ₊₁ = q̃ + βh² q̈ₙ₊₁,   q̃ = qₙ + h q̇ₙ + (½ − β) h² q̈ₙ                         (32)
 //     q̇ₙ₊₁ = ṽ + γh q̈ₙ₊₁,    ṽ = q̇ₙ + (1 − γ) h q̈ₙ
 //     f(q̈ₙ₊₁, q̇ₙ₊₁, qₙ₊₁, tₙ₊₁) + Bᵀλₙ₊₁ = 0                                         (37)

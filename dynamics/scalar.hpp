@@ -1,4 +1,4 @@
-// Scalar types the recursions are instantiated for (DESIGN.md §2: templated on the scalar).
+// Scalar types the recursions are instantiated for (docs/design.md §2: templated on the scalar).
 #pragma once
 
 #include <Eigen/Core>

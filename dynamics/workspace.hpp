@@ -1,4 +1,4 @@
-// Mutable per-evaluation buffers (the "data" of the model/workspace split, DESIGN.md §2). One
+// Mutable per-evaluation buffers (the "data" of the model/workspace split, docs/design.md §2). One
 // workspace per thread: evaluations on separate workspaces may run in parallel.
 #pragma once
 

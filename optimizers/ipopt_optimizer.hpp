@@ -1,6 +1,6 @@
 // Ipopt (Debian's 3.11.9) behind the common interface: a TNLP over the NlpProblem with dense
 // constraint Jacobians and a limited-memory (L-BFGS) Hessian, the history from its
-// intermediate_callback (DESIGN.md §5). An "iteration" is one of Ipopt's own.
+// intermediate_callback (docs/design.md §5). An "iteration" is one of Ipopt's own.
 #pragma once
 
 #include "optimizers/optimizer.hpp"

@@ -1,5 +1,5 @@
 // NLopt's gradient-based local optimizers (Debian's 2.7.1): SLSQP, MMA, CCSAQ, behind the common
-// interface, with that version's traps handled (DESIGN.md §5, background notes): every stopping
+// interface, with that version's traps handled (docs/design.md §5): every stopping
 // criterion set (none is by default), ROUNDOFF_LIMITED and FORCED_STOP caught (the C++ API throws
 // them with x still holding the point), "success" re-checked for feasibility (SLSQP can claim it at
 // an infeasible point, nlopt#368, fixed only in 2.8), equality constraints refused cleanly by MMA

@@ -1,4 +1,4 @@
-// What every optimizer minimises (DESIGN.md §5): a smooth nonlinear program
+// What every optimizer minimises (docs/design.md §5): a smooth nonlinear program
 //   min f(x)  subject to  g(x) ≤ 0,  h(x) = 0,  lower ≤ x ≤ upper,
 // evaluated as one call that returns the values and, on request, the gradients (for the design
 // problems one call is one simulation, plus one gradient computation). The shape of Ipopt's TNLP

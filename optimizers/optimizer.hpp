@@ -1,4 +1,4 @@
-// One interface over every optimizer (DESIGN.md §5): minimize(name, problem, options) returns the
+// One interface over every optimizer (docs/design.md §5): minimize(name, problem, options) returns the
 // same record whichever algorithm ran, with a per-iteration history, and counts evaluations the way
 // the design problems pay for them (value evaluations = simulations, gradient evaluations).
 #pragma once

@@ -1,4 +1,4 @@
-// A design problem as the optimizers see it (DESIGN.md §5): min b_{k+1} over the scaled design
+// A design problem as the optimizers see it (docs/design.md §5): min b_{k+1} over the scaled design
 // variables and b_{k+1}, subject to every transcribed constraint ≤ 0 (= 0 for an equality, after
 // the inequalities) and the variables' bounds, with the gradients of the named method. One value
 // evaluation is one simulation. The adapter between the two layers below, which know nothing of

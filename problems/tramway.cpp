@@ -9,7 +9,7 @@ namespace mbsopt {
 
 namespace {
 
-// Vehicle data of the spec (shared/specs/tramway.md). In the yaw plane only I_zz acts; the other
+// Vehicle data of the spec (docs/tramway.md). In the yaw plane only I_zz acts; the other
 // principal moments are set equal to it so the tensor is a valid one.
 constexpr double kBogieMass = 4500.0, kBogieYawInertia = 3500.0;
 constexpr double kCarbodyMass = 12000.0, kCarbodyYawInertia = 1.0e5;

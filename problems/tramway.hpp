@@ -1,4 +1,4 @@
-// The paper's example (§6) as fixed by shared/specs/tramway.md: a two-carbody tram on two bogies,
+// The paper's example (§6) as fixed by docs/tramway.md: a two-carbody tram on two bogies,
 // yaw plane, through a 14 m curve at 3.7 m/s.
 #pragma once
 
@@ -58,7 +58,7 @@ Track tramwayTrack(const TramwayOptions& options = {});
 /// yaw_rear. Settings: h = 1 ms, 12 s.
 Scene tramwayScene(const TramwayDesign& design = {}, const TramwayOptions& options = {});
 
-/// The design problem of the spec (shared/specs/tramway.md, "Design problem"): b = (k_f, k_r, c_f,
+/// The design problem of the spec (docs/tramway.md, "Design problem"): b = (k_f, k_r, c_f,
 /// c_r) scaled to kN·m/rad and kN·m·s/rad, cost max |a_lat| through b5 (initially 3 m/s², bounds
 /// [0, 10]), |yaw_front|, |yaw_rear| ≤ 10°, the paper's ∫⟨φ⟩dt ≤ 0. The same as the `design:`
 /// section of problems/scenes/tramway.yaml.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build (Release), simulate the tramway of
-# shared/specs/tramway.md at the initial design b0 (tramway.csv), then optimise its yaw suspension
+# docs/tramway.md at the initial design b0 (tramway.csv), then optimise its yaw suspension
 # with the default optimizer, the paper's SDCC, on the paper's formulation ∫⟨φ⟩dt with adjoint
 # gradients (tramway-optimum/: result.json, history.png, response.png).
 set -euo pipefail

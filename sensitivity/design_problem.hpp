@@ -1,4 +1,4 @@
-// A design problem (DESIGN.md §4, paper §3): a scene, design variables that are named model
+// A design problem (docs/design.md §4, paper §3): a scene, design variables that are named model
 // parameters with bounds and scales, a cost and constraints on responses over time. The paper's
 // formulation is the default: the max-over-time cost becomes an artificial design variable
 // b_{k+1} (17)-(19), and every "max over t ≤ bound" a constraint on a time functional of

@@ -1,4 +1,4 @@
-// The `direct` gradient method (DESIGN.md §4): forward sensitivities S = d(q, q̇, q̈)/db carried
+// The `direct` gradient method (docs/design.md §4): forward sensitivities S = d(q, q̇, q̈)/db carried
 // through every Newmark step (32)-(33), one extra right-hand side per design variable per step,
 // then chained with the time functionals' sample gradients and the response Jacobians. The exact
 // derivative of the discrete map for open trees (steps 1-3 of "The discrete map" in

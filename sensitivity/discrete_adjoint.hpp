@@ -1,4 +1,4 @@
-// The `adjoint` gradient method (DESIGN.md §4, the default): the discrete adjoint of the Newmark
+// The `adjoint` gradient method (docs/design.md §4, the default): the discrete adjoint of the Newmark
 // steps, i.e. the transpose of the `direct` recursion swept backward in time. One sweep serves every
 // constraint (one adjoint row each) whatever the number of design variables, and gives the exact
 // gradient of the discretised functionals, closed loops included.

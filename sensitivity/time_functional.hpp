@@ -1,5 +1,5 @@
 // Time functionals: how a response history g(t_k) on the integrator's grid becomes one number
-// (paper (12)-(19), DESIGN.md §4), with its gradient with respect to every sample g_k, which each
+// (paper (12)-(19), docs/design.md §4), with its gradient with respect to every sample g_k, which each
 // gradient method chains with ∂g/∂(q, q̇, q̈, b).
 //
 // Integrals use the trapezoidal rule on the time grid: the quadrature of the trapezoidal Newmark

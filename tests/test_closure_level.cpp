@@ -1,4 +1,4 @@
-// The paper enforces loop closure at acceleration level (38); DESIGN.md §3 enforces it at position
+// The paper enforces loop closure at acceleration level (38); docs/design.md §3 enforces it at position
 // level and keeps (38) as an option for comparison. A point mass held on a circle by a loop (a
 // massless crank from the ground, closed by a spherical cut) shows the difference: with (38) only
 // b̈ = 0 holds, so the position error b carries the truncation errors of the motion; at position

@@ -1,4 +1,4 @@
-// Failures are reported, never hidden (DESIGN.md §3): the integrator stops with an error naming the
+// Failures are reported, never hidden (docs/design.md §3): the integrator stops with an error naming the
 // time, the step, the residual norm and the element involved.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Every optimizer behind the common interface on problems with known optima (DESIGN.md §5): it
+// Every optimizer behind the common interface on problems with known optima (docs/design.md §5): it
 // reaches the optimum within its tolerance, or says cleanly why it cannot (MMA and CCSAQ take no
 // equality constraints); it never calls an infeasible point converged; it pays once per point.
 #include <gtest/gtest.h>
