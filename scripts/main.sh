@@ -3,10 +3,14 @@
 # docs/tramway.md at the initial design b0 (tramway.csv), then optimise its yaw suspension
 # with the default optimizer, the paper's SDCC, on the paper's formulation ∫⟨φ⟩dt with adjoint
 # gradients (tramway-optimum/: result.json, history.png, response.png).
+# It also registers the Python module of the build tree with python3 for this user (a .pth file in
+# the user's site-packages naming build/release/python), so `python3 -c "import mbsopt"` works from
+# anywhere and follows every rebuild; `rm "$(python3 -m site --user-site)/mbsopt.pth"` undoes it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset release -DMBSOPT_BUILD_TESTS=OFF -DMBSOPT_BUILD_BENCH=OFF > /dev/null
 cmake --build --preset release -j "$(nproc)"
+scripts/register-python-module.sh
 build/release/app/mbsopt simulate tramway --out tramway.csv
 build/release/app/mbsopt optimize tramway --out tramway-optimum

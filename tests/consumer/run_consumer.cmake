@@ -1,5 +1,6 @@
 # ctest's driver of tests/consumer: cmake -DBUILD=<mbsopt build tree> -DPREFIX=<scratch directory>
-#   -DSOURCE=<tests/consumer> -DCXX=<compiler> -DFLAGS=<CMAKE_CXX_FLAGS> -DLINKER_FLAGS=<...> -P run_consumer.cmake
+#   -DSOURCE=<tests/consumer> -DCXX=<compiler> -DFLAGS=<CMAKE_CXX_FLAGS> -DLINKER_FLAGS=<...>
+#   [-DPYTHON=<interpreter> -DPYTHON_DIR=<MBSOPT_PYTHON_INSTALL_DIR>] -P run_consumer.cmake
 # Installs BUILD into PREFIX/install (fresh), configures SOURCE against it with the compiler and the
 # flags given (the build's own CMAKE_CXX_FLAGS: empty in Release, the sanitizers' in the sanitizer
 # build; never -march=native, which the libraries' directory adds for themselves), builds, runs.
@@ -18,3 +19,7 @@ run("configure" ${CMAKE_COMMAND} -S ${SOURCE} -B ${PREFIX}/build -DCMAKE_BUILD_T
     "-DCMAKE_EXE_LINKER_FLAGS=${LINKER_FLAGS}")
 run("build" ${CMAKE_COMMAND} --build ${PREFIX}/build)
 run("run" ${PREFIX}/build/consumer)
+if(DEFINED PYTHON)
+  run("import the installed module" ${CMAKE_COMMAND} -E env --unset=PYTHONPATH
+      ${PYTHON} ${SOURCE}/installed_module.py ${PREFIX}/install/${PYTHON_DIR})
+endif()

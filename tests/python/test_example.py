@@ -1,0 +1,36 @@
+"""python/examples/tramway_comparison.py, run as a user runs it (ctest gives the module's directory
+on PYTHONPATH and EXAMPLE naming the script): SDCC and SLSQP, two independent algorithms, both
+converge feasible on the paper's formulation of the tramway and agree on its optimum, and the
+figure is written."""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+EXAMPLE = os.environ["EXAMPLE"]
+
+
+class TramwayComparisonExample(unittest.TestCase):
+    def test_two_optimizers_reach_the_same_optimum_and_the_figure_is_written(self):
+        with tempfile.TemporaryDirectory() as directory:
+            figure = os.path.join(directory, "comparison.png")
+            run = subprocess.run([sys.executable, EXAMPLE, "--optimizers", "sdcc,slsqp",
+                                  "--formulations", "positive_part", "--out", figure],
+                                 capture_output=True, text=True, cwd=directory)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            with open(figure, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        rows = {line.split()[1]: line.split() for line in run.stdout.splitlines()
+                if line.startswith("positive_part")}
+        self.assertEqual(sorted(rows), ["sdcc", "slsqp"], run.stdout)
+        for optimizer, (_, _, status, cost, _, feasible) in rows.items():
+            self.assertEqual((status, feasible), ("converged", "yes"), optimizer)
+        # The yaw limits are met to 1e-4 of their bound (the verdicts' tolerance), so two feasible
+        # stationary points of one optimum may differ by that order relative in the cost.
+        sdcc, slsqp = (float(rows[name][3]) for name in ("sdcc", "slsqp"))
+        self.assertAlmostEqual(sdcc, slsqp, delta=1e-4 * sdcc)
+
+
+if __name__ == "__main__":
+    unittest.main()
