@@ -1,6 +1,6 @@
-// The Python module `mbsopt` (pybind11, numpy): scenes and design problems by name or file, as the
-// command line takes them, simulated, evaluated with gradients by any method, and optimised by any
-// optimizer, with the records the command line writes. C++ exceptions become Python's with the
+// The Python module `mbsopt` (pybind11, numpy): scenes and design problems (Scene, Problem), loaded
+// once by name or file as the command line takes them, simulated, evaluated with gradients by any
+// method, and optimised by any optimizer, with the records the command line writes. C++ exceptions become Python's with the
 // same messages (std::invalid_argument → ValueError, others → RuntimeError).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -49,95 +49,168 @@ py::array_t<double> array(const Eigen::VectorXd& v) {
 /// JSON as Python objects, through the json module (the records the command line writes).
 py::object pythonOf(const nlohmann::json& json) { return py::module_::import("json").attr("loads")(json.dump()); }
 
-py::dict simulate(const std::string& scene, const py::dict& set) {
-  const SceneSource source = resolveScene(scene);
-  const LoadedScene loaded = loadScene(source, overridesOf(source, set));
-  const Scene& s = loaded.scene;
-  const Trajectory t = NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0);
-  std::vector<std::string> coordinates, sensors;
-  for (const Coordinate& c : s.model.coordinates()) coordinates.push_back(c.name);
-  for (const Sensor& sensor : s.model.sensors()) sensors.push_back(sensor.name);
-  py::dict out;
-  out["time"] = array(t.time);
-  out["coordinates"] = coordinates;  // the columns of q, v and a
-  out["q"] = array(Eigen::MatrixXd(t.q.transpose()));
-  out["v"] = array(Eigen::MatrixXd(t.v.transpose()));
-  out["a"] = array(Eigen::MatrixXd(t.a.transpose()));
-  out["sensor_names"] = sensors;  // the columns of sensors
-  out["sensors"] = array(t.sensors);
-  out["newton_iterations"] = array(Eigen::VectorXd(t.newton_iterations.cast<double>()));
-  return out;
-}
+/// A scene loaded once, with its overrides: `mbsopt.Scene`. set() adds overrides and reloads it, so
+/// a value is checked, and settings (words) take effect, exactly as `--set` does on the command line.
+class PythonScene {
+ public:
+  PythonScene(const std::string& scene, const py::dict& set) : source_(resolveScene(scene)) { this->set(set); }
 
-py::dict parameters(const std::string& scene, const py::dict& set) {
-  const SceneSource source = resolveScene(scene);
-  const Model& model = loadScene(source, overridesOf(source, set)).scene.model;
-  py::dict out;
-  for (const std::string& name : model.parameterNames()) out[py::str(name)] = model.parameter(name);
-  return out;
-}
+  void set(const py::dict& values) {
+    for (ParameterOverride& o : overridesOf(source_, values)) overrides_.push_back(std::move(o));
+    loaded_ = loadScene(source_, overrides_);
+  }
 
-py::dict evaluate(const std::string& problem_name, const std::optional<std::vector<double>>& design,
-                  std::optional<double> artificial, const std::string& gradient, const py::dict& set) {
-  const SceneSource source = resolveScene(problem_name);
-  DesignNlp nlp(loadDesignProblem(source, overridesOf(source, set)), gradient == "fd" ? "fd_central" : gradient);
-  const DesignProblem& problem = nlp.problem();
-  Eigen::VectorXd x = nlp.start();
-  if (design) {
-    if (design->size() != problem.design.variables.size())
-      throw std::invalid_argument("evaluate: " + std::to_string(design->size()) + " design values for " +
-                                  std::to_string(problem.design.variables.size()) + " variables");
-    for (std::size_t i = 0; i < design->size(); ++i)
-      x[static_cast<Eigen::Index>(i)] = (*design)[i] / problem.design.variables[i].scale;
+  py::dict parameters() const {
+    const Model& model = loaded_.scene.model;
+    py::dict out;
+    for (const std::string& name : model.parameterNames()) out[py::str(name)] = model.parameter(name);
+    return out;
   }
-  if (artificial) x[x.size() - 1] = *artificial / problem.design.artificial.scale;
-  NlpEvaluation e;
-  nlp.evaluate(x, !gradient.empty(), e);
-  std::vector<std::string> variables, constraints;
-  for (const DesignVariable& v : problem.design.variables) variables.push_back(v.parameter);
-  variables.push_back("b_{k+1}");
-  for (Eigen::Index i = 0; i < e.constraints.size(); ++i) constraints.push_back(nlp.constraintName(i));
-  py::dict out;
-  out["variables"] = variables;  // the columns of the gradients: d/dx, x = value / scale
-  out["scales"] = [&] {
-    std::vector<double> s;
-    for (const DesignVariable& v : problem.design.variables) s.push_back(v.scale);
-    s.push_back(problem.design.artificial.scale);
-    return s;
-  }();
-  out["cost"] = e.cost;  // b_{k+1}
-  out["cost_functional"] = e.reported_cost;  // the cost sensor's own, SI
-  out["constraint_names"] = constraints;
-  out["constraints"] = array(e.constraints);
-  if (!gradient.empty()) {
-    out["cost_gradient"] = array(e.cost_gradient);
-    out["constraint_jacobian"] = array(e.constraint_jacobian);
-  }
-  return out;
-}
 
-py::object optimize(const std::string& problem_name, const std::string& optimizer, const std::string& gradient,
-                    const std::string& formulation, std::optional<double> epsilon, std::optional<double> budget,
-                    int max_iter, const py::dict& settings, const py::dict& set, int jobs) {
-  const SceneSource source = resolveScene(problem_name);
-  const DesignProblem problem = loadDesignProblem(source, overridesOf(source, set));
-  RunChoice choice;
-  choice.optimizer = optimizer;
-  choice.gradient = gradient;
-  choice.formulation = formulation;
-  choice.epsilon = epsilon;
-  if (budget) choice.budget.simulation_equivalents = *budget;
-  choice.max_iterations = max_iter;
-  choice.gradient_jobs = jobs;
-  for (const auto& [name, value] : settings)
-    choice.settings.push_back(std::string(py::str(name)) + "=" + std::string(py::str(value)));
-  OptimizationRun run;
-  {
-    const py::gil_scoped_release unlocked;  // a run takes seconds; other Python threads may go on
-    run = runOptimization(problem, choice, {});
+  std::vector<std::string> coordinates() const {
+    std::vector<std::string> out;
+    for (const Coordinate& c : loaded_.scene.model.coordinates()) out.push_back(c.name);
+    return out;
   }
-  return pythonOf(toJson(run, source.path));
-}
+
+  std::vector<std::string> sensorNames() const {
+    std::vector<std::string> out;
+    for (const Sensor& sensor : loaded_.scene.model.sensors()) out.push_back(sensor.name);
+    return out;
+  }
+
+  py::dict simulate() const {
+    const Scene& s = loaded_.scene;
+    Trajectory t;
+    {
+      const py::gil_scoped_release unlocked;
+      t = NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0);
+    }
+    py::dict out;
+    out["time"] = array(t.time);
+    out["coordinates"] = coordinates();  // the columns of q, v and a
+    out["q"] = array(Eigen::MatrixXd(t.q.transpose()));
+    out["v"] = array(Eigen::MatrixXd(t.v.transpose()));
+    out["a"] = array(Eigen::MatrixXd(t.a.transpose()));
+    out["sensor_names"] = sensorNames();  // the columns of sensors
+    out["sensors"] = array(t.sensors);
+    out["newton_iterations"] = array(Eigen::VectorXd(t.newton_iterations.cast<double>()));
+    return out;
+  }
+
+  const std::string& path() const { return source_.path; }
+  const std::vector<std::string>& warnings() const { return loaded_.warnings; }
+
+ private:
+  SceneSource source_;
+  std::vector<ParameterOverride> overrides_;
+  LoadedScene loaded_;
+};
+
+/// A design problem loaded once, with its gradient method: `mbsopt.Problem`. Its variables are
+/// given and returned in SI units; the gradients are with respect to x = value / scale, the
+/// variables the optimizers see.
+class PythonProblem {
+ public:
+  PythonProblem(const std::string& problem, const std::string& gradient, const py::dict& set, int jobs)
+      : source_(resolveScene(problem)),
+        nlp_(loadDesignProblem(source_, overridesOf(source_, set)), gradient == "fd" ? "fd_central" : gradient, 1e-6,
+             jobs),
+        gradient_(gradient),
+        jobs_(jobs) {}
+
+  std::vector<std::string> variables() const {
+    std::vector<std::string> out;
+    for (const DesignVariable& v : problem().design.variables) out.push_back(v.parameter);
+    out.push_back("b_{k+1}");
+    return out;
+  }
+
+  std::vector<double> scales() const {
+    std::vector<double> out;
+    for (const DesignVariable& v : problem().design.variables) out.push_back(v.scale);
+    out.push_back(problem().design.artificial.scale);
+    return out;
+  }
+
+  py::array_t<double> lower() const { return inSi(nlp_.lowerBounds()); }
+  py::array_t<double> upper() const { return inSi(nlp_.upperBounds()); }
+  py::array_t<double> start() const { return inSi(nlp_.start()); }
+
+  std::vector<std::string> constraintNames() const {
+    std::vector<std::string> out;
+    for (Eigen::Index i = 0; i < nlp_.inequalityCount() + nlp_.equalityCount(); ++i)
+      out.push_back(nlp_.constraintName(i));
+    return out;
+  }
+
+  py::dict evaluate(const std::optional<std::vector<double>>& design, std::optional<double> artificial,
+                    bool gradients) {
+    Eigen::VectorXd x = nlp_.start();
+    const std::vector<DesignVariable>& design_variables = problem().design.variables;
+    if (design) {
+      if (design->size() != design_variables.size())
+        throw std::invalid_argument("evaluate: " + std::to_string(design->size()) + " design values for " +
+                                    std::to_string(design_variables.size()) + " variables");
+      for (std::size_t i = 0; i < design->size(); ++i)
+        x[static_cast<Eigen::Index>(i)] = (*design)[i] / design_variables[i].scale;
+    }
+    if (artificial) x[x.size() - 1] = *artificial / problem().design.artificial.scale;
+    NlpEvaluation e;
+    {
+      const py::gil_scoped_release unlocked;
+      nlp_.evaluate(x, gradients, e);
+    }
+    py::dict out;
+    out["variables"] = variables();  // the columns of the gradients: d/dx, x = value / scale
+    out["scales"] = scales();
+    out["cost"] = e.cost;                      // b_{k+1}
+    out["cost_functional"] = e.reported_cost;  // the cost sensor's own, SI
+    out["constraint_names"] = constraintNames();
+    out["constraints"] = array(e.constraints);
+    if (gradients) {
+      out["cost_gradient"] = array(e.cost_gradient);
+      out["constraint_jacobian"] = array(e.constraint_jacobian);
+    }
+    return out;
+  }
+
+  py::object optimize(const std::string& optimizer, const std::string& formulation, std::optional<double> epsilon,
+                      std::optional<double> budget, int max_iter, const py::dict& settings) const {
+    RunChoice choice;
+    choice.optimizer = optimizer;
+    choice.gradient = gradient_;
+    choice.formulation = formulation;
+    choice.epsilon = epsilon;
+    if (budget) choice.budget.simulation_equivalents = *budget;
+    choice.max_iterations = max_iter;
+    choice.gradient_jobs = jobs_;
+    for (const auto& [name, value] : settings)
+      choice.settings.push_back(std::string(py::str(name)) + "=" + std::string(py::str(value)));
+    OptimizationRun run;
+    {
+      const py::gil_scoped_release unlocked;  // a run takes seconds; other Python threads may go on
+      run = runOptimization(problem(), choice, {});
+    }
+    return pythonOf(toJson(run, source_.path));
+  }
+
+  const DesignProblem& problem() const { return nlp_.problem(); }
+  const std::string& path() const { return source_.path; }
+  const std::string& gradient() const { return gradient_; }
+
+ private:
+  /// Scaled values (x) as SI ones, variable by variable.
+  py::array_t<double> inSi(const Eigen::VectorXd& x) const {
+    const std::vector<double> s = scales();
+    return array(Eigen::VectorXd(x.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(s.data(), x.size()))));
+  }
+
+  SceneSource source_;
+  DesignNlp nlp_;
+  std::string gradient_;
+  int jobs_;
+};
 
 }  // namespace
 }  // namespace mbsopt
@@ -146,23 +219,84 @@ PYBIND11_MODULE(mbsopt, m) {
   using namespace mbsopt;
   m.doc() = "mbsopt: simulation, exact design gradients and optimisation of multibody systems";
   m.attr("__version__") = MBSOPT_VERSION;
-  m.def("simulate", &simulate, py::arg("scene"), py::arg("set") = py::dict(),
-        "Simulates a scene (a built-in name or a YAML file) with its `set` overrides {name: value}: a dict "
-        "with time, coordinates, q, v, a (rows = time points), sensor_names, sensors, newton_iterations.");
-  m.def("parameters", &parameters, py::arg("scene"), py::arg("set") = py::dict(),
-        "Every model parameter of a scene by its dotted name, {name: value} (SI).");
   m.def("gradient_methods", [] { return gradientMethodNames(); }, "The gradient methods' names.");
   m.def("optimizers", [] { return optimizerNames(); }, "The optimizers' names.");
   m.def("formulations", [] { return formulationNames(); }, "The formulations' names.");
-  m.def("evaluate", &evaluate, py::arg("problem"), py::arg("design") = py::none(), py::arg("artificial") = py::none(),
-        py::arg("gradient") = "adjoint", py::arg("set") = py::dict(),
-        "A design problem at a design (SI values of its variables; default its start) and b_{k+1} (default its "
-        "start): cost (b_{k+1}), cost_functional, the transcribed constraints (each ≤ 0, equalities = 0) and, "
-        "unless gradient is '', their gradients by that method with respect to x = value / scale.");
-  m.def("optimize", &optimize, py::arg("problem"), py::arg("optimizer") = "sdcc", py::arg("gradient") = "adjoint",
-        py::arg("formulation") = "", py::arg("epsilon") = py::none(), py::arg("budget") = py::none(),
-        py::arg("max_iter") = 100, py::arg("settings") = py::dict(), py::arg("set") = py::dict(), py::arg("jobs") = 1,
-        "Runs an optimizer on a design problem: the record `mbsopt optimize --json` writes, as a dict (status, "
-        "message, design, responses, constraints, cost_functional, history, …). formulation '' is the "
-        "problem's own; budget in simulation-equivalents; settings {name: value} are the optimizer's own.");
+
+  py::class_<PythonScene>(m, "Scene",
+                          "A scene (a built-in name or a YAML file), loaded once, with overrides {name: value} as "
+                          "`mbsopt simulate --set` takes them.")
+      .def(py::init<const std::string&, const py::dict&>(), py::arg("scene"), py::arg("set") = py::dict())
+      .def("set", &PythonScene::set, py::arg("values"),
+           "Adds overrides {name: value} (model parameters, settings.*) and reloads the scene with all of them.")
+      .def("simulate", &PythonScene::simulate,
+           "Simulates: a dict with time, coordinates, q, v, a (rows = time points), sensor_names, sensors, "
+           "newton_iterations.")
+      .def_property_readonly("parameters", &PythonScene::parameters, "Every model parameter by its dotted name (SI).")
+      .def_property_readonly("coordinates", &PythonScene::coordinates, "The columns of q, v and a.")
+      .def_property_readonly("sensor_names", &PythonScene::sensorNames, "The columns of the sensors.")
+      .def_property_readonly("path", &PythonScene::path, "The file read, or builtin:NAME.")
+      .def_property_readonly("warnings", &PythonScene::warnings, "What loading changed (e.g. the initial state).")
+      .def("__repr__", [](const PythonScene& s) { return "mbsopt.Scene('" + s.path() + "')"; });
+
+  py::class_<PythonProblem>(
+      m, "Problem",
+      "A design problem (a built-in name or a YAML file with a design: section), loaded once, with the gradient "
+      "method of its evaluations and optimisations and its overrides {name: value}; jobs: the most threads a "
+      "gradient takes. Variables are in SI units; gradients are with respect to x = value / scale.")
+      .def(py::init<const std::string&, const std::string&, const py::dict&, int>(), py::arg("problem"),
+           py::arg("gradient") = "adjoint", py::arg("set") = py::dict(), py::arg("jobs") = 1)
+      .def("evaluate", &PythonProblem::evaluate, py::arg("design") = py::none(), py::arg("artificial") = py::none(),
+           py::arg("gradients") = true,
+           "The problem at a design (SI values of its variables; default its start) and b_{k+1} (default its "
+           "start): cost (b_{k+1}), cost_functional, the transcribed constraints (each <= 0, equalities = 0) "
+           "and, with gradients, cost_gradient and constraint_jacobian (columns: variables).")
+      .def("optimize", &PythonProblem::optimize, py::arg("optimizer") = "sdcc", py::arg("formulation") = "",
+           py::arg("epsilon") = py::none(), py::arg("budget") = py::none(), py::arg("max_iter") = 100,
+           py::arg("settings") = py::dict(),
+           "Runs an optimizer from the problem's start: the record `mbsopt optimize --json` writes, as a dict "
+           "(status, message, design, responses, constraints, cost_functional, history, ...). formulation '' "
+           "is the problem's own; budget in simulation-equivalents; settings {name: value} are the optimizer's.")
+      .def_property_readonly("variables", &PythonProblem::variables, "The design variables' parameters, then b_{k+1}.")
+      .def_property_readonly("scales", &PythonProblem::scales, "value = x * scale, per variable.")
+      .def_property_readonly("lower", &PythonProblem::lower,
+                             "The lower bounds (SI).")
+      .def_property_readonly("upper", &PythonProblem::upper,
+                             "The upper bounds (SI).")
+      .def_property_readonly("start", &PythonProblem::start,
+                             "The start (SI), b_{k+1} last.")
+      .def_property_readonly("constraint_names", &PythonProblem::constraintNames, "The transcribed constraints.")
+      .def_property_readonly("gradient", &PythonProblem::gradient, "The gradient method.")
+      .def_property_readonly("path", &PythonProblem::path, "The file read, or builtin:NAME.")
+      .def("__repr__", [](const PythonProblem& p) {
+        return "mbsopt.Problem('" + p.path() + "', gradient='" + p.gradient() + "')";
+      });
+
+  // One call each, for scripts that need one result: the classes' methods on a fresh object.
+  m.def("simulate", [](const std::string& scene, const py::dict& set) { return PythonScene(scene, set).simulate(); },
+        py::arg("scene"), py::arg("set") = py::dict(), "Scene(scene, set).simulate().");
+  m.def("parameters", [](const std::string& scene, const py::dict& set) { return PythonScene(scene, set).parameters(); },
+        py::arg("scene"), py::arg("set") = py::dict(), "Scene(scene, set).parameters.");
+  m.def(
+      "evaluate",
+      [](const std::string& problem, const std::optional<std::vector<double>>& design, std::optional<double> artificial,
+         const std::string& gradient, const py::dict& set) {
+        return PythonProblem(problem, gradient.empty() ? "adjoint" : gradient, set, 1)
+            .evaluate(design, artificial, !gradient.empty());
+      },
+      py::arg("problem"), py::arg("design") = py::none(), py::arg("artificial") = py::none(),
+      py::arg("gradient") = "adjoint", py::arg("set") = py::dict(),
+      "Problem(problem, gradient, set).evaluate(design, artificial); gradient '' evaluates without gradients.");
+  m.def(
+      "optimize",
+      [](const std::string& problem, const std::string& optimizer, const std::string& gradient,
+         const std::string& formulation, std::optional<double> epsilon, std::optional<double> budget, int max_iter,
+         const py::dict& settings, const py::dict& set, int jobs) {
+        return PythonProblem(problem, gradient, set, jobs).optimize(optimizer, formulation, epsilon, budget, max_iter,
+                                                                    settings);
+      },
+      py::arg("problem"), py::arg("optimizer") = "sdcc", py::arg("gradient") = "adjoint", py::arg("formulation") = "",
+      py::arg("epsilon") = py::none(), py::arg("budget") = py::none(), py::arg("max_iter") = 100,
+      py::arg("settings") = py::dict(), py::arg("set") = py::dict(), py::arg("jobs") = 1,
+      "Problem(problem, gradient, set, jobs).optimize(optimizer, formulation, epsilon, budget, max_iter, settings).");
 }

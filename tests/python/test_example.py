@@ -1,14 +1,17 @@
-"""python/examples/tramway_comparison.py, run as a user runs it (ctest gives the module's directory
-on PYTHONPATH and EXAMPLE naming the script): SDCC and SLSQP, two independent algorithms, both
-converge feasible on the paper's formulation of the tramway and agree on its optimum, and the
-figure is written."""
+"""The examples a user copies, run as a user runs them (ctest gives the module's directory on
+PYTHONPATH, EXAMPLE naming python/examples/tramway_comparison.py and README naming README.md):
+in the example, SDCC and SLSQP, two independent algorithms, both converge feasible on the paper's
+formulation of the tramway and agree on its optimum, and the figure is written; every ```python
+block of the README runs."""
 import os
+import re
 import subprocess
 import sys
 import tempfile
 import unittest
 
 EXAMPLE = os.environ["EXAMPLE"]
+README = os.environ["README"]
 
 
 class TramwayComparisonExample(unittest.TestCase):
@@ -30,6 +33,17 @@ class TramwayComparisonExample(unittest.TestCase):
         # stationary points of one optimum may differ by that order relative in the cost.
         sdcc, slsqp = (float(rows[name][3]) for name in ("sdcc", "slsqp"))
         self.assertAlmostEqual(sdcc, slsqp, delta=1e-4 * sdcc)
+
+
+class ReadmeBlocks(unittest.TestCase):
+    def test_every_python_block_of_the_readme_runs(self):
+        with open(README) as f:
+            blocks = re.findall(r"^```python\n(.*?)^```$", f.read(), flags=re.M | re.S)
+        self.assertGreater(len(blocks), 0)
+        for block in blocks:
+            with self.subTest(block=block.splitlines()[0]), tempfile.TemporaryDirectory() as directory:
+                run = subprocess.run([sys.executable, "-c", block], capture_output=True, text=True, cwd=directory)
+                self.assertEqual(run.returncode, 0, run.stderr)
 
 
 if __name__ == "__main__":

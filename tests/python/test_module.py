@@ -64,6 +64,57 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
             mbsopt.optimize("tramway", optimizer="bfgs")
 
 
+class PersistentObjects(unittest.TestCase):
+    def test_a_scenes_overrides_accumulate_as_the_command_lines_sets_do(self):
+        scene = mbsopt.Scene("pendulum", set={"settings.end_time": 1})
+        scene.set({"bob.mass": 2.5})
+        self.assertEqual(scene.parameters["bob.mass"], 2.5)
+        trajectory = scene.simulate()
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "pendulum.csv")
+            result = command("simulate", "pendulum", "--set", "settings.end_time=1", "--set", "bob.mass=2.5",
+                             "--out", path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            values = numpy.loadtxt(path, delimiter=",", skiprows=1)
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory["time"], trajectory["q"]]),
+                                         values[:, :2])
+        self.assertEqual(scene.coordinates, trajectory["coordinates"])
+
+    def test_a_problems_variables_are_its_design_section(self):
+        # tramway.yaml's design: the secondary suspensions' yaw stiffness and damping, bounded
+        # [50, 1000] kN·m/rad and [5, 50] kN·m·s/rad, starting at the scene's own values.
+        problem = mbsopt.Problem("tramway")
+        self.assertEqual(problem.variables, ["front_secondary.k", "rear_secondary.k", "front_secondary.c",
+                                             "rear_secondary.c", "b_{k+1}"])
+        parameters = mbsopt.Scene("tramway").parameters
+        numpy.testing.assert_allclose(problem.start[:4], [parameters[name] for name in problem.variables[:4]],
+                                      rtol=1e-15)
+        numpy.testing.assert_allclose(problem.lower[:4], [50e3, 50e3, 5e3, 5e3], rtol=1e-15)
+        numpy.testing.assert_allclose(problem.upper[:4], [1000e3, 1000e3, 50e3, 50e3], rtol=1e-15)
+
+    def test_a_problem_evaluated_again_and_again_keeps_no_stale_state(self):
+        # A kept simulation must not leak from one point into another: a, b, a again on one object
+        # give what fresh objects give at each point.
+        problem = mbsopt.Problem("tramway", gradient="direct")
+        a, b = [2.0e5, 1.0e5, 3.0e4, 2.0e4], [3.0e5, 4.0e5, 1.0e4, 4.0e4]
+        first_a, at_b, again_a = (problem.evaluate(design, artificial=2.0) for design in (a, b, a))
+        for design, values in ((a, first_a), (b, at_b), (a, again_a)):
+            fresh = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="direct")
+            numpy.testing.assert_array_equal(values["constraints"], fresh["constraints"])
+            numpy.testing.assert_array_equal(values["constraint_jacobian"], fresh["constraint_jacobian"])
+        self.assertFalse(numpy.array_equal(first_a["constraints"], at_b["constraints"]))
+
+    def test_errors_of_the_objects(self):
+        with self.assertRaisesRegex(ValueError, "unknown gradient method 'nope'"):
+            mbsopt.Problem("tramway", gradient="nope")
+        with self.assertRaisesRegex(RuntimeError, "no 'design:' section"):
+            mbsopt.Problem("pendulum")
+        with self.assertRaisesRegex(ValueError, "2 design values for 4 variables"):
+            mbsopt.Problem("tramway").evaluate([1.0, 2.0])
+        with self.assertRaisesRegex(RuntimeError, "did you mean 'mass'"):
+            mbsopt.Scene("pendulum").set({"bob.mas": 1})
+
+
 class Gradients(unittest.TestCase):
     def test_adjoint_and_direct_agree_on_the_tramway(self):
         # Two independent exact methods: equal to round-off (1e-10 of the largest entry).
