@@ -20,7 +20,7 @@ template <class Scalar> using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>
 /// lanes, and a caller can give a pass only the work its directions need (the tram's step
 /// derivatives: 10 directions in a full pass of 8 and a pass of 2 velocities that skips the
 /// projections' terms). Measured: tram tangent matrices 10.5 -> 7.4-7.9 µs, one adjoint gradient
-/// -14 % (README, "Narrower AD passes").
+/// -14 % (docs/speed.md, "Narrower AD passes").
 inline constexpr int kMaxAdDirections = 8;
 using AdDerivatives = Eigen::Matrix<double, kMaxAdDirections, 1>;
 using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;

@@ -10,7 +10,7 @@ unset logscale y
 set format y
 unset logscale x
 set format x
-set yrange [*:3]
+set yrange [*:2.54303]
 plot 'convergence.dat' index 0 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 1 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 2 with linespoints lt 3 title 'mma', 'convergence.dat' index 3 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 4 with linespoints lt 5 title 'ipopt'
 set title 'grid_max, adjoint'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
@@ -28,7 +28,7 @@ unset logscale y
 set format y
 unset logscale x
 set format x
-set yrange [*:3]
+set yrange [*:2.54303]
 plot 'convergence.dat' index 10 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 11 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 12 with linespoints lt 3 title 'mma', 'convergence.dat' index 13 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 14 with linespoints lt 5 title 'ipopt'
 set title 'grid_max, continuous-adjoint'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
@@ -46,7 +46,7 @@ unset logscale y
 set format y
 unset logscale x
 set format x
-set yrange [*:3]
+set yrange [*:2.54303]
 plot 'convergence.dat' index 20 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 21 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 22 with linespoints lt 3 title 'mma', 'convergence.dat' index 23 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 24 with linespoints lt 5 title 'ipopt'
 set title 'grid_max, direct'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
@@ -64,7 +64,7 @@ unset logscale y
 set format y
 unset logscale x
 set format x
-set yrange [*:3]
+set yrange [*:2.54303]
 plot 'convergence.dat' index 30 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 31 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 32 with linespoints lt 3 title 'mma', 'convergence.dat' index 33 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 34 with linespoints lt 5 title 'ipopt'
 set title 'grid_max, fd_central'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
