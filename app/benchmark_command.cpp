@@ -12,7 +12,7 @@
 #include "app/benchmark_plan.hpp"
 #include "app/benchmark_report.hpp"
 #include "app/mpi_sweep.hpp"
-#include "sensitivity/parallel_runs.hpp"
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 
 namespace mbsopt {
 

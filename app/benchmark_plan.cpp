@@ -7,9 +7,9 @@
 
 #include "app/atomic_file.hpp"
 #include "app/scene_argument.hpp"
-#include "optimizers/latin_hypercube.hpp"
-#include "problems/design_nlp.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/optimizers/latin_hypercube.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 

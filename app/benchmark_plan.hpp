@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "app/optimization_run.hpp"
-#include "sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
 
 namespace mbsopt {
 

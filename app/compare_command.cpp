@@ -11,7 +11,7 @@
 #include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
-#include "sensitivity/parallel_runs.hpp"
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "app/scene_argument.hpp"
 
 namespace mbsopt {

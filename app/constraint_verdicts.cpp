@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "dynamics/overloaded.hpp"
-#include "sensitivity/time_functional.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
+#include "mbsopt/sensitivity/time_functional.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

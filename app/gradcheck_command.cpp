@@ -11,8 +11,8 @@
 #include "app/design_point.hpp"
 #include "app/gradient_difference.hpp"
 #include "app/scene_argument.hpp"
-#include "problems/scene_text.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "app/gradient_difference.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "app/precision_run.hpp"
-#include "sensitivity/design_problem.hpp"
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 

@@ -12,7 +12,7 @@
 #include "app/parameters_command.hpp"
 #include "app/precision_command.hpp"
 #include "app/simulate_command.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{

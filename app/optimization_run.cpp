@@ -13,9 +13,9 @@
 #include <sstream>
 #include <variant>
 
-#include "problems/design_nlp.hpp"
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "app/gnuplot.hpp"
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 #include "app/constraint_verdicts.hpp"
-#include "sensitivity/design_problem.hpp"
-#include "sensitivity/thread_budget.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/thread_budget.hpp"
 
 namespace mbsopt {
 

@@ -11,7 +11,7 @@
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
-#include "sensitivity/parallel_runs.hpp"
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 
 namespace mbsopt {
 

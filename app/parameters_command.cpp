@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "app/scene_argument.hpp"
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

@@ -15,8 +15,8 @@
 #include "app/precision_report.hpp"
 #include "app/precision_study.hpp"
 #include "app/scene_argument.hpp"
-#include "problems/scene_text.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -7,9 +7,9 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "dynamics/sensors.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/scene_text.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/precision_run.hpp"
-#include "dynamics/scene.hpp"
+#include "mbsopt/dynamics/scene.hpp"
 
 namespace mbsopt {
 

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

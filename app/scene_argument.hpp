@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 

@@ -9,7 +9,7 @@
 
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

@@ -13,14 +13,14 @@
 #include <map>
 #include <string>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/residual.hpp"
-#include "dynamics/tangent.hpp"
-#include "dynamics/workspace.hpp"
-#include "dynamics/scene.hpp"
-#include "problems/chain_scenes.hpp"
-#include "problems/tramway.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
+#include "mbsopt/dynamics/scene.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
+#include "mbsopt/problems/tramway.hpp"
 
 namespace mbsopt {
 namespace {

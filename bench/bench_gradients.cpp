@@ -17,12 +17,12 @@
 #include <chrono>
 #include <vector>
 
-#include "problems/tramway.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 namespace {

@@ -1,4 +1,4 @@
-#include "dynamics/articulated_body.hpp"
+#include "mbsopt/dynamics/articulated_body.hpp"
 
 #include <cmath>
 

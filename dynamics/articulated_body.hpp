@@ -17,9 +17,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/rigid_inertia.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/rigid_inertia.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

@@ -1,12 +1,12 @@
-#include "dynamics/assembly.hpp"
+#include "mbsopt/dynamics/assembly.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "dynamics/tangent.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
 
 namespace mbsopt {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "dynamics/closure.hpp"
+#include "mbsopt/dynamics/closure.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 // the two frames (u_a·w_b = 0).
 #pragma once
 
-#include "dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
 
 namespace mbsopt {
 

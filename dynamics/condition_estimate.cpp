@@ -1,9 +1,9 @@
-#include "dynamics/condition_estimate.hpp"
+#include "mbsopt/dynamics/condition_estimate.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "dynamics/lu_factors.hpp"
+#include "mbsopt/dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 

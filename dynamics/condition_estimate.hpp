@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/lu_factors.hpp"
+#include "mbsopt/dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 

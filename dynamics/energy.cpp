@@ -1,9 +1,9 @@
-#include "dynamics/energy.hpp"
+#include "mbsopt/dynamics/energy.hpp"
 
 #include <cmath>
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
 
 namespace mbsopt {
 

@@ -1,8 +1,8 @@
-#include "dynamics/householder_basis.hpp"
+#include "mbsopt/dynamics/householder_basis.hpp"
 
 #include <cmath>
 
-#include "dynamics/dot_product.hpp"
+#include "mbsopt/dynamics/dot_product.hpp"
 
 namespace mbsopt {
 

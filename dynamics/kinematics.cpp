@@ -1,7 +1,7 @@
-#include "dynamics/kinematics.hpp"
-#include "dynamics/overloaded.hpp"
-#include "dynamics/planar_recursions.hpp"
-#include "dynamics/track_state.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/planar_recursions.hpp"
+#include "mbsopt/dynamics/track_state.hpp"
 
 #include <cmath>
 

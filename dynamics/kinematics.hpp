@@ -2,9 +2,9 @@
 // the joint coordinates, by the movement transformations (20)-(21) of each kinetostatic element.
 #pragma once
 
-#include "dynamics/model.hpp"
-#include "dynamics/scalar.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/scalar.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

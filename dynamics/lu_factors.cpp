@@ -1,4 +1,4 @@
-#include "dynamics/lu_factors.hpp"
+#include "mbsopt/dynamics/lu_factors.hpp"
 
 #include <cmath>
 #include <utility>

@@ -1,6 +1,6 @@
-#include "dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
 
-#include "dynamics/rigid_inertia.hpp"
+#include "mbsopt/dynamics/rigid_inertia.hpp"
 
 namespace mbsopt {
 

@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

@@ -1,5 +1,5 @@
-#include "dynamics/model.hpp"
-#include "dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -12,8 +12,8 @@
 #include <variant>
 #include <vector>
 
-#include "dynamics/time_function.hpp"
-#include "dynamics/track.hpp"
+#include "mbsopt/dynamics/time_function.hpp"
+#include "mbsopt/dynamics/track.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -7,10 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/residual.hpp"
-#include "dynamics/sensors.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
 
 namespace mbsopt {
 
@@ -343,7 +343,8 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     closure_.resize(model_.constraintCount());
     if (model_.constraintCount() > 0)
       closureEquations(model_, ws_, position_closure ? Derivative::Position : Derivative::Acceleration, closure_);
-    // Every row of (37) at its round-off level: this iterate is a solution (newton_convergence.hpp).
+    // Every row of (37) and of the closure (34) at its round-off level: this iterate is a solution
+    // (newton_convergence.hpp).
     // The closure rows are positions here; with the paper's acceleration-level closure (38) they
     // have no such scale, and only the increment test below applies.
     if (k == 0) {

@@ -20,14 +20,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newton_convergence.hpp"
-#include "dynamics/newton_predictor.hpp"
-#include "dynamics/run_checks.hpp"
-#include "dynamics/scalar.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "dynamics/tangent.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newton_convergence.hpp"
+#include "mbsopt/dynamics/newton_predictor.hpp"
+#include "mbsopt/dynamics/run_checks.hpp"
+#include "mbsopt/dynamics/scalar.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

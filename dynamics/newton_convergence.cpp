@@ -1,4 +1,4 @@
-#include "dynamics/newton_convergence.hpp"
+#include "mbsopt/dynamics/newton_convergence.hpp"
 
 #include <algorithm>
 #include <cmath>

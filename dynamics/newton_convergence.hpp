@@ -1,5 +1,5 @@
-// When a Newton iterate of the Newmark step solves its equations (37) as well as floating point
-// allows, whatever the model's size, units and step.
+// When a Newton iterate of the Newmark step solves its equations (37), with the closure (34), as
+// well as floating point allows, whatever the model's size, units and step.
 //
 // The increment test ‖Δq̈‖∞ ≤ tol·(1 + ‖q̈‖∞) cannot be met when round-off in the equations, amplified
 // on its way to q̈, exceeds tol: the closure rows are positions of size ε·(reach of the model), divided
@@ -22,8 +22,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "dynamics/newton_predictor.hpp"
+#include "mbsopt/dynamics/newton_predictor.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>

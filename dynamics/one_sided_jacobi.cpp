@@ -1,10 +1,10 @@
-#include "dynamics/one_sided_jacobi.hpp"
+#include "mbsopt/dynamics/one_sided_jacobi.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "dynamics/dot_product.hpp"
+#include "mbsopt/dynamics/dot_product.hpp"
 
 namespace mbsopt {
 

@@ -1,11 +1,11 @@
-#include "dynamics/planar_recursions.hpp"
+#include "mbsopt/dynamics/planar_recursions.hpp"
 
 #include <cmath>
 #include <utility>
 #include <variant>
 
-#include "dynamics/overloaded.hpp"
-#include "dynamics/track_state.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/track_state.hpp"
 
 namespace mbsopt {
 

@@ -19,7 +19,7 @@
 //   they keep the zeros a workspace starts with.
 #pragma once
 
-#include "dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "dynamics/residual.hpp"
+#include "mbsopt/dynamics/residual.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -6,9 +6,9 @@
 #include <utility>
 #include <variant>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/overloaded.hpp"
-#include "dynamics/planar_recursions.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/planar_recursions.hpp"
 
 namespace mbsopt {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
 
 namespace mbsopt {
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/model.hpp"
+#include "mbsopt/dynamics/model.hpp"
 
 namespace mbsopt {
 

@@ -1,11 +1,11 @@
-#include "dynamics/run_checks.hpp"
+#include "mbsopt/dynamics/run_checks.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/newton_convergence.hpp"
-#include "dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/newton_convergence.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
 
 namespace mbsopt {
 

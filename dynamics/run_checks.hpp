@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/energy.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/energy.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

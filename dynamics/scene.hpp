@@ -3,8 +3,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 namespace mbsopt {
 

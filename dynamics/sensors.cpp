@@ -1,11 +1,11 @@
-#include "dynamics/sensors.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/energy.hpp"
-#include "dynamics/overloaded.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/energy.hpp"
+#include "mbsopt/dynamics/overloaded.hpp"
 
 namespace mbsopt {
 

@@ -3,8 +3,8 @@
 // The state sensors (functions of q, q̇, q̈ alone) are templated so later layers can differentiate them.
 #pragma once
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 namespace mbsopt {
 

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <cassert>
 
-#include "dynamics/dot_product.hpp"
+#include "mbsopt/dynamics/dot_product.hpp"
 
 namespace mbsopt {
 

@@ -1,10 +1,10 @@
-#include "dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
 #include <algorithm>
 #include <cmath>
 
-#include "dynamics/dot_product.hpp"
-#include "dynamics/lu_factors.hpp"
-#include "dynamics/small_products.hpp"
+#include "mbsopt/dynamics/dot_product.hpp"
+#include "mbsopt/dynamics/lu_factors.hpp"
+#include "mbsopt/dynamics/small_products.hpp"
 
 namespace mbsopt {
 

@@ -20,10 +20,10 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "dynamics/articulated_body.hpp"
-#include "dynamics/condition_estimate.hpp"
-#include "dynamics/householder_basis.hpp"
-#include "dynamics/one_sided_jacobi.hpp"
+#include "mbsopt/dynamics/articulated_body.hpp"
+#include "mbsopt/dynamics/condition_estimate.hpp"
+#include "mbsopt/dynamics/householder_basis.hpp"
+#include "mbsopt/dynamics/one_sided_jacobi.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 // so that these copies do not change what the compiler inlines into the solves.
 #include <algorithm>
 
-#include "dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
 
 namespace mbsopt {
 

@@ -1,10 +1,10 @@
-#include "dynamics/tangent.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
 
 #include <algorithm>
 #include <variant>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/residual.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/residual.hpp"
 
 namespace mbsopt {
 

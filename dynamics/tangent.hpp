@@ -6,9 +6,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/scalar.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/scalar.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "dynamics/time_function.hpp"
+#include "mbsopt/dynamics/time_function.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "dynamics/track.hpp"
+#include "mbsopt/dynamics/track.hpp"
 
 #include <algorithm>
 #include <array>

@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "dynamics/scalar.hpp"
+#include "mbsopt/dynamics/scalar.hpp"
 
 namespace mbsopt {
 

@@ -1,8 +1,8 @@
 // A model's track at a curve slider's arc length, in the scalar of the recursions.
 #pragma once
 
-#include "dynamics/model.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

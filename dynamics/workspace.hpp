@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/scalar.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/scalar.hpp"
 
 namespace mbsopt {
 

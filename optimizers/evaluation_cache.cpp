@@ -1,6 +1,6 @@
-#include "optimizers/evaluation_cache.hpp"
+#include "mbsopt/optimizers/evaluation_cache.hpp"
 
-#include "optimizers/first_order_check.hpp"
+#include "mbsopt/optimizers/first_order_check.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "optimizers/nlp_problem.hpp"
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/nlp_problem.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "optimizers/first_order_check.hpp"
+#include "mbsopt/optimizers/first_order_check.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>

@@ -4,7 +4,7 @@
 // the paper's ∫⟨φ⟩dt ≤ 0 looks everywhere on its feasible set.
 #pragma once
 
-#include "optimizers/nlp_problem.hpp"
+#include "mbsopt/optimizers/nlp_problem.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "optimizers/ipopt_optimizer.hpp"
+#include "mbsopt/optimizers/ipopt_optimizer.hpp"
 
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "optimizers/evaluation_cache.hpp"
+#include "mbsopt/optimizers/evaluation_cache.hpp"
 
 namespace mbsopt {
 

@@ -3,7 +3,7 @@
 // intermediate_callback (docs/design.md §5). An "iteration" is one of Ipopt's own.
 #pragma once
 
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "optimizers/latin_hypercube.hpp"
+#include "mbsopt/optimizers/latin_hypercube.hpp"
 
 #include <numeric>
 #include <random>

@@ -1,11 +1,11 @@
-#include "optimizers/nlopt_optimizer.hpp"
+#include "mbsopt/optimizers/nlopt_optimizer.hpp"
 
 #include <algorithm>
 #include <exception>
 #include <string>
 #include <vector>
 
-#include "optimizers/evaluation_cache.hpp"
+#include "mbsopt/optimizers/evaluation_cache.hpp"
 
 namespace mbsopt {
 

@@ -8,7 +8,7 @@
 
 #include <nlopt.hpp>
 
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 
 namespace mbsopt {
 

@@ -1,11 +1,11 @@
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 
 #include <chrono>
 #include <stdexcept>
 
-#include "optimizers/ipopt_optimizer.hpp"
-#include "optimizers/nlopt_optimizer.hpp"
-#include "optimizers/sdcc.hpp"
+#include "mbsopt/optimizers/ipopt_optimizer.hpp"
+#include "mbsopt/optimizers/nlopt_optimizer.hpp"
+#include "mbsopt/optimizers/sdcc.hpp"
 
 namespace mbsopt {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "optimizers/nlp_problem.hpp"
-#include "optimizers/optimizer_settings.hpp"
+#include "mbsopt/optimizers/nlp_problem.hpp"
+#include "mbsopt/optimizers/optimizer_settings.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "optimizers/optimizer_settings.hpp"
+#include "mbsopt/optimizers/optimizer_settings.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "optimizers/sdcc.hpp"
+#include "mbsopt/optimizers/sdcc.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "optimizers/evaluation_cache.hpp"
+#include "mbsopt/optimizers/evaluation_cache.hpp"
 
 namespace mbsopt {
 

@@ -22,7 +22,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "problems/chain_scenes.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
 
 #include <cmath>
 #include <string>

@@ -3,7 +3,7 @@
 // which the tests check properties that must hold whatever the size.
 #pragma once
 
-#include "dynamics/scene.hpp"
+#include "mbsopt/dynamics/scene.hpp"
 
 namespace mbsopt {
 

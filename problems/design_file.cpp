@@ -1,9 +1,9 @@
-#include "problems/design_file.hpp"
+#include "mbsopt/problems/design_file.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

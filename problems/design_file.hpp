@@ -1,8 +1,8 @@
 // The `design:` section of a scene file (problems/scenes/README.md, "Design problems").
 #pragma once
 
-#include "sensitivity/design_problem.hpp"
-#include "problems/yaml_reader.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/problems/yaml_reader.hpp"
 
 namespace mbsopt {
 

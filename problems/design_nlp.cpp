@@ -1,12 +1,12 @@
-#include "problems/design_nlp.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <memory>
 #include <vector>
 
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "optimizers/nlp_problem.hpp"
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/thread_budget.hpp"
+#include "mbsopt/optimizers/nlp_problem.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/thread_budget.hpp"
 
 namespace mbsopt {
 

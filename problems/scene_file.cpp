@@ -1,4 +1,4 @@
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,11 +9,11 @@
 #include <map>
 #include <sstream>
 
-#include "dynamics/assembly.hpp"
-#include "problems/design_file.hpp"
-#include "problems/scene_parameters.hpp"
-#include "problems/scene_text.hpp"
-#include "problems/yaml_reader.hpp"
+#include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/problems/design_file.hpp"
+#include "mbsopt/problems/scene_parameters.hpp"
+#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/problems/yaml_reader.hpp"
 
 namespace mbsopt {
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "sensitivity/design_problem.hpp"
-#include "dynamics/scene.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/dynamics/scene.hpp"
 
 namespace mbsopt {
 

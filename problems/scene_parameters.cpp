@@ -1,10 +1,10 @@
-#include "problems/scene_parameters.hpp"
+#include "mbsopt/problems/scene_parameters.hpp"
 
 #include <algorithm>
 #include <array>
 #include <sstream>
 
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 

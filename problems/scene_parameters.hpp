@@ -5,9 +5,9 @@
 #include <functional>
 #include <string>
 #include <vector>
-#include "problems/yaml_document.hpp"
+#include "mbsopt/problems/yaml_document.hpp"
 
-#include "problems/yaml_reader.hpp"
+#include "mbsopt/problems/yaml_reader.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "problems/tramway.hpp"
+#include "mbsopt/problems/tramway.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -4,9 +4,9 @@
 
 #include <memory>
 
-#include "dynamics/track.hpp"
-#include "sensitivity/design_problem.hpp"
-#include "dynamics/scene.hpp"
+#include "mbsopt/dynamics/track.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/dynamics/scene.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "problems/yaml_document.hpp"
+#include "mbsopt/problems/yaml_document.hpp"
 
 #include <yaml.h>
 

@@ -1,6 +1,6 @@
-#include "problems/yaml_reader.hpp"
+#include "mbsopt/problems/yaml_reader.hpp"
 
-#include "problems/scene_text.hpp"
+#include "mbsopt/problems/scene_text.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "problems/yaml_document.hpp"
+#include "mbsopt/problems/yaml_document.hpp"
 
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 

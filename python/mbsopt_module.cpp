@@ -12,10 +12,10 @@
 
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
-#include "dynamics/newmark.hpp"
-#include "problems/design_nlp.hpp"
-#include "problems/scene_file.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace py = pybind11;
 

@@ -1,4 +1,4 @@
-#include "sensitivity/augmented_solve.hpp"
+#include "mbsopt/sensitivity/augmented_solve.hpp"
 
 #include <stdexcept>
 

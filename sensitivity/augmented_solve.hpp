@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
 
 namespace mbsopt {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <memory>
 
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -9,9 +9,9 @@
 
 #include <Eigen/QR>
 
-#include "sensitivity/augmented_solve.hpp"
-#include "sensitivity/initial_state.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/sensitivity/augmented_solve.hpp"
+#include "mbsopt/sensitivity/initial_state.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 
@@ -53,7 +53,7 @@ HalfSources substituteAccelerations(TrajectoryDerivatives& d, Eigen::Index k, co
   return {half_over_weight * seeds.position, half_over_weight * seeds.velocity};
 }
 
-/// An orthonormal basis of the null space of B (the paper's V₂, (43)-(47)): the right singular
+/// An orthonormal basis of the null space of B (the paper's V₂, (43)-(48)): the right singular
 /// vectors whose singular values are at most `threshold` times the largest, as in the integrator.
 Eigen::MatrixXd independentDirections(const Eigen::MatrixXd& B, double threshold) {
   if (B.rows() == 0) return Eigen::MatrixXd::Identity(B.cols(), B.cols());

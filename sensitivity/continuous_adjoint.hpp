@@ -6,7 +6,7 @@
 // "The continuous adjoint").
 #pragma once
 
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "sensitivity/initial_state.hpp"
-#include "sensitivity/parallel_runs.hpp"
+#include "mbsopt/sensitivity/initial_state.hpp"
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 
 namespace mbsopt {
 

@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
-#include "dynamics/newmark.hpp"
-#include "sensitivity/design_problem.hpp"
-#include "sensitivity/time_functional.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/time_functional.hpp"
 
 namespace mbsopt {
 

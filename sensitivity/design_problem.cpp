@@ -1,4 +1,4 @@
-#include "sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 
 #include <Eigen/SVD>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/sensors.hpp"
-#include "dynamics/tangent.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
 
 namespace mbsopt {
 

@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "dynamics/scene.hpp"
-#include "sensitivity/time_functional.hpp"
+#include "mbsopt/dynamics/scene.hpp"
+#include "mbsopt/sensitivity/time_functional.hpp"
 
 namespace mbsopt {
 

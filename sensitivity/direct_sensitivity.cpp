@@ -1,11 +1,11 @@
-#include "sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
 
 #include <algorithm>
 #include <vector>
 
-#include "dynamics/small_products.hpp"
-#include "sensitivity/augmented_solve.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/dynamics/small_products.hpp"
+#include "mbsopt/sensitivity/augmented_solve.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 
@@ -56,8 +56,9 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   TrajectoryDerivatives::PointStream points(d, 1, last, jobs);
   for (Eigen::Index k = 1; k <= last; ++k) {
     const TrajectoryDerivatives::PointDerivatives& point = points.next();
-    // (32): the parts known at tₙ; then Newton's equations (33) and b(qₙ₊₁) = 0 differentiated at
-    // their solution: [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; (B S_q̃ + ∂b/∂b) / (βh²)],
+    // (32): the parts known at tₙ; then the step's equations (28) and b(qₙ₊₁) = 0, the system
+    // (39)-(41) with the iteration matrix (33), differentiated at their solution:
+    // [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; (B S_q̃ + ∂b/∂b) / (βh²)],
     // A = M + γh C_T + βh² K_T.
     step.q_pred = step.q + h * step.v + (0.5 - beta) * h * h * step.a;
     step.v_pred = step.v + (1.0 - gamma) * h * step.a;

@@ -1,11 +1,11 @@
 // The `direct` gradient method (docs/design.md §4): forward sensitivities S = d(q, q̇, q̈)/db carried
 // through every Newmark step (32)-(33), one extra right-hand side per design variable per step,
 // then chained with the time functionals' sample gradients and the response Jacobians. The exact
-// derivative of the discrete map for open trees (steps 1-3 of "The discrete map" in
-// sensitivity/README.md); closed loops are not supported yet.
+// derivative of the discrete map (steps 1-3 of "The discrete map" in sensitivity/README.md), closed
+// loops included (the cut joints' multipliers through the augmented solve, augmented_solve.hpp).
 #pragma once
 
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 

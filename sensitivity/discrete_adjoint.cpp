@@ -1,12 +1,12 @@
-#include "sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
 
 #include <algorithm>
 #include <utility>
 #include <vector>
 
-#include "dynamics/small_products.hpp"
-#include "sensitivity/augmented_solve.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/dynamics/small_products.hpp"
+#include "mbsopt/sensitivity/augmented_solve.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 namespace mbsopt {
 

@@ -4,7 +4,7 @@
 // gradient of the discretised functionals, closed loops included.
 #pragma once
 
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 

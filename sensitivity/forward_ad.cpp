@@ -1,9 +1,9 @@
-#include "sensitivity/forward_ad.hpp"
+#include "mbsopt/sensitivity/forward_ad.hpp"
 
 #include <algorithm>
 #include <numeric>
 
-#include "dynamics/residual.hpp"
+#include "mbsopt/dynamics/residual.hpp"
 
 namespace mbsopt {
 

@@ -1,11 +1,11 @@
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
 
 namespace mbsopt {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
 

@@ -1,14 +1,14 @@
-#include "sensitivity/initial_state.hpp"
+#include "mbsopt/sensitivity/initial_state.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>
 #include <string>
 #include <vector>
 
-#include "dynamics/assembly.hpp"
-#include "dynamics/closure.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "dynamics/tangent.hpp"
+#include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
 
 namespace mbsopt {
 

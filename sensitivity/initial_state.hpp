@@ -14,8 +14,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/scene.hpp"
-#include "sensitivity/design_problem.hpp"
+#include "mbsopt/dynamics/scene.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
 
 namespace mbsopt {
 

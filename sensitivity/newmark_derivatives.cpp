@@ -1,4 +1,4 @@
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -6,17 +6,17 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/residual.hpp"
-#include "dynamics/sensors.hpp"
-#include "dynamics/tangent.hpp"
-#include "sensitivity/augmented_solve.hpp"
-#include "sensitivity/forward_ad.hpp"
-#include "sensitivity/initial_state.hpp"
-#include "sensitivity/parameter_jacobian.hpp"
-#include "sensitivity/response_jacobian.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/sensitivity/augmented_solve.hpp"
+#include "mbsopt/sensitivity/forward_ad.hpp"
+#include "mbsopt/sensitivity/initial_state.hpp"
+#include "mbsopt/sensitivity/parameter_jacobian.hpp"
+#include "mbsopt/sensitivity/response_jacobian.hpp"
 
 namespace mbsopt {
 

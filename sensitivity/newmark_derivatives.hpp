@@ -1,5 +1,5 @@
 // What the exact gradient methods (`direct`, `adjoint`) share: a design problem simulated at one
-// point, and at any time point of its trajectory the derivatives of the Newmark step (33) — the
+// point, and at any time point of its trajectory the derivatives of the Newmark step (32)-(33) — the
 // free blocks of M, C_T, K_T and the rows of ∂f/∂b, and with cut joints the derivatives of the
 // closure and of the two projections — and the seeds ∂Ψ/∂(q, q̇, q̈) of every transcribed
 // constraint (sensitivity/README.md, "The discrete map").
@@ -14,10 +14,10 @@
 #include <thread>
 #include <vector>
 
-#include "dynamics/svd_partition.hpp"
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/forward_ad.hpp"
-#include "sensitivity/response_jacobian.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/forward_ad.hpp"
+#include "mbsopt/sensitivity/response_jacobian.hpp"
 
 namespace mbsopt {
 

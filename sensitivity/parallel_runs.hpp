@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "sensitivity/thread_budget.hpp"
+#include "mbsopt/sensitivity/thread_budget.hpp"
 
 namespace mbsopt {
 

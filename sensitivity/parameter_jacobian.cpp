@@ -1,6 +1,6 @@
-#include "sensitivity/parameter_jacobian.hpp"
+#include "mbsopt/sensitivity/parameter_jacobian.hpp"
 
-#include "sensitivity/forward_ad.hpp"
+#include "mbsopt/sensitivity/forward_ad.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-// ∂f/∂b: the derivative of the residual f = M q̈ + h − Q + Bᵀλ (24) with respect to named model
+// ∂f/∂b: the derivative of the residual f = M q̈ + h − Q + Bᵀλ (37) with respect to named model
 // parameters at one state, the ∂f/∂b of the paper's sensitivity equations (49)-(50). Forward AD of
 // the residual itself, the parameters seeded through Workspace::parameter_seeds, so exact and
 // always consistent with the dynamics.
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 

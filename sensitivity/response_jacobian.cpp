@@ -1,11 +1,11 @@
-#include "sensitivity/response_jacobian.hpp"
+#include "mbsopt/sensitivity/response_jacobian.hpp"
 
 #include <stdexcept>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/sensors.hpp"
-#include "sensitivity/forward_ad.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/sensitivity/forward_ad.hpp"
 
 namespace mbsopt {
 

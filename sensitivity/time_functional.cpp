@@ -1,4 +1,4 @@
-#include "sensitivity/time_functional.hpp"
+#include "mbsopt/sensitivity/time_functional.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <initializer_list>
 
-#include "optimizers/nlp_problem.hpp"
+#include "mbsopt/optimizers/nlp_problem.hpp"
 
 namespace mbsopt::test {
 

@@ -7,8 +7,8 @@
 #include <limits>
 #include <vector>
 
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
 
 namespace mbsopt::test {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
 
 namespace mbsopt::test {
 

@@ -13,13 +13,13 @@
 #include <cstdlib>
 #include <limits>
 
-#include "dynamics/newmark.hpp"
-#include "problems/chain_scenes.hpp"
-#include "problems/tramway.hpp"
-#include "sensitivity/design_problem.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
+#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
 
 namespace {
 std::atomic<long> allocations{0};

@@ -16,10 +16,10 @@
 #include <limits>
 #include <string>
 
-#include "dynamics/articulated_body.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/newmark.hpp"
-#include "problems/chain_scenes.hpp"
+#include "mbsopt/dynamics/articulated_body.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
 
 namespace mbsopt {
 namespace {

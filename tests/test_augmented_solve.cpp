@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "sensitivity/augmented_solve.hpp"
+#include "mbsopt/sensitivity/augmented_solve.hpp"
 #include "tests/random_matrices.hpp"
 
 namespace mbsopt {

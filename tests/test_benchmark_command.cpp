@@ -16,7 +16,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

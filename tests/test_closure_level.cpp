@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "dynamics/assembly.hpp"
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 using namespace mbsopt;
 

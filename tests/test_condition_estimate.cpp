@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "dynamics/condition_estimate.hpp"
-#include "dynamics/lu_factors.hpp"
+#include "mbsopt/dynamics/condition_estimate.hpp"
+#include "mbsopt/dynamics/lu_factors.hpp"
 
 namespace mbsopt {
 namespace {

@@ -8,9 +8,9 @@
 
 #include <cmath>
 
-#include "problems/scene_file.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/sensors.hpp"
-#include "dynamics/track.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/dynamics/track.hpp"
 
 namespace mbsopt {
 namespace {

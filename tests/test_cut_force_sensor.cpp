@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "dynamics/sensors.hpp"
-#include "problems/scene_file.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "tests/gradient_checks.hpp"
 
 namespace mbsopt {

@@ -6,10 +6,10 @@
 
 #include <string>
 
-#include "problems/scene_file.hpp"
-#include "problems/design_nlp.hpp"
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

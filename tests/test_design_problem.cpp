@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "optimizers/optimizer.hpp"
-#include "problems/design_nlp.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/tramway.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/design_evaluation.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
-#include "sensitivity/gradient_method.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

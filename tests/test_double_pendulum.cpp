@@ -27,10 +27,10 @@
 #include <random>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/residual.hpp"
-#include "dynamics/tangent.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 using namespace mbsopt;
 

@@ -10,10 +10,10 @@
 #include <string>
 #include <utility>
 
-#include "dynamics/energy.hpp"
-#include "dynamics/sensors.hpp"
+#include "mbsopt/dynamics/energy.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
 #include "mechanical_energy.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

@@ -11,15 +11,15 @@
 #include <sstream>
 #include <string>
 
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/tangent.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/tramway.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

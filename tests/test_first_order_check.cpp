@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "analytic_problems.hpp"
-#include "optimizers/evaluation_cache.hpp"
-#include "optimizers/first_order_check.hpp"
+#include "mbsopt/optimizers/evaluation_cache.hpp"
+#include "mbsopt/optimizers/first_order_check.hpp"
 
 namespace mbsopt {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "dynamics/newmark.hpp"
-#include "dynamics/sensors.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
 
 using namespace mbsopt;
 

@@ -10,11 +10,11 @@
 #include <cmath>
 #include <memory>
 
-#include "dynamics/assembly.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 namespace {

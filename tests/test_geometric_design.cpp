@@ -9,16 +9,16 @@
 #include <cmath>
 #include <string>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "dynamics/tangent.hpp"
-#include "problems/scene_file.hpp"
-#include "sensitivity/continuous_adjoint.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
-#include "sensitivity/initial_state.hpp"
-#include "sensitivity/response_jacobian.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/continuous_adjoint.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/sensitivity/initial_state.hpp"
+#include "mbsopt/sensitivity/response_jacobian.hpp"
 #include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

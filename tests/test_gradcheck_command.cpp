@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

@@ -23,10 +23,10 @@
 #include <utility>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/sensors.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

@@ -7,7 +7,7 @@
 #include <Eigen/QR>
 #include <random>
 
-#include "dynamics/householder_basis.hpp"
+#include "mbsopt/dynamics/householder_basis.hpp"
 #include "tests/random_matrices.hpp"
 
 namespace mbsopt {

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 using namespace mbsopt;
 

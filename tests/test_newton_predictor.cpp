@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include "dynamics/newmark.hpp"
-#include "dynamics/newton_predictor.hpp"
-#include "problems/chain_scenes.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/newton_predictor.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
 
 namespace mbsopt {
 namespace {

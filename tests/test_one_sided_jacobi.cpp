@@ -9,7 +9,7 @@
 #include <Eigen/SVD>
 #include <random>
 
-#include "dynamics/one_sided_jacobi.hpp"
+#include "mbsopt/dynamics/one_sided_jacobi.hpp"
 #include "tests/random_matrices.hpp"
 
 namespace mbsopt {

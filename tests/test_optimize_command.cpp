@@ -12,8 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "problems/scene_file.hpp"
-#include "sensitivity/design_evaluation.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

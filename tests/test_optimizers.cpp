@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "optimizers/latin_hypercube.hpp"
-#include "optimizers/optimizer.hpp"
+#include "mbsopt/optimizers/latin_hypercube.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 #include "tests/analytic_problems.hpp"
 
 namespace mbsopt {

@@ -10,12 +10,12 @@
 #include <string>
 #include <stdexcept>
 
-#include "optimizers/optimizer.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/design_nlp.hpp"
-#include "sensitivity/gradient_method.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
-#include "sensitivity/parallel_runs.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

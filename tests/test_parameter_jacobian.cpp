@@ -8,11 +8,11 @@
 // so the truncation δ²/6 |f'''| ≲ δ²|f| stays below 1e-9 |f|/δ while δ ≤ 1e-3: with 1e-5, by 1e6.
 #include <gtest/gtest.h>
 
-#include "dynamics/residual.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/tramway.hpp"
-#include "sensitivity/newmark_derivatives.hpp"
-#include "sensitivity/parameter_jacobian.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/sensitivity/parameter_jacobian.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

@@ -13,8 +13,8 @@
 #include <cmath>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 using namespace mbsopt;
 

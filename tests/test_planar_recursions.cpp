@@ -28,16 +28,16 @@
 #include <type_traits>
 #include <vector>
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/planar_recursions.hpp"
-#include "dynamics/residual.hpp"
-#include "dynamics/track.hpp"
-#include "dynamics/workspace.hpp"
-#include "problems/scene_file.hpp"
-#include "sensitivity/forward_ad.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/planar_recursions.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/dynamics/track.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/forward_ad.hpp"
 
 namespace mbsopt {
 namespace {

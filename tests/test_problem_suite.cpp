@@ -17,9 +17,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "problems/scene_file.hpp"
-#include "sensitivity/direct_sensitivity.hpp"
-#include "sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/direct_sensitivity.hpp"
+#include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "tests/gradient_checks.hpp"
 
 namespace mbsopt {

@@ -15,12 +15,12 @@
 #include <memory>
 #include <string>
 
-#include "dynamics/assembly.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "dynamics/tangent.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 namespace {

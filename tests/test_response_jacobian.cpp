@@ -2,10 +2,10 @@
 // sensors themselves, and against what a joint sensor must give exactly.
 #include <gtest/gtest.h>
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/sensors.hpp"
-#include "problems/tramway.hpp"
-#include "sensitivity/response_jacobian.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/sensitivity/response_jacobian.hpp"
 
 namespace mbsopt {
 namespace {

@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "dynamics/scalar.hpp"
+#include "mbsopt/dynamics/scalar.hpp"
 #include "tests/random_matrices.hpp"
 
 namespace mbsopt {

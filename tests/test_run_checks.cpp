@@ -19,11 +19,11 @@
 #include <sstream>
 #include <string>
 
-#include "dynamics/newmark.hpp"
-#include "dynamics/run_checks.hpp"
-#include "problems/chain_scenes.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/tramway.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/run_checks.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/tramway.hpp"
 
 namespace mbsopt {
 namespace {

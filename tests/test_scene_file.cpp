@@ -7,12 +7,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "dynamics/closure.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/sensors.hpp"
-#include "problems/scene_file.hpp"
-#include "problems/scene_text.hpp"
-#include "problems/tramway.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/problems/tramway.hpp"
 
 namespace mbsopt {
 namespace {

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "optimizers/sdcc.hpp"
+#include "mbsopt/optimizers/sdcc.hpp"
 #include "tests/analytic_problems.hpp"
 
 namespace mbsopt {

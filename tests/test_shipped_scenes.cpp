@@ -24,13 +24,13 @@
 #include <utility>
 #include <vector>
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/sensors.hpp"
-#include "dynamics/workspace.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

@@ -18,8 +18,8 @@
 #include <cmath>
 #include <complex>
 
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
 
 using namespace mbsopt;
 

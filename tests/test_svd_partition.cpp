@@ -15,13 +15,13 @@
 #include <limits>
 #include <random>
 
-#include "dynamics/articulated_body.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/small_products.hpp"
-#include "dynamics/svd_partition.hpp"
-#include "dynamics/tangent.hpp"
-#include "problems/chain_scenes.hpp"
+#include "mbsopt/dynamics/articulated_body.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/small_products.hpp"
+#include "mbsopt/dynamics/svd_partition.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/problems/chain_scenes.hpp"
 #include "tests/random_matrices.hpp"
 
 namespace mbsopt {

@@ -22,14 +22,14 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/articulated_body.hpp"
-#include "dynamics/closure.hpp"
-#include "dynamics/kinematics.hpp"
-#include "dynamics/mass_matrix.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/residual.hpp"
-#include "dynamics/tangent.hpp"
-#include "dynamics/workspace.hpp"
+#include "mbsopt/dynamics/articulated_body.hpp"
+#include "mbsopt/dynamics/closure.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/mass_matrix.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/residual.hpp"
+#include "mbsopt/dynamics/tangent.hpp"
+#include "mbsopt/dynamics/workspace.hpp"
 
 namespace mbsopt {
 namespace {

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <random>
 
-#include "sensitivity/time_functional.hpp"
+#include "mbsopt/sensitivity/time_functional.hpp"
 
 namespace mbsopt {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/model.hpp"
-#include "dynamics/track.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/track.hpp"
 
 namespace mbsopt {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "dynamics/kinematics.hpp"
-#include "dynamics/sensors.hpp"
-#include "problems/tramway.hpp"
+#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+#include "mbsopt/problems/tramway.hpp"
 
 using namespace mbsopt;
 

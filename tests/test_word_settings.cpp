@@ -9,7 +9,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "problems/scene_file.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "problems/yaml_document.hpp"
+#include "mbsopt/problems/yaml_document.hpp"
 
 namespace mbsopt {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dynamics/newmark.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

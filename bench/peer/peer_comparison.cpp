@@ -41,10 +41,10 @@
 #include <vector>
 
 #include "bench/peer/simbody_models.hpp"
-#include "dynamics/model.hpp"
-#include "dynamics/newmark.hpp"
-#include "dynamics/scene.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/scene.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 namespace {
 

@@ -22,8 +22,8 @@
 
 #include "app/design_point.hpp"
 #include "app/scene_argument.hpp"
-#include "dynamics/newmark.hpp"
-#include "problems/scene_file.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 #include "tests/fuzz/input_arguments.hpp"
 
 namespace {
