@@ -27,10 +27,14 @@ inline void expectCentralDifferencesAtTheBestStep(const DesignProblem& problem,
                                                   double tolerance) {
   std::vector<DesignGradient> sweep;
   for (const double step : {1e-3, 1e-4, 1e-5, 1e-6}) sweep.push_back(finiteDifferenceGradient(problem, functionals, x, step, true));
+  // Over the design variables' columns: b_{k+1}'s is exact in every method and, often a row's largest
+  // entry, would loosen the tolerance of the others (as `mbsopt gradcheck` measures).
+  const Eigen::Index design = static_cast<Eigen::Index>(problem.design.variables.size());
   for (Eigen::Index r = 0; r < exact.constraints.rows(); ++r) {
-    const Eigen::VectorXd row = exact.constraints.row(r).transpose();
+    const Eigen::VectorXd row = exact.constraints.row(r).head(design).transpose();
     double best = std::numeric_limits<double>::infinity();
-    for (const DesignGradient& fd : sweep) best = std::min(best, (fd.constraints.row(r).transpose() - row).cwiseAbs().maxCoeff());
+    for (const DesignGradient& fd : sweep)
+      best = std::min(best, (fd.constraints.row(r).head(design).transpose() - row).cwiseAbs().maxCoeff());
     EXPECT_LE(best, tolerance * std::max(row.cwiseAbs().maxCoeff(), 1e-300)) << functionals[static_cast<std::size_t>(r)].name;
   }
 }
