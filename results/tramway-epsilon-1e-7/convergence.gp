@@ -10,7 +10,7 @@ unset logscale y
 set format y
 unset logscale x
 set format x
-set yrange [*:3]
+set yrange [*:2.54303]
 plot 'convergence.dat' index 0 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 1 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 2 with linespoints lt 3 title 'mma', 'convergence.dat' index 3 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 4 with linespoints lt 5 title 'ipopt'
 set title 'positive_part ε=1e-07, adjoint'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'

@@ -1,6 +1,6 @@
 set terminal pngcairo noenhanced size 1300,380 font ',10'
 set output 'convergence.png'
-set multiplot layout 1,2 rowsfirst title 'convergence on /tmp/tmp.KBvt9ySoJY.yaml'
+set multiplot layout 1,2 rowsfirst title 'convergence on results/tramway-two-speeds/tramway_two_speeds.yaml'
 set key top right font ',8'
 set grid
 set title 'positive_part, adjoint'
