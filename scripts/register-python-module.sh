@@ -2,10 +2,16 @@
 # Makes `python3 -c "import mbsopt"` find the module of a build tree (BUILD_DIR, default
 # build/release): writes mbsopt.pth, naming BUILD_DIR/python, into the user's site-packages of the
 # python3 the module was built for (the build's Python3_EXECUTABLE, Debian's /usr/bin/python3) and of
-# the python3 on PATH when that is another interpreter of the same version. No copy: the module follows every rebuild.
-# `cmake --install build/release --component python --prefix PREFIX` installs a copy instead.
-# Usage: scripts/register-python-module.sh [BUILD_DIR]
+# the python3 on PATH when that is another interpreter of the same version. No copy: the module
+# follows every rebuild. `cmake --install build/release --component python --prefix PREFIX` installs
+# a copy instead.
+#
+#   scripts/register-python-module.sh [BUILD_DIR]
 set -euo pipefail
+case "${1:-}" in
+  -h|--help) awk 'NR > 1 && /^#/ { print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+  -*) echo "$(basename "$0"): unknown option $1 (try --help)" >&2; exit 2 ;;
+esac
 build_dir=$(realpath -m "${1:-$(dirname "$0")/../build/release}")
 module_dir="$build_dir/python"
 cache="$build_dir/CMakeCache.txt"
