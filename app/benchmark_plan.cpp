@@ -8,7 +8,6 @@
 #include "app/atomic_file.hpp"
 #include "app/scene_argument.hpp"
 #include "mbsopt/optimizers/latin_hypercube.hpp"
-#include "mbsopt/problems/design_nlp.hpp"
 #include "mbsopt/problems/scene_file.hpp"
 
 namespace mbsopt {
@@ -88,16 +87,20 @@ nlohmann::json sweepGradientCosts(const BenchmarkOptions& options, const Benchma
   if (std::ifstream in(path); in) costs = nlohmann::json::parse(in, nullptr, false);
   if (!costs.is_object()) throw std::runtime_error(path + ": not the JSON object an earlier sweep wrote");
   bool measured = false;
-  for (const BenchmarkRun& run : plan.runs) {
-    const BenchmarkProblem& p = plan.problems[run.problem];
-    if (run.choice.gradient_cost || !isExact(run.choice.gradient)) continue;
-    if (costs.contains(p.name) && costs[p.name].contains(run.choice.gradient)) continue;
-    const DesignNlp nlp(p.problem, run.choice.gradient, 1e-6, 1);
-    try {
-      costs[p.name][run.choice.gradient] = nlp.measureGradientCost(nlp.start());
-      measured = true;
-    } catch (const std::exception&) {  // the start cannot be simulated: its runs say so
-    }
+  for (std::size_t i = 0; i < plan.problems.size(); ++i) {
+    const BenchmarkProblem& p = plan.problems[i];
+    // This problem's runs of an exact method whose cost is neither given nor in the file.
+    std::vector<RunChoice> pending;
+    for (const BenchmarkRun& run : plan.runs)
+      if (run.problem == i && !run.choice.gradient_cost && isExact(run.choice.gradient) &&
+          !(costs.contains(p.name) && costs[p.name].contains(run.choice.gradient)))
+        pending.push_back(run.choice);
+    measureGradientCosts(p.problem, pending);  // once per method; none where the start cannot be simulated
+    for (const RunChoice& choice : pending)
+      if (choice.gradient_cost) {
+        costs[p.name][choice.gradient] = *choice.gradient_cost;
+        measured = true;
+      }
   }
   if (measured) writeAtomically(path, [&](std::ostream& out) { out << costs.dump(2) << '\n'; });
   return costs;

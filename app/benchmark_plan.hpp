@@ -57,7 +57,7 @@ BenchmarkPlan benchmarkPlan(const BenchmarkOptions& options);
 
 /// Every exact gradient method's cost on every problem of the plan, in simulation-equivalents,
 /// {NAME: {METHOD: cost}}: read from OUT/gradient_costs.json where an earlier (interrupted) sweep
-/// measured it, else measured at the problem's start (DesignNlp::measureGradientCost), alone on the
+/// measured it, else measured at the problem's start (measureGradientCosts), alone on the
 /// machine, and written there, so that a resumed sweep counts as the first one did.
 nlohmann::json sweepGradientCosts(const BenchmarkOptions& options, const BenchmarkPlan& plan);
 /// Sets each run's gradient_cost from those costs (finite differences count their own).
