@@ -282,7 +282,7 @@ nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohma
 }  // namespace
 
 void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& choices) {
-  std::map<std::string, double> measured;
+  std::map<std::string, std::optional<double>> measured;  // empty where the start cannot be simulated
   for (RunChoice& choice : choices) {
     const std::string method = choice.gradient == "fd" ? "fd_central" : choice.gradient;
     if (choice.gradient_cost || method == "fd_forward" || method == "fd_central") continue;
@@ -290,8 +290,8 @@ void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& 
       const DesignNlp nlp(problem, method, 1e-6, choice.gradient_jobs);
       try {
         measured[method] = nlp.measureGradientCost(nlp.start());
-      } catch (const std::exception&) {  // the start cannot be simulated: each run says so
-        continue;
+      } catch (const std::exception&) {  // each run says so; measured once, not once per run
+        measured[method] = std::nullopt;
       }
     }
     choice.gradient_cost = measured[method];

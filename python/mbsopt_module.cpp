@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -50,14 +51,23 @@ py::array_t<double> array(const Eigen::VectorXd& v) {
 py::object pythonOf(const nlohmann::json& json) { return py::module_::import("json").attr("loads")(json.dump()); }
 
 /// A scene loaded once, with its overrides: `mbsopt.Scene`. set() adds overrides and reloads it, so
-/// a value is checked, and settings (words) take effect, exactly as `--set` does on the command line.
+/// a value is checked, and settings (words) take effect, exactly as `--set` does on the command line;
+/// a name set again takes its new value, and overrides the scene refuses leave it as it was. Threads: simulate() runs without the GIL, under the
+/// object's mutex, which set() takes too (the other members run under the GIL and only read).
 class PythonScene {
  public:
   PythonScene(const std::string& scene, const py::dict& set) : source_(resolveScene(scene)) { this->set(set); }
 
   void set(const py::dict& values) {
-    for (ParameterOverride& o : overridesOf(source_, values)) overrides_.push_back(std::move(o));
-    loaded_ = loadScene(source_, overrides_);
+    std::vector<ParameterOverride> overrides = overrides_;
+    for (ParameterOverride& o : overridesOf(source_, values)) {  // a name set again takes its new value
+      std::erase_if(overrides, [&](const ParameterOverride& old) { return old.name == o.name; });
+      overrides.push_back(std::move(o));
+    }
+    LoadedScene loaded = loadScene(source_, overrides);  // throws before anything changes
+    const std::lock_guard<std::mutex> lock(mutex_);
+    overrides_ = std::move(overrides);
+    loaded_ = std::move(loaded);
   }
 
   py::dict parameters() const {
@@ -83,7 +93,8 @@ class PythonScene {
     const Scene& s = loaded_.scene;
     Trajectory t;
     {
-      const py::gil_scoped_release unlocked;
+      const py::gil_scoped_release unlocked;  // released first, so the mutex is never awaited with it
+      const std::lock_guard<std::mutex> lock(mutex_);
       t = NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0);
     }
     py::dict out;
@@ -105,17 +116,19 @@ class PythonScene {
   SceneSource source_;
   std::vector<ParameterOverride> overrides_;
   LoadedScene loaded_;
+  mutable std::mutex mutex_;  ///< loaded_ while simulate() reads it without the GIL
 };
 
 /// A design problem loaded once, with its gradient method: `mbsopt.Problem`. Its variables are
 /// given and returned in SI units; the gradients are with respect to x = value / scale, the
-/// variables the optimizers see.
+/// variables the optimizers see. Threads: evaluate() runs without the GIL, under the object's mutex
+/// (the problem's kept simulations change); optimize() reads the problem only, each run on its own.
 class PythonProblem {
  public:
   PythonProblem(const std::string& problem, const std::string& gradient, const py::dict& set, int jobs)
       : source_(resolveScene(problem)),
         nlp_(loadDesignProblem(source_, overridesOf(source_, set)), gradient == "fd" ? "fd_central" : gradient, 1e-6,
-             jobs),
+             checkedJobs(jobs)),
         gradient_(gradient),
         jobs_(jobs) {}
 
@@ -158,7 +171,8 @@ class PythonProblem {
     if (artificial) x[x.size() - 1] = *artificial / problem().design.artificial.scale;
     NlpEvaluation e;
     {
-      const py::gil_scoped_release unlocked;
+      const py::gil_scoped_release unlocked;  // released first, so the mutex is never awaited with it
+      const std::lock_guard<std::mutex> lock(mutex_);
       nlp_.evaluate(x, gradients, e);
     }
     py::dict out;
@@ -200,6 +214,11 @@ class PythonProblem {
   const std::string& gradient() const { return gradient_; }
 
  private:
+  static int checkedJobs(int jobs) {
+    if (jobs < 1) throw std::invalid_argument("jobs must be at least 1, not " + std::to_string(jobs));
+    return jobs;
+  }
+
   /// Scaled values (x) as SI ones, variable by variable.
   py::array_t<double> inSi(const Eigen::VectorXd& x) const {
     const std::vector<double> s = scales();
@@ -210,6 +229,7 @@ class PythonProblem {
   DesignNlp nlp_;
   std::string gradient_;
   int jobs_;
+  std::mutex mutex_;  ///< nlp_ while evaluate() runs without the GIL
 };
 
 }  // namespace
@@ -235,7 +255,8 @@ PYBIND11_MODULE(mbsopt, m) {
       .def_property_readonly("parameters", &PythonScene::parameters, "Every model parameter by its dotted name (SI).")
       .def_property_readonly("coordinates", &PythonScene::coordinates, "The columns of q, v and a.")
       .def_property_readonly("sensor_names", &PythonScene::sensorNames, "The columns of the sensors.")
-      .def_property_readonly("path", &PythonScene::path, "The file read, or builtin:NAME.")
+      .def_property_readonly("path", &PythonScene::path,
+                             "The scene file read (problems/scenes/NAME.yaml for a built-in, compiled in).")
       .def_property_readonly("warnings", &PythonScene::warnings, "What loading changed (e.g. the initial state).")
       .def("__repr__", [](const PythonScene& s) { return "mbsopt.Scene('" + s.path() + "')"; });
 
@@ -267,7 +288,8 @@ PYBIND11_MODULE(mbsopt, m) {
                              "The start (SI), b_{k+1} last.")
       .def_property_readonly("constraint_names", &PythonProblem::constraintNames, "The transcribed constraints.")
       .def_property_readonly("gradient", &PythonProblem::gradient, "The gradient method.")
-      .def_property_readonly("path", &PythonProblem::path, "The file read, or builtin:NAME.")
+      .def_property_readonly("path", &PythonProblem::path,
+                             "The scene file read (problems/scenes/NAME.yaml for a built-in, compiled in).")
       .def("__repr__", [](const PythonProblem& p) {
         return "mbsopt.Problem('" + p.path() + "', gradient='" + p.gradient() + "')";
       });

@@ -10,10 +10,11 @@ Two kinds of quoted figures are checked, in README.md and in every other markdow
 - tables copied from a command's output: a comment `<!-- figures: COMMAND => FILE -->` on the line
   before a table says that COMMAND writes FILE (a path from the repository's root, or `-` for the
   command's standard output) and that FILE holds a table with the same header; rows are matched by
-  their leading cells without figures (optimizer, gradient, formulation, …), cells figure by figure.
+  their leading cells without figures (optimizer, gradient, formulation, …), or in order where those
+  are missing or repeated, cells figure by figure.
 
 A figure is a number as printed. Timings and the figures a clock decides (a number followed by a
-time unit, after "wall time", in a column whose header names a time or a unit of seconds, a measured
+time unit but for a simulated time such as "t = 1.5 s" or "steps of 0.001 s", after "wall time", in a column whose header names a time or a unit of seconds, a measured
 gradient cost and the simulation-equivalents counted with it, the simulations that ran ahead on a
 spare core) move with the machine's load: they are listed apart and do not count as changes. Other figures quoted elsewhere in the prose name their
 command beside them; this script does not find those.
@@ -101,8 +102,14 @@ def figure_sets(path):
     return sets
 
 
+# A time the run computes, not one it measures: "at t = 1.593 s", "steps of 0.001 s", "h = 1 ms".
+SIMULATED_TIME_BEFORE = re.compile(r"(?:\b[th]\s*=|\bsteps? of|--dt)\s*$")
+
+
 def is_timing(text, start, end):
     before = text[max(0, start - 12):start]
+    if SIMULATED_TIME_BEFORE.search(before):
+        return False
     return bool(TIMED_AFTER.match(text[end:])) or "wall time" in before
 
 
@@ -152,9 +159,9 @@ def words(text):
 
 def align(figure_set, out, report):
     """The quoted lines paired with the output's. The quote's `...` lines cut it into segments: the
-    first is the output's first lines, each later one starts at the next output line with the same
-    words as its first line (figures aside), and a quote that does not end with `...` ends where the
-    output ends."""
+    first is the output's first lines, each later one starts at the next output line equal to its
+    first line, or else the next with the same words (figures aside), and a quote that does not end
+    with `...` ends where the output ends. Quoted lines beyond the output are reported."""
     segments, segment = [], []
     for number, text in figure_set.quoted:
         if text.strip() == "...":
@@ -173,13 +180,19 @@ def align(figure_set, out, report):
         elif k == 0:
             start = 0
         else:
-            first = words(segment[0][1])
-            start = next((i for i in range(position, len(out)) if words(out[i]) == first), None)
-        if start is None or start < position or start + len(segment) > len(out):
+            first = segment[0][1]
+            start = next((i for i in range(position, len(out)) if out[i].split() == first.split()), None)
+            if start is None:
+                start = next((i for i in range(position, len(out)) if words(out[i]) == words(first)), None)
+        if start is None or start < position:
             report.changed.append(f"{figure_set.path}:{segment[0][0]}: the quoted lines from here on are not in "
                                   f"the output of `{figure_set.command}`")
             return pairs
         pairs += list(zip(segment, out[start:start + len(segment)]))
+        if start + len(segment) > len(out):
+            report.changed.append(f"{figure_set.path}:{segment[len(out) - start][0]}: the quoted lines from here on "
+                                  f"are beyond the output of `{figure_set.command}` ({len(out)} lines)")
+            return pairs
         position = start + len(segment)
     if len(segments) == 1 and len(out) != len(figure_set.quoted):
         report.changed.append(f"{figure_set.path}:{figure_set.line}: {len(figure_set.quoted)} lines quoted, "
@@ -224,22 +237,32 @@ def check_table(figure_set, report, execute):
         report.errors.append(f"{figure_set.path}:{figure_set.line}: no table with the header "
                              f"| {' | '.join(header)} | in {output}")
         return
-    now = {row_key(cells): cells for _, cells in read_table(lines, start)[1:]}
+    rows_now = [cells for _, cells in read_table(lines, start)[1:]]
+    quoted = figure_set.rows[1:]
     timing_columns = [bool(TIMING_HEADER.search(name)) for name in header]
-    quoted_keys = set()
-    for number, cells in figure_set.rows[1:]:
-        key = row_key(cells)
-        quoted_keys.add(key)
-        where = f"{figure_set.path}:{number}"
-        if key not in now:
-            report.changed.append(f"{where}: the row {' | '.join(key)} is not in {output} any more")
-            continue
-        for name, old, new, timing in zip(header, cells, now[key], timing_columns):
-            report.compare(f"{where} [{name}]", old, new, timing)
-    for key in now:
-        if key not in quoted_keys:
-            report.changed.append(f"{figure_set.path}:{figure_set.line}: {output} has a row the README does not "
-                                  f"quote: {' | '.join(key)}")
+    keys_now, keys_quoted = [row_key(cells) for cells in rows_now], [row_key(cells) for _, cells in quoted]
+    if all(keys_now) and all(keys_quoted) and len(set(keys_now)) == len(keys_now) and \
+            len(set(keys_quoted)) == len(keys_quoted):
+        now = dict(zip(keys_now, rows_now))  # rows by their leading cells, in any order
+        pairs = []
+        for (number, cells), key in zip(quoted, keys_quoted):
+            if key in now:
+                pairs.append((number, cells, now[key]))
+            else:
+                report.changed.append(f"{figure_set.path}:{number}: the row {' | '.join(key)} is not in {output} "
+                                      "any more")
+        for key in keys_now:
+            if key not in keys_quoted:
+                report.changed.append(f"{figure_set.path}:{figure_set.line}: {output} has a row the README does not "
+                                      f"quote: {' | '.join(key)}")
+    else:  # leading cells with figures, or repeated: row by row, in order
+        pairs = [(number, cells, new) for (number, cells), new in zip(quoted, rows_now)]
+        if len(quoted) != len(rows_now):
+            report.changed.append(f"{figure_set.path}:{figure_set.line}: {len(quoted)} rows quoted, {len(rows_now)} "
+                                  f"in {output}")
+    for number, cells, new_cells in pairs:
+        for name, old, new, timing in zip(header, cells, new_cells, timing_columns):
+            report.compare(f"{figure_set.path}:{number} [{name}]", old, new, timing)
 
 
 def main():

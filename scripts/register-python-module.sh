@@ -23,9 +23,14 @@ fi
 version() { "$1" -c 'import sys; print(f"{sys.version_info[0]}.{sys.version_info[1]}")'; }
 interpreters=("$built_for")
 on_path=$(command -v python3 || true)
-if [ -n "$on_path" ] && [ "$(realpath "$on_path")" != "$(realpath "$built_for")" ] &&
-   [ "$(version "$on_path")" = "$(version "$built_for")" ]; then
-  interpreters+=("$on_path")
+if [ -n "$on_path" ] && [ "$(realpath "$on_path")" != "$(realpath "$built_for")" ]; then
+  if [ "$(version "$on_path")" = "$(version "$built_for")" ]; then
+    interpreters+=("$on_path")
+  else
+    echo "register-python-module: $on_path is Python $(version "$on_path"), the module is built for" \
+         "$built_for (Python $(version "$built_for")): use that one, or configure with" \
+         "-DPython3_EXECUTABLE=$on_path and rebuild" >&2
+  fi
 fi
 for python in "${interpreters[@]}"; do
   site=$("$python" -m site --user-site)

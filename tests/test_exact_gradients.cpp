@@ -438,12 +438,12 @@ TEST(ExactGradients, FourBarKsAggregateMatchesCentralDifferences) {
 // 1.8e-8 on a_lat_above and 1.6e-6 on a_lat_below (`mbsopt gradcheck tramway --artificial 2`):
 // ∫⟨a_lat + b⟩dt is only piecewise smooth in b where the active set's edges cross the grid, which
 // limits the differences, not the adjoint (= direct to 5e-14); at that step about half of it is the
-// Newton tolerance over δ (7.5e-6 at δ = 1e-6), which round-off moves between CPUs. 3e-6 keeps the
-// test twice as strict as it was.
+// Newton tolerance over δ (7.5e-6 at δ = 1e-6), which round-off moves between CPUs. 4e-6, 2.5 times
+// the measurement for that, keeps the test 1.5 times stricter than it was.
 TEST(ExactGradients, TramwayAdjointMatchesCentralDifferencesAtTheBestStep) {
   DesignProblem problem = tramwayDesignProblem();
   problem.design.artificial.initial = 2.0;
-  const DesignGradient adjoint = expectAdjointMatchesCentralDifferencesAtTheBestStep(problem, 3e-6);
+  const DesignGradient adjoint = expectAdjointMatchesCentralDifferencesAtTheBestStep(problem, 4e-6);
   EXPECT_GT(adjoint.constraints.topLeftCorner(1, 4).cwiseAbs().maxCoeff(), 1e-4);  // a_lat_above is active
 }
 
