@@ -9,7 +9,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-cmake --preset release -DMBSOPT_BUILD_TESTS=OFF -DMBSOPT_BUILD_BENCH=OFF > /dev/null
+# A first configuration leaves the tests and benchmarks out; a tree already configured keeps its
+# choices (turning them off would leave ctest running the stale test list of scripts/test.sh's build).
+options=()
+[ -f build/release/CMakeCache.txt ] || options=(-DMBSOPT_BUILD_TESTS=OFF -DMBSOPT_BUILD_BENCH=OFF)
+cmake --preset release "${options[@]}" > /dev/null
 cmake --build --preset release -j "$(nproc)"
 scripts/register-python-module.sh || echo "main.sh: the Python module is not registered (above); the main job goes on" >&2
 build/release/app/mbsopt simulate tramway --out tramway.csv
