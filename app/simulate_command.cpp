@@ -6,22 +6,55 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
+#include "app/atomic_file.hpp"
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
+#include "app/simulation_summary.hpp"
+#include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
 
 namespace {
 
+/// A fixed-step Newmark run estimates its global error by default up to this many steps (the estimate
+/// takes a second run at h/2, twice the work of the first).
+constexpr long kEstimateByDefaultUpTo = 200000;
+
 struct SimulateOptions {
   SceneArgument scene;
   bool fast_newton = false;
   std::string step, end_time;  ///< as typed: they become overrides of settings.step, settings.end_time
-  std::string out;
+  std::string out, json;
   long every = 1;  ///< write every N-th time point (and the last) to the CSV
+  std::string integrator;  ///< empty: newmark at a fixed step, extrapolation with --accuracy
+  double accuracy = 0.0, absolute_accuracy = -1.0;  ///< 0: a fixed step; absolute < 0: the same as accuracy
+  double output_step = 0.0;
+  int runs = 4;
+  std::string error_estimate = "auto";
+  double warn_error = 1e-3;
 };
+
+IntegrationRequest requestOf(const SimulateOptions& options, const NewmarkSettings& settings) {
+  IntegrationRequest request;
+  request.integrator = !options.integrator.empty() ? options.integrator
+                       : options.accuracy > 0.0   ? "extrapolation"
+                                                  : "newmark";
+  if (options.accuracy > 0.0)
+    request.accuracy = ErrorTolerance{options.absolute_accuracy >= 0.0 ? options.absolute_accuracy : options.accuracy,
+                                      options.accuracy};
+  request.output_step = options.output_step;
+  request.runs = options.runs;
+  const double steps = std::ceil(settings.end_time / settings.step - 1e-9);
+  // auto: not for a scheme whose error is not even in h (damped β, γ; --fast-newton), where "on" is refused.
+  request.estimate_error =
+      options.error_estimate == "on" ||
+      (options.error_estimate == "auto" && steps <= static_cast<double>(kEstimateByDefaultUpTo) &&
+       extrapolationDefect(settings).empty());
+  return request;
+}
 
 /// Refuses, before a run, an output path that cannot or must not be replaced by the CSV.
 void checkOutputPath(const SceneSource& source, const std::string& out) {
@@ -58,22 +91,36 @@ void run(const SimulateOptions& options) {
   Scene& scene = loaded.scene;
   scene.settings.accept_by_contraction_rate = options.fast_newton;
 
+  const IntegrationRequest request = requestOf(options, scene.settings);
+  if (!request.accuracy && request.integrator == "extrapolation")
+    if (const std::string defect = extrapolationDefect(scene.settings); !defect.empty())
+      throw SceneError(source.path, 0, 0, defect);
   const auto start = std::chrono::steady_clock::now();
   auto last_report = start;
+  double last_time = -1.0;
+  int run_index = 0;
   const auto progress = [&](double t) {  // a line per second once a run takes longer than one
+    if (t < last_time) ++run_index;  // the next of several runs
+    last_time = t;
     const auto now = std::chrono::steady_clock::now();
     if (now - last_report < std::chrono::seconds(1)) return;
     last_report = now;
-    std::fprintf(stderr, "  t = %.4g s of %.4g s (%.0f%%), %.1f s elapsed\n", t, scene.settings.end_time,
-                 100.0 * t / scene.settings.end_time, std::chrono::duration<double>(now - start).count());
+    std::fprintf(stderr, "  run %d: t = %.4g s of %.4g s (%.0f%%), %.1f s elapsed\n", run_index + 1, t,
+                 scene.settings.end_time, 100.0 * t / scene.settings.end_time,
+                 std::chrono::duration<double>(now - start).count());
   };
-  Trajectory trajectory;
+  Integration integration;
   try {
-    trajectory = NewmarkIntegrator(scene.model, scene.settings).simulate(scene.q0, scene.v0, progress);
+    integration = integrate(scene.model, scene.settings, scene.q0, scene.v0, request, progress);
   } catch (const SimulationError& e) {
     failAt(source, loaded, e.element, e.what());
+  } catch (const AccuracyError& e) {
+    throw SceneError(source.path, 0, 0, e.what());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(source.path, 0, 0, e.what());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Trajectory& trajectory = integration.run.trajectory;
 
   const Eigen::MatrixXd& sensors = trajectory.sensors;
   for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
@@ -87,16 +134,13 @@ void run(const SimulateOptions& options) {
     }
   }
   if (!options.out.empty()) writeTrajectoryCsv(options.out, scene.model, trajectory, sensors, options.every);
-  for (std::size_t s = 0; s < scene.model.sensors().size(); ++s) {
-    Eigen::Index at = 0;
-    const double peak = sensors.col(static_cast<Eigen::Index>(s)).cwiseAbs().maxCoeff(&at);
-    std::printf("  max |%s| = %.6g at t = %.4g s\n", scene.model.sensors()[s].name.c_str(), peak, trajectory.time[at]);
-  }
-  const IntegratorStatistics& stats = trajectory.statistics;
-  std::printf("simulated %s: %ld steps of %g s, %ld Newton iterations, max closure error %.3g, max relative Newton "
-              "residual %.3g, wall time %.3g s%s\n",
-              source.path.c_str(), stats.steps, scene.settings.step, stats.newton_iterations, stats.max_closure_error,
-              stats.max_relative_residual, wall, options.out.empty() ? "" : (", wrote " + options.out).c_str());
+  const SimulationSummary summary =
+      summarize(scene.model, source.path, integration, request, scene.settings, wall, options.warn_error);
+  for (const std::string& line : summary.sensor_lines) std::printf("%s\n", line.c_str());
+  for (const std::string& warning : summary.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  std::printf("%s%s\n", summary.line.c_str(), options.out.empty() ? "" : (", wrote " + options.out).c_str());
+  if (!options.json.empty())
+    writeAtomically(options.json, [&](std::ostream& out) { out << summary.json.dump(2) << '\n'; });
 }
 
 }  // namespace
@@ -105,9 +149,10 @@ void registerSimulateCommand(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* command = app.add_subcommand(
       "simulate",
-      "Simulate a scene with the Newmark integrator: prints the peak of every sensor and a summary line "
-      "(steps, Newton iterations, max closure error, wall time) on stdout, warnings and a progress line per "
-      "second on stderr; exit status 1 with one line 'file:line:column: error: what' on a bad scene");
+      "Simulate a scene (the Newmark integrator at the scene's step by default): prints the peak of every "
+      "sensor and a summary line (integrator, steps, Newton iterations, max closure error, the estimated global "
+      "error, wall time) on stdout, warnings and a progress line per second on stderr; exit status 1 with one "
+      "line 'file:line:column: error: what' on a bad scene or a run that fails");
   addSceneArgument(*command, options->scene, true);
   command->add_option("--dt", options->step,
                       "Time step h [s]; the same as --set settings.step=H (default: the scene's settings.step)");
@@ -125,6 +170,60 @@ void registerSimulateCommand(CLI::App& app) {
                        "sensor, by name (SI units: m, rad, m/s², ...); written to a temporary name and renamed when "
                        "complete, so it never exists half written")
           ->check([](const std::string& path) { return path.empty() ? "the file name is empty" : ""; });
+  command
+      ->add_option("--integrator", options->integrator,
+                   "The integrator (default: newmark at a fixed step, extrapolation with --accuracy): " + [] {
+                     std::string text;
+                     for (const IntegratorInfo& info : integrators())
+                       text += (text.empty() ? "" : "; ") + info.name + ": " + info.description;
+                     return text;
+                   }())
+      ->check(CLI::IsMember([] {
+        std::vector<std::string> names;
+        for (const IntegratorInfo& info : integrators()) names.push_back(info.name);
+        return names;
+      }()));
+  CLI::Option* accuracy =
+      command
+          ->add_option("--accuracy", options->accuracy,
+                       "Run to this accuracy instead of at a fixed step: the steps (and, for extrapolation, the "
+                       "number of runs) are chosen until the estimated global error e of every coordinate q meets "
+                       "|e| <= A + TOL |q| at every output time (A = TOL unless --absolute-accuracy); the estimate "
+                       "is printed. The scene's settings.step is the first attempt's step")
+          ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--absolute-accuracy", options->absolute_accuracy,
+                   "The absolute part A of --accuracy, in the coordinates' units (m, rad); default: TOL")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(accuracy);
+  command
+      ->add_option("--output-step", options->output_step,
+                   "Results (CSV rows, peaks, the estimate) at the multiples of DT [s], whatever steps the "
+                   "integrator takes; with a fixed Newmark step DT must be a whole number of steps (default: every "
+                   "step, or every macro step of an extrapolation)")
+      ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--runs", options->runs,
+                   "Extrapolation at a fixed macro step (no --accuracy): Newmark runs at H, H/2, ..., H/K with H "
+                   "the scene's step; the result has order K (K + K - 2 without cut joints)")
+      ->check(CLI::Range(2, 12))
+      ->excludes(accuracy)
+      ->capture_default_str();
+  command
+      ->add_option("--error-estimate", options->error_estimate,
+                   "For a fixed Newmark step: estimate the global error from a second run at h/2 (twice the work "
+                   "of the first): on, off, or auto (on up to " + std::to_string(kEstimateByDefaultUpTo) +
+                       " steps). Extrapolation and --accuracy always estimate it")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  command
+      ->add_option("--warn-error", options->warn_error,
+                   "Warn on stderr when the estimated global error of a coordinate exceeds TOL + TOL |q|")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--json", options->json,
+                      "Write the run's summary as JSON: integrator, steps, the estimated global errors (largest "
+                      "over the coordinates and rates, weighted, per sensor), each sensor's peak, wall time");
   command
       ->add_option("--every", options->every,
                    "Write only every N-th time point to the CSV, and always the first and the last (t = 0, N·h, "

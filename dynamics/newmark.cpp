@@ -24,6 +24,13 @@ std::string describe(const std::string& what, double time, long step, double res
   return out.str();
 }
 
+/// A step in seconds as a message prints it ("0.05").
+std::string formatStep(double step) {
+  std::ostringstream out;
+  out << step;
+  return out.str();
+}
+
 // Contraction rate of the modified Newton iteration above which the iteration matrix is refreshed.
 constexpr double kSlowContraction = 0.05;
 // Increments within this factor of the round-off floor are noise: there an iteration that stops
@@ -142,7 +149,7 @@ void NewmarkIntegrator::fail(const std::string& reason, const Eigen::VectorXd& r
   throw SimulationError(reason, t_, step_count_, norm, element);
 }
 
-void NewmarkIntegrator::failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const {
+std::string NewmarkIntegrator::unresistedCoordinate(const Eigen::MatrixXd& matrix) const {
   // The direction the matrix does not resist within the free directions V₂: the last right
   // singular vector of V₂ᵀ J V₂, mapped back; its largest component names the coordinate.
   const Eigen::MatrixXd& v2 = partition_.freeDirections();
@@ -151,14 +158,30 @@ void NewmarkIntegrator::failSingular(const std::string& reason, const Eigen::Mat
   const Eigen::VectorXd direction = v2 * svd.matrixV().col(reduced.cols() - 1);
   Eigen::Index worst = 0;
   direction.cwiseAbs().maxCoeff(&worst);
-  const std::string& element = model_.coordinateOwner(free_[static_cast<std::size_t>(worst)]);
+  return model_.coordinateOwner(free_[static_cast<std::size_t>(worst)]);
+}
+
+void NewmarkIntegrator::failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const {
+  const std::string element = unresistedCoordinate(matrix);
   throw SimulationError(reason + ": nothing resists a motion of '" + element +
                             "' (a joint with no body beyond it, or a massless loop?)",
                         t_, step_count_, r_free_.size() ? r_free_.norm() : 0.0, element);
 }
 
 void NewmarkIntegrator::factor(const Eigen::MatrixXd& matrix, const char* name) {
-  if (!partition_.setIterationMatrix(matrix)) failSingular(std::string(name) + " is singular on the free directions", matrix);
+  if (!partition_.setIterationMatrix(matrix)) {
+    // J = M + γh C_T + βh² K_T (33) singular where M is not: its stiffness and damping terms cancel
+    // the inertia at this h (gravity on a raised chain, a negative stiffness), so the step is at fault.
+    if (&matrix == &J_ && tangents_in_use_ && partition_.setIterationMatrix(mass_)) {
+      const std::string element = unresistedCoordinate(matrix);
+      throw SimulationError("the iteration matrix M + gamma h C + beta h^2 K is singular on the free directions "
+                            "although the mass matrix is not: at h = " + formatStep(settings_.step) +
+                                " s its stiffness and damping terms cancel the inertia of '" + element +
+                                "', a step too large for Newton here (take a smaller step, or --accuracy)",
+                            t_, step_count_, r_free_.size() ? r_free_.norm() : 0.0, element);
+    }
+    failSingular(std::string(name) + " is singular on the free directions", matrix);
+  }
   ++stats_.factorizations;
 }
 
@@ -483,7 +506,9 @@ void NewmarkIntegrator::step() {
       lambda_ = lambda_previous_;
       setDriven(t_);
       if (!newton(true))
-        fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) + " iterations", r_free_);
+        fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
+                 " iterations (a step too large for Newton here? take a smaller step, or --accuracy)",
+             r_free_);
     }
   }
   for (std::size_t k = 0; k < free_.size(); ++k) free_accelerations_[static_cast<Eigen::Index>(k)] = a_[free_[k]];

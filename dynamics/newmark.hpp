@@ -236,6 +236,8 @@ class NewmarkIntegrator {
   /// The checks of run_checks.hpp after a step; throws SimulationError when one fails.
   void checkStep();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
+  /// The element of the coordinate that `matrix` resists least within the free directions.
+  std::string unresistedCoordinate(const Eigen::MatrixXd& matrix) const;
   /// For an iteration matrix singular on the free directions: names the coordinate it leaves free.
   [[noreturn]] void failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const;
   /// Factors V₂ᵀ matrix V₂ in the partition; a singular one ends the run naming `name`.

@@ -11,48 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
+#include "tests/command_directory.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
 namespace {
 
-/// A fresh directory per test, removed at the end.
-class PrecisionCommand : public ::testing::Test {
- protected:
-  void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("mbsopt_precision_" + std::to_string(::getpid()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(directory_);
-    std::filesystem::create_directories(directory_);
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-
-  /// Runs `mbsopt ARGUMENTS`, stdout and stderr to files; returns the exit status.
-  int mbsopt(const std::string& arguments) const {
-    const std::string command = std::string(MBSOPT_EXECUTABLE) + " " + arguments + " > " + path("stdout") + " 2> " +
-                                path("stderr");
-    const int status = std::system(command.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
-  std::string read(const std::string& name) const {
-    std::ifstream in(path(name));
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
-  nlohmann::json json(const std::string& name) const { return nlohmann::json::parse(read(name)); }
-
-  std::filesystem::path directory_;
-};
+using PrecisionCommand = test::CommandDirectory;
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;

@@ -1,0 +1,199 @@
+#include "mbsopt/dynamics/extrapolation.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/dynamics/sensors.hpp"
+
+namespace mbsopt {
+
+std::vector<int> errorExponents(const Model& model, const NewmarkSettings& settings) {
+  const bool projected = model.constraintCount() > 0 && settings.closure == ClosureLevel::Position;
+  std::vector<int> exponents;
+  for (int p = 2; exponents.size() < 12; p += projected ? 1 : 2) exponents.push_back(p);
+  return exponents;
+}
+
+Eigen::VectorXd ExtrapolationTableau::weights(int first) const {
+  const int count = rows() - first;
+  if (count < 1 || count > static_cast<int>(exponents_.size()) + 1)
+    throw std::invalid_argument("ExtrapolationTableau: no combination of " + std::to_string(count) + " runs");
+  // Row 0: Σ c_i = 1; row m: Σ c_i h_i^{p_m} = 0 with h_i = 1/n_i (H factors out), n_i = i.
+  Eigen::MatrixXd system(count, count);
+  for (int i = 0; i < count; ++i) {
+    const double h = 1.0 / (first + i + 1);
+    system(0, i) = 1.0;
+    for (int m = 1; m < count; ++m) system(m, i) = std::pow(h, exponents_[static_cast<std::size_t>(m - 1)]);
+  }
+  return system.fullPivLu().solve(Eigen::VectorXd::Unit(count, 0));
+}
+
+SampledRun ExtrapolationTableau::combination(int first) const {
+  if (rows() < 2) throw std::logic_error("ExtrapolationTableau: a combination needs two runs");
+  const Eigen::VectorXd c = weights(first);
+  const SampledRun& last = runs_.back();
+  SampledRun sum;
+  sum.time = last.time;
+  sum.statistics = statistics_;
+  for (Eigen::MatrixXd SampledRun::*part : {&SampledRun::q, &SampledRun::v, &SampledRun::a, &SampledRun::lambda}) {
+    sum.*part = Eigen::MatrixXd::Zero((last.*part).rows(), (last.*part).cols());
+    for (Eigen::Index i = 0; i < c.size(); ++i) sum.*part += c[i] * (runs_[static_cast<std::size_t>(first + i)].*part);
+  }
+  return sum;
+}
+
+void addStatistics(IntegratorStatistics& sum, const IntegratorStatistics& run) {
+  sum.steps += run.steps;
+  sum.newton_iterations += run.newton_iterations;
+  sum.jacobian_updates += run.jacobian_updates;
+  sum.mass_updates += run.mass_updates;
+  sum.factorizations += run.factorizations;
+  sum.max_closure_error = std::max(sum.max_closure_error, run.max_closure_error);
+  sum.max_relative_residual = std::max(sum.max_relative_residual, run.max_relative_residual);
+}
+
+long stepsToCover(double end_time, double step) {
+  return std::max(1L, static_cast<long>(std::ceil(end_time / step - 1e-9)));
+}
+
+void ExtrapolationTableau::add(SampledRun run, double step) {
+  steps_.push_back(step);
+  addStatistics(statistics_, run.statistics);
+  runs_.push_back(std::move(run));
+}
+
+Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings, SampledRun run) {
+  Trajectory trajectory;
+  trajectory.time = std::move(run.time);
+  trajectory.q = std::move(run.q);
+  trajectory.v = std::move(run.v);
+  trajectory.a = std::move(run.a);
+  trajectory.lambda = std::move(run.lambda);
+  trajectory.closure_error = Eigen::VectorXd::Zero(trajectory.time.size());
+  if (model.constraintCount() > 0) {
+    Eigen::VectorXd q, v;
+    for (Eigen::Index k = 0; k < trajectory.time.size(); ++k) {
+      q = trajectory.q.col(k);
+      v = trajectory.v.col(k);
+      const AssemblyReport report = assemble(model, q, v, trajectory.time[k], 1e-12, settings.svd_threshold);
+      trajectory.q.col(k) = q;
+      trajectory.v.col(k) = v;
+      trajectory.closure_error[k] = report.closure_error;
+    }
+  }
+  trajectory.sensors = sensorHistory(model, trajectory);
+  trajectory.newton_iterations = Eigen::VectorXi::Zero(trajectory.time.size());
+  trajectory.statistics = run.statistics;
+  return trajectory;
+}
+
+std::string extrapolationDefect(const NewmarkSettings& settings) {
+  if (settings.beta != 0.25 || settings.gamma != 0.5)
+    return "extrapolation needs the trapezoidal rule (beta = 0.25, gamma = 0.5), whose error is even in h; this "
+           "scene has beta = " + std::to_string(settings.beta) + ", gamma = " + std::to_string(settings.gamma);
+  if (settings.closure != ClosureLevel::Position)
+    return "extrapolation needs the loops closed at position level: the acceleration-level closure drifts";
+  if (settings.accept_by_contraction_rate)
+    return "extrapolation needs every Newton iteration converged to its tolerance (not --fast-newton): the runs' "
+           "differences must be the discretisation's, not the iteration's";
+  return {};
+}
+
+SampledRun sampledNewmarkRun(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
+                             const Eigen::VectorXd& v0, long stride, long outputs,
+                             const std::function<void(double)>& progress) {
+  if (stride < 1 || outputs < 1) throw std::invalid_argument("sampledNewmarkRun: stride and outputs must be positive");
+  NewmarkIntegrator integrator(model, settings);
+  integrator.initialize(q0, v0, 0.0);
+  const Eigen::Index n = model.coordinateCount();
+  SampledRun run;
+  run.time.resize(outputs + 1);
+  run.q.resize(n, outputs + 1);
+  run.v.resize(n, outputs + 1);
+  run.a.resize(n, outputs + 1);
+  run.lambda.resize(model.constraintCount(), outputs + 1);
+  const auto keep = [&](Eigen::Index m) {
+    run.time[m] = integrator.time();
+    run.q.col(m) = integrator.q();
+    run.v.col(m) = integrator.v();
+    run.a.col(m) = integrator.a();
+    run.lambda.col(m) = integrator.lambda();
+  };
+  keep(0);
+  for (Eigen::Index m = 1; m <= outputs; ++m) {
+    for (long s = 0; s < stride; ++s) {
+      integrator.step();
+      if (progress) progress(integrator.time());
+    }
+    keep(m);
+  }
+  run.statistics = integrator.statistics();
+  return run;
+}
+
+double weightedErrorNorm(const Eigen::MatrixXd& error, const Eigen::MatrixXd& value, const ErrorTolerance& tolerance) {
+  return (error.array().abs() / (tolerance.absolute + tolerance.relative * value.array().abs())).maxCoeff();
+}
+
+Eigen::VectorXd largestPerTimePoint(const Eigen::MatrixXd& error) {
+  if (error.rows() == 0) return Eigen::VectorXd::Zero(error.cols());
+  return error.cwiseAbs().colwise().maxCoeff().transpose();
+}
+
+double EstimatedRun::positionError() const { return q_error.size() ? q_error.cwiseAbs().maxCoeff() : 0.0; }
+double EstimatedRun::velocityError() const { return v_error.size() ? v_error.cwiseAbs().maxCoeff() : 0.0; }
+
+EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& settings, Trajectory trajectory,
+                                 const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                                 const std::function<void(double)>& progress) {
+  if (const std::string defect = extrapolationDefect(settings); !defect.empty())
+    throw std::invalid_argument("the global error estimate: " + defect);
+  NewmarkSettings half = settings;
+  half.step = 0.5 * settings.step;
+  const long points = trajectory.time.size();
+  SampledRun fine = sampledNewmarkRun(model, half, q0, v0, 2, points - 1, progress);
+  addStatistics(trajectory.statistics, fine.statistics);
+  EstimatedRun run;
+  // y_h − y = e₂h² + O(h⁴), y_{h/2} − y = e₂h²/4 + O(h⁴): e_h = 4/3 (y_h − y_{h/2}) + O(h⁴).
+  run.q_error = (4.0 / 3.0) * (trajectory.q - fine.q);
+  run.v_error = (4.0 / 3.0) * (trajectory.v - fine.v);
+  run.sensor_error = (4.0 / 3.0) * (trajectory.sensors - sampledTrajectory(model, settings, std::move(fine)).sensors);
+  run.trajectory = std::move(trajectory);
+  run.steps = {settings.step, half.step};
+  run.order = 2;
+  return run;
+}
+
+EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& settings, int runs,
+                                 const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                                 const std::function<void(double)>& progress) {
+  if (runs < 2) throw std::invalid_argument("extrapolation needs at least 2 runs, not " + std::to_string(runs));
+  if (const std::string defect = extrapolationDefect(settings); !defect.empty()) throw std::invalid_argument(defect);
+  const double H = settings.step;
+  const long outputs = stepsToCover(settings.end_time, H);
+  ExtrapolationTableau tableau(errorExponents(model, settings));
+  for (int j = 1; j <= runs; ++j) {
+    NewmarkSettings run_settings = settings;
+    run_settings.step = H / j;
+    tableau.add(sampledNewmarkRun(model, run_settings, q0, v0, j, outputs, progress), run_settings.step);
+  }
+  return estimatedRun(model, settings, tableau);
+}
+
+EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, const ExtrapolationTableau& tableau) {
+  EstimatedRun result;
+  result.steps = tableau.steps();
+  result.order = tableau.order();
+  result.trajectory = sampledTrajectory(model, settings, tableau.result());
+  const Trajectory check = sampledTrajectory(model, settings, tableau.check());
+  result.q_error = check.q - result.trajectory.q;
+  result.v_error = check.v - result.trajectory.v;
+  result.sensor_error = check.sensors - result.trajectory.sensors;
+  return result;
+}
+
+}  // namespace mbsopt

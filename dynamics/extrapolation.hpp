@@ -1,0 +1,140 @@
+// Global extrapolation of the trapezoidal Newmark scheme, and the global error estimates it gives
+// (issue 18; docs/integrators.md).
+//
+// With β = 1/4, γ = 1/2 the Newmark step (32)-(33) is the trapezoidal rule, a symmetric one-step
+// method, so the global error of a run at step h expands in even powers of h at every point of its
+// grid (Hairer, Nørsett and Wanner, Solving ODEs I, §II.8-9):
+//     y_h(t) = y(t) + e₂(t) h² + e₄(t) h⁴ + …
+// Runs at H/n₁, H/n₂, … (the harmonic sequence n_j = j, the cheapest) meet at the multiples of H,
+// where the Aitken–Neville tableau
+//     T_{j,1} = y_{H/n_j},   T_{j,k+1} = T_{j,k} + (T_{j,k} − T_{j−1,k}) / ((n_j / n_{j−k})² − 1)
+// eliminates the error terms one by one: T_{j,k} is of order 2k. T_{j,j} − T_{j,j−1} is then the error
+// of T_{j,j−1} to within a factor 1 + O(H²) (T_{j,j} being two orders better), which is the estimate
+// an extrapolated run reports with T_{j,j−1}.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "mbsopt/dynamics/model.hpp"
+#include "mbsopt/dynamics/newmark.hpp"
+
+namespace mbsopt {
+
+/// A Newmark run kept at every `stride`-th step only: its state at t = m·stride·h, m = 0 … outputs.
+struct SampledRun {
+  Eigen::VectorXd time;
+  Eigen::MatrixXd q, v, a, lambda;  ///< one column per kept time point
+  IntegratorStatistics statistics;
+};
+
+/// `run`'s counts added to `sum`, its largest closure error and residual kept where larger.
+void addStatistics(IntegratorStatistics& sum, const IntegratorStatistics& run);
+
+/// Runs `settings` (its step h, from t = 0) from (q0, v0), keeping every `stride`-th point, `outputs`
+/// of them after t = 0. `progress(t)` is called after each step. SimulationError as simulate().
+SampledRun sampledNewmarkRun(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
+                             const Eigen::VectorXd& v0, long stride, long outputs,
+                             const std::function<void(double)>& progress = {});
+
+/// What an error may be, per entry y of a coordinate (or rate), as IDA weights it:
+/// |e| ≤ absolute + relative·|y|.
+struct ErrorTolerance {
+  double absolute = 1e-6;
+  double relative = 1e-6;
+};
+
+/// max over the entries of |error| / (absolute + relative·|value|): at most 1 where `error` meets it.
+double weightedErrorNorm(const Eigen::MatrixXd& error, const Eigen::MatrixXd& value, const ErrorTolerance& tolerance);
+
+/// The largest |entry| of each column, a time point's error over its coordinates.
+Eigen::VectorXd largestPerTimePoint(const Eigen::MatrixXd& error);
+
+/// A result with its estimated global error.
+struct EstimatedRun {
+  /// At the kept time points: q, q̇, q̈, λ and the sensors; `statistics` summed over every run made.
+  Trajectory trajectory;
+  /// Estimated global error of each entry of trajectory.q, trajectory.v and trajectory.sensors (same
+  /// shapes).
+  Eigen::MatrixXd q_error, v_error, sensor_error;
+  std::vector<double> steps;  ///< the step of every Newmark run made, in order
+  int order = 2;              ///< of the result in h (2: plain Newmark)
+
+  double positionError() const;  ///< largest estimated |error| of a coordinate (its unit: m or rad)
+  double velocityError() const;  ///< largest estimated |error| of a rate
+};
+
+/// The global error of `trajectory`, a run of `settings` from (q0, v0) (β = 1/4, γ = 1/2: the
+/// trapezoidal rule), estimated from a second run at h/2: e_h = 4/3 (y_h − y_{h/2}) at each of its
+/// points. Returns the trajectory (moved) with the estimate; `steps` = {h, h/2}.
+EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& settings, Trajectory trajectory,
+                                 const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                                 const std::function<void(double)>& progress = {});
+
+/// The powers of h in a scheme's error expansion, from the first: 2, 4, 6, … for the trapezoidal rule
+/// itself (a model without cut joints); 2, 3, 4, … with cut joints closed at position level, whose
+/// projections of q̇ and q̈ after each step break the symmetry: on the four-bar the error of a first
+/// elimination of h² falls as h³ (docs/integrators.md).
+std::vector<int> errorExponents(const Model& model, const NewmarkSettings& settings);
+
+/// The runs at H/1, H/2, H/3, … of one macro step H, and their combinations: the j runs so far give
+/// T_{j,j−1}, the combination of runs 2 … j that cancels the first j − 2 terms of the expansion
+/// (of order p_{j−1}), and T_{j,j}, that of all j runs (of order p_j), whose difference from it is its
+/// error estimate.
+class ExtrapolationTableau {
+ public:
+  explicit ExtrapolationTableau(std::vector<int> exponents) : exponents_(std::move(exponents)) {}
+  /// Adds the run at H/(rows() + 1) (its step `step`), kept at the multiples of H.
+  void add(SampledRun run, double step);
+  int rows() const { return static_cast<int>(runs_.size()); }
+  /// The order of result(): p_{j−1} for j = rows() ≥ 2.
+  int order() const { return exponents_.at(static_cast<std::size_t>(rows() - 2)); }
+  /// T_{j,j−1} (q, q̇, q̈, λ combined; time and statistics of the last run), j = rows() ≥ 2.
+  SampledRun result() const { return combination(1); }
+  /// T_{j,j}, of order p_j: T_{j,j} − T_{j,j−1} is the result's estimated error.
+  SampledRun check() const { return combination(0); }
+  /// Every run's statistics summed.
+  const IntegratorStatistics& statistics() const { return statistics_; }
+  /// Every run's step, in order.
+  const std::vector<double>& steps() const { return steps_; }
+  /// The weights of runs first+1 … rows() (1-based) in the combination that cancels the first
+  /// rows() − first − 1 terms: Σ c_i = 1, Σ c_i (1/n_i)^{p_m} = 0.
+  Eigen::VectorXd weights(int first) const;
+
+ private:
+  /// The runs from `first` (0-based) on, combined by weights(first).
+  SampledRun combination(int first) const;
+  std::vector<int> exponents_;
+  std::vector<SampledRun> runs_;
+  std::vector<double> steps_;
+  IntegratorStatistics statistics_;
+};
+
+/// The trajectory of a sampled (and perhaps combined) state: q and q̇ moved back onto b(q) = 0 and
+/// ḃ = 0 (assemble(); for a combination of runs the correction is far below their error), the
+/// sensors evaluated there, `statistics` as given.
+Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings, SampledRun run);
+
+/// The tableau's result T_{j,j−1} with its estimated errors T_{j,j} − T_{j,j−1} (q, q̇ and sensors, each
+/// combination's q and q̇ moved back onto the closure first).
+EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, const ExtrapolationTableau& tableau);
+
+/// The number of macro steps of H that cover [0, end_time]: the last at end_time or just after it, as
+/// NewmarkIntegrator::simulate ends.
+long stepsToCover(double end_time, double step);
+
+/// `runs` ≥ 2 Newmark runs at H/1, H/2, …, H/runs (H = settings.step) from (q0, v0), combined at the
+/// multiples of H (up to the first at or after settings.end_time) into T_{runs,runs−1}, of order
+/// 2(runs − 1), with its error estimate T_{runs,runs} − T_{runs,runs−1}. The combined q and q̇ are moved
+/// back onto the closure and its derivative (assemble(); the error that removes is the estimate's
+/// order squared), then the sensors are evaluated there. std::invalid_argument unless β = 1/4,
+/// γ = 1/2 and the loops are closed at position level; SimulationError from a run.
+EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& settings, int runs,
+                                 const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
+                                 const std::function<void(double)>& progress = {});
+
+/// Why a setting cannot be extrapolated (empty when it can): the symmetric scheme only.
+std::string extrapolationDefect(const NewmarkSettings& settings);
+
+}  // namespace mbsopt

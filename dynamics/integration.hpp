@@ -1,0 +1,64 @@
+// The integrators by name (`--integrator`, one registry, issue 18) and the one entry point that runs
+// a scene with any of them: a fixed step, a fixed macro step with extrapolation, or a run driven by
+// accuracy; with or without an estimate of its global error (docs/integrators.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mbsopt/dynamics/accuracy_control.hpp"
+#include "mbsopt/dynamics/extrapolation.hpp"
+
+namespace mbsopt {
+
+struct IntegratorInfo {
+  std::string name;
+  std::string description;  ///< one sentence, for --help
+  /// Newmark runs per attempt at most when driven by accuracy (AccuracyGoal::max_runs): 2 for plain
+  /// Newmark (a run at h/2 with the estimate from h), more for extrapolation.
+  int max_runs = 2;
+};
+
+/// newmark (the paper's; the default), extrapolation.
+const std::vector<IntegratorInfo>& integrators();
+/// The registered integrator `name`; std::invalid_argument listing the names otherwise.
+const IntegratorInfo& integratorInfo(const std::string& name);
+/// "newmark, extrapolation".
+std::string integratorNameList();
+
+/// How to run a scene.
+struct IntegrationRequest {
+  std::string integrator = "newmark";
+  /// Steps (and runs) chosen to meet this (simulateToAccuracy); without it the scene's step is used:
+  /// Newmark's step h, or the extrapolation's macro step H with `runs` runs.
+  std::optional<ErrorTolerance> accuracy;
+  /// The result's time points are the multiples of this [s]; 0: every step (Newmark) or every macro
+  /// step (extrapolation, or a run driven by accuracy). With a fixed Newmark step it must be a whole
+  /// number of steps.
+  double output_step = 0.0;
+  int runs = 4;  ///< extrapolation at a fixed macro step: runs at H/1 … H/runs
+  /// A fixed-step Newmark run also estimates its global error (from a run at h/2: three times the work).
+  bool estimate_error = false;
+};
+
+struct Integration {
+  /// The result at its time points. q_error, v_error, sensor_error are empty when no estimate was
+  /// asked for (a fixed-step Newmark run without estimate_error).
+  EstimatedRun run;
+  bool estimated = false;
+  /// Driven by accuracy: the accepted macro step, the weighted estimate (≤ kAcceptedFraction) and the
+  /// attempts rejected before it.
+  std::optional<AccurateRun> control;
+};
+
+/// Runs the scene as `request` says. std::invalid_argument for an unknown integrator or an output step
+/// that does not fit; SimulationError from a fixed-step run, AccuracyError when no attempt meets the
+/// accuracy. `progress(t)` after each step of every run.
+Integration integrate(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
+                      const Eigen::VectorXd& v0, const IntegrationRequest& request,
+                      const std::function<void(double)>& progress = {});
+
+}  // namespace mbsopt

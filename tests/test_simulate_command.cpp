@@ -1,0 +1,90 @@
+// `mbsopt simulate` with its integrators (issue 18): the summary line and the JSON name the integrator
+// and the estimated global error, a fixed-step run warns when its estimate is large, the output step
+// sets the CSV's rows, and bad combinations are refused with a message.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/command_directory.hpp"
+
+namespace mbsopt {
+namespace {
+
+class SimulateCommand : public test::CommandDirectory {
+ protected:
+  int simulate(const std::string& arguments) const { return mbsopt("simulate " + arguments); }
+};
+
+TEST_F(SimulateCommand, AnAccuracyRunReportsItsEstimateInTheSummaryAndTheJson) {
+  ASSERT_EQ(simulate("four_bar --accuracy 1e-6 --json " + path("run.json")), 0) << read("stderr");
+  const std::string out = read("stdout");
+  EXPECT_NE(out.find("to accuracy 1e-06: extrapolation of"), std::string::npos) << out;
+  EXPECT_NE(out.find("estimated global error"), std::string::npos) << out;
+  const nlohmann::json run = nlohmann::json::parse(read("run.json"));
+  EXPECT_EQ(run["integrator"], "extrapolation");
+  EXPECT_EQ(run["accuracy"]["absolute"], 1e-6);
+  EXPECT_EQ(run["accuracy"]["relative"], 1e-6);
+  EXPECT_LE(run["estimated_global_error"]["weighted"].get<double>(), 0.5);
+  // The weighted estimate is the largest |e| / (1e-6 + 1e-6 |q|): the position estimate is below
+  // 0.5 × 1e-6 × (1 + |q|max), |q| ≤ 2π for the four-bar's angles.
+  EXPECT_LT(run["estimated_global_error"]["position"].get<double>(), 0.5e-6 * (1.0 + 2.0 * M_PI));
+  EXPECT_GE(run["runs"].size(), 2u);
+  EXPECT_EQ(run["order"].get<int>(), static_cast<int>(run["runs"].size()));  // cut joints: orders 2, 3, 4, …
+  for (const nlohmann::json& sensor : run["sensors"]) EXPECT_TRUE(sensor.contains("estimated_error"));
+}
+
+TEST_F(SimulateCommand, AFixedStepEstimatesItsErrorByDefaultAndNotWhenToldNot) {
+  ASSERT_EQ(simulate("pendulum --t-end 1 --json " + path("on.json")), 0) << read("stderr");
+  EXPECT_NE(read("stdout").find("of h/2 for the error estimate"), std::string::npos) << read("stdout");
+  const nlohmann::json on = nlohmann::json::parse(read("on.json"));
+  EXPECT_EQ(on["integrator"], "newmark");
+  EXPECT_TRUE(on["accuracy"].is_null());
+  EXPECT_GT(on["estimated_global_error"]["position"].get<double>(), 0.0);
+  ASSERT_EQ(simulate("pendulum --t-end 1 --error-estimate off --json " + path("off.json")), 0) << read("stderr");
+  EXPECT_NE(read("stdout").find("no error estimate"), std::string::npos) << read("stdout");
+  const nlohmann::json off = nlohmann::json::parse(read("off.json"));
+  EXPECT_TRUE(off["estimated_global_error"].is_null());
+  EXPECT_EQ(off["steps"].get<long>() * 3, on["steps"].get<long>());  // the estimate's run at h/2: twice the steps
+}
+
+TEST_F(SimulateCommand, AFixedStepFarFromTheTruthWarns) {
+  // Andrews' squeezer at h = 1 ms ends 1.5 rad from the published angles: the run completes (exit 0)
+  // but says on stderr that its estimated error exceeds --warn-error.
+  ASSERT_EQ(simulate("problems/scenes/hard/andrews_squeezer.yaml --dt 1e-3"), 0) << read("stderr");
+  EXPECT_NE(read("stderr").find("warning: "), std::string::npos) << read("stderr");
+  EXPECT_NE(read("stderr").find("exceeds --warn-error 0.001"), std::string::npos) << read("stderr");
+  ASSERT_EQ(simulate("problems/scenes/hard/andrews_squeezer.yaml --accuracy 1e-5"), 0) << read("stderr");
+  EXPECT_EQ(read("stderr").find("warning: "), std::string::npos) << read("stderr");
+}
+
+TEST_F(SimulateCommand, OutputRowsComeAtTheOutputStepWhateverTheSteps) {
+  ASSERT_EQ(simulate("pendulum --t-end 2 --accuracy 1e-7 --output-step 0.25 --out " + path("run.csv")), 0)
+      << read("stderr");
+  std::istringstream csv(read("run.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<double> times;
+  while (std::getline(csv, line)) times.push_back(std::stod(line.substr(0, line.find(','))));
+  ASSERT_EQ(times.size(), 9u);
+  for (std::size_t k = 0; k < times.size(); ++k) EXPECT_NEAR(times[k], 0.25 * static_cast<double>(k), 1e-12);
+}
+
+TEST_F(SimulateCommand, RefusesWhatCannotBeRun) {
+  EXPECT_NE(simulate("pendulum --integrator rk4"), 0);
+  EXPECT_NE(read("stderr").find("rk4"), std::string::npos) << read("stderr");
+  EXPECT_NE(simulate("pendulum --accuracy 1e-3 --runs 3"), 0);
+  EXPECT_NE(simulate("pendulum --absolute-accuracy 1e-3"), 0);  // needs --accuracy
+  EXPECT_EQ(simulate("pendulum --output-step 0.0105"), 1);
+  EXPECT_NE(read("stderr").find("not a whole number of steps"), std::string::npos) << read("stderr");
+  EXPECT_EQ(simulate("pendulum --fast-newton --error-estimate on"), 1);
+  EXPECT_NE(read("stderr").find("not --fast-newton"), std::string::npos) << read("stderr");
+  EXPECT_EQ(simulate("pendulum --integrator extrapolation --set settings.gamma=0.6"), 1);
+  EXPECT_NE(read("stderr").find("trapezoidal rule"), std::string::npos) << read("stderr");
+}
+
+}  // namespace
+}  // namespace mbsopt
