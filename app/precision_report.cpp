@@ -39,6 +39,7 @@ nlohmann::json precisionRunJson(const PrecisionRun& run) {
                          {"wall_time_s", run.seconds}};
   if (run.steps) json["steps"] = *run.steps;
   if (run.newton_iterations) json["newton_iterations"] = *run.newton_iterations;
+  if (run.estimated_error) json["estimated_error"] = *run.estimated_error;
   return json;
 }
 

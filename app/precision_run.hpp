@@ -23,6 +23,7 @@ struct PrecisionRun {
   std::vector<std::pair<std::string, double>> errors;       ///< per compared quantity or functional
   double seconds = std::numeric_limits<double>::quiet_NaN();  ///< median wall time (to the failure if failed)
   std::optional<long> steps, newton_iterations;                ///< for integrator runs
+  std::optional<double> estimated_error;  ///< the run's own estimate of `error` (extrapolation)
 };
 
 /// "a, b, c" (names in messages and headings).

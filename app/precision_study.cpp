@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "mbsopt/dynamics/extrapolation.hpp"
 #include "mbsopt/dynamics/sensors.hpp"
 #include "mbsopt/problems/scene_file.hpp"
 #include "mbsopt/problems/scene_text.hpp"
@@ -36,17 +37,17 @@ std::vector<long> gridIndices(const Eigen::VectorXd& times, double step) {
 
 /// A run of ⌈T/h⌉ steps that keeps q, q̇, q̈ only at the grid indices `at` (ascending): a reference
 /// of millions of steps needs no memory, and the time measured is that of the integration alone.
-struct SampledRun {
+struct SampledTrajectory {
   Trajectory samples;
   IntegratorStatistics statistics;
 };
 
-SampledRun integrateSampled(const Scene& scene, const NewmarkSettings& settings, const std::vector<long>& at,
+SampledTrajectory integrateSampled(const Scene& scene, const NewmarkSettings& settings, const std::vector<long>& at,
                             const std::function<void(double)>& progress = {}) {
   NewmarkIntegrator integrator(scene.model, settings);
   integrator.initialize(scene.q0, scene.v0, 0.0);
   const Eigen::Index n = scene.model.coordinateCount(), points = static_cast<Eigen::Index>(at.size());
-  SampledRun run;
+  SampledTrajectory run;
   Trajectory& samples = run.samples;
   samples.time.resize(points);
   samples.q.resize(n, points);
@@ -123,7 +124,8 @@ Quantity findQuantity(const Model& model, const std::string& name) {
 }
 
 const std::vector<std::string>& integratorVariantNames() {
-  static const std::vector<std::string> names{"newmark", "damped", "fast-newton", "acceleration-closure"};
+  static const std::vector<std::string> names{"newmark", "damped", "fast-newton", "acceleration-closure",
+                                              "extrapolation"};
   return names;
 }
 
@@ -135,6 +137,8 @@ NewmarkSettings variantSettings(NewmarkSettings settings, const std::string& var
     settings.accept_by_contraction_rate = true;
   } else if (variant == "acceleration-closure") {
     settings.closure = ClosureLevel::Acceleration;
+  } else if (variant == "extrapolation") {
+    if (const std::string defect = extrapolationDefect(settings); !defect.empty()) throw std::invalid_argument(defect);
   } else if (variant != "newmark") {
     throw std::invalid_argument("unknown variant " + quoted(variant) + suggestion(variant, integratorVariantNames()) +
                                 " (the variants: " + listed(integratorVariantNames()) + ")");
@@ -248,7 +252,33 @@ ReferenceSolution readReferenceCsv(const std::string& path, const Model& model,
   return reference;
 }
 
-ReferenceSolution referenceRun(const Scene& scene, double step, const Eigen::VectorXd& times,
+namespace {
+
+/// The extrapolation of `runs` runs at the macro step `settings.step`, kept at the time points `at` (their
+/// indices on its grid), with the largest error it estimates for each compared quantity there.
+SampledTrajectory extrapolatedSamples(const Scene& scene, const NewmarkSettings& settings, int runs,
+                                      const std::vector<long>& at, const std::vector<Quantity>& quantities,
+                                      double& estimate) {
+  const EstimatedRun run = extrapolatedNewmark(scene.model, settings, runs, scene.q0, scene.v0);
+  const std::vector<Eigen::Index> points(at.begin(), at.end());
+  SampledTrajectory kept;
+  kept.samples.time = run.trajectory.time(points);
+  kept.samples.q = run.trajectory.q(Eigen::all, points);
+  kept.samples.v = run.trajectory.v(Eigen::all, points);
+  kept.samples.a = run.trajectory.a(Eigen::all, points);
+  kept.samples.lambda = run.trajectory.lambda(Eigen::all, points);
+  kept.statistics = run.trajectory.statistics;
+  estimate = 0.0;
+  for (const Quantity& quantity : quantities)
+    for (const Eigen::Index k : points)
+      estimate = std::max(estimate, std::abs(quantity.sensor ? run.sensor_error(k, quantity.index)
+                                                             : run.q_error(quantity.index, k)));
+  return kept;
+}
+
+}  // namespace
+
+ReferenceSolution referenceRun(const Scene& scene, double step, int runs, const Eigen::VectorXd& times,
                                const std::vector<std::string>& quantities,
                                const std::function<void(double)>& progress) {
   std::vector<std::string> names = quantities;
@@ -265,23 +295,33 @@ ReferenceSolution referenceRun(const Scene& scene, double step, const Eigen::Vec
   NewmarkSettings settings = scene.settings;
   settings.step = step;
   const auto start = std::chrono::steady_clock::now();
-  const SampledRun run = integrateSampled(scene, settings, gridIndices(times, step), progress);
+  double estimate = 0.0;
+  const SampledTrajectory run =
+      runs > 1 ? extrapolatedSamples(scene, settings, runs, gridIndices(times, step), reference.quantities, estimate)
+               : integrateSampled(scene, settings, gridIndices(times, step), progress);
   reference.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   reference.values = quantityValues(scene.model, run.samples, reference.quantities);
   return reference;
 }
 
-PrecisionRun measureIntegratorRun(const Scene& scene, const std::string& variant, double step, double alpha,
+PrecisionRun measureIntegratorRun(const Scene& scene, const std::string& variant, double step, double alpha, int runs,
                                   const ReferenceSolution& reference, int repeat) {
   PrecisionRun result;
   result.variant = variant;
   result.step = step;
-  SampledRun run;
+  SampledTrajectory run;
   try {
     NewmarkSettings settings = variantSettings(scene.settings, variant, alpha);
     settings.step = step;
     const std::vector<long> at = gridIndices(reference.times, step);
-    timeMedian(repeat, [&] { run = integrateSampled(scene, settings, at); }, result.seconds);
+    if (variant == "extrapolation") {
+      double estimate = 0.0;
+      timeMedian(repeat, [&] { run = extrapolatedSamples(scene, settings, runs, at, reference.quantities, estimate); },
+                 result.seconds);
+      result.estimated_error = estimate;
+    } else {
+      timeMedian(repeat, [&] { run = integrateSampled(scene, settings, at); }, result.seconds);
+    }
   } catch (const SimulationError& e) {
     return failedRun(result, e);
   } catch (const std::invalid_argument& e) {  // settings the integrator refuses (say, too many steps)

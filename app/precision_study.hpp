@@ -32,7 +32,7 @@ struct ReferenceSolution {
   Eigen::MatrixXd values;  ///< times × quantities, SI units
 };
 
-/// newmark, damped, fast-newton, acceleration-closure.
+/// newmark, damped, fast-newton, acceleration-closure, extrapolation.
 const std::vector<std::string>& integratorVariantNames();
 
 /// The scene's settings changed as `variant` says: newmark keeps β and γ; damped takes γ = ½ + α,
@@ -55,14 +55,16 @@ ReferenceSolution readReferenceCsv(const std::string& path, const Model& model,
                                    const std::vector<std::string>& quantities);
 
 /// The scene run with its own β, γ at `step`, sampled at `times`; `quantities` by default every
-/// coordinate. `progress(t)` is called after each step.
-ReferenceSolution referenceRun(const Scene& scene, double step, const Eigen::VectorXd& times,
+/// coordinate; with `runs` > 1 the extrapolation of that many runs with `step` as its macro step.
+/// `progress(t)` is called after each step of a single run.
+ReferenceSolution referenceRun(const Scene& scene, double step, int runs, const Eigen::VectorXd& times,
                                const std::vector<std::string>& quantities,
                                const std::function<void(double)>& progress = {});
 
 /// One run of the sweep, timed over `repeat` runs and compared with the reference; a SimulationError
-/// (or a result that is not finite) makes it a failed run with the message.
-PrecisionRun measureIntegratorRun(const Scene& scene, const std::string& variant, double step, double alpha,
+/// (or a result that is not finite) makes it a failed run with the message. The extrapolation variant
+/// takes `step` as its macro step, with `runs` runs, and reports its own error estimate.
+PrecisionRun measureIntegratorRun(const Scene& scene, const std::string& variant, double step, double alpha, int runs,
                                   const ReferenceSolution& reference, int repeat);
 
 }  // namespace mbsopt

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Runs driven by accuracy on every hard case, whole, each against its independent reference
+# (issue 18): `mbsopt simulate SCENE --accuracy TOL` for TOL = 1e-3 … 1e-8, the true error beside the
+# error the run estimated. Writes results/hard-cases/accuracy.md (the table) and accuracy.json.
+# Not part of the test suite (the N = 40 four-bars take minutes); the tests run the short scenes and
+# A01's first 20 s. Needs a Release build: cmake --preset release && cmake --build --preset release.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+out=results/hard-cases
+mkdir -p "$out"
+{
+  echo "# Runs driven by accuracy on the hard cases"
+  echo
+  echo "\`scripts/hard_cases/run_accuracy.sh\`, $(date -u +%Y-%m-%d), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//') ($(nproc) cores)."
+  echo "True error: the largest over the reference's sensors and times; estimated: the run's own estimate for that sensor."
+  echo
+  python3 scripts/hard_cases/check_accuracy.py --out "$out/accuracy.json" "$@"
+} | tee "$out/accuracy.md"
