@@ -90,7 +90,7 @@ nlohmann::json trajectoryResponses(const DesignNlp& nlp, const Trajectory& traje
 /// the largest over the cases (the worst case, which the cost's epigraph bounds).
 nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
   const std::vector<LoadCase>& cases = nlp.problem().load_cases;
-  if (cases.empty()) return trajectoryResponses(nlp, response.trajectory);
+  if (cases.empty()) return trajectoryResponses(nlp, caseTrajectory(response, 0));
   nlohmann::json out = nlohmann::json::object();
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const nlohmann::json own = trajectoryResponses(nlp, caseTrajectory(response, c));

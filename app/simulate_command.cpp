@@ -29,24 +29,26 @@ struct SimulateOptions {
   std::string step, end_time;  ///< as typed: they become overrides of settings.step, settings.end_time
   std::string out, json;
   long every = 1;  ///< write every N-th time point (and the last) to the CSV
-  std::string integrator;  ///< empty: newmark at a fixed step, extrapolation with --accuracy
+  /// Empty: the scene's settings.integrator at a fixed step, extrapolation with --accuracy.
+  std::string integrator;
   double accuracy = 0.0, absolute_accuracy = -1.0;  ///< 0: a fixed step; absolute < 0: the same as accuracy
   double output_step = 0.0;
-  int runs = 4;
+  int runs = 0;  ///< 0: the scene's settings.extrapolation_runs
   std::string error_estimate = "auto";
   double warn_error = 1e-3;
 };
 
-IntegrationRequest requestOf(const SimulateOptions& options, const NewmarkSettings& settings) {
+IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene) {
+  const NewmarkSettings& settings = scene.settings;
   IntegrationRequest request;
   request.integrator = !options.integrator.empty() ? options.integrator
                        : options.accuracy > 0.0   ? "extrapolation"
-                                                  : "newmark";
+                                                  : scene.integrator.name;
   if (options.accuracy > 0.0)
     request.accuracy = ErrorTolerance{options.absolute_accuracy >= 0.0 ? options.absolute_accuracy : options.accuracy,
                                       options.accuracy};
   request.output_step = options.output_step;
-  request.runs = options.runs;
+  request.runs = options.runs > 0 ? options.runs : scene.integrator.extrapolation_runs;
   const double steps = std::ceil(settings.end_time / settings.step - 1e-9);
   // auto: not for a scheme whose error is not even in h (damped β, γ; --fast-newton), where "on" is refused.
   request.estimate_error =
@@ -91,7 +93,7 @@ void run(const SimulateOptions& options) {
   Scene& scene = loaded.scene;
   scene.settings.accept_by_contraction_rate = options.fast_newton;
 
-  const IntegrationRequest request = requestOf(options, scene.settings);
+  const IntegrationRequest request = requestOf(options, scene);
   if (!request.accuracy && request.integrator == "extrapolation")
     if (const std::string defect = extrapolationDefect(scene.settings); !defect.empty())
       throw SceneError(source.path, 0, 0, defect);
@@ -172,7 +174,8 @@ void registerSimulateCommand(CLI::App& app) {
           ->check([](const std::string& path) { return path.empty() ? "the file name is empty" : ""; });
   command
       ->add_option("--integrator", options->integrator,
-                   "The integrator (default: newmark at a fixed step, extrapolation with --accuracy): " + [] {
+                   "The integrator (default: the scene's settings.integrator, newmark unless it says; extrapolation with "
+                   "--accuracy): " + [] {
                      std::string text;
                      for (const IntegratorInfo& info : integrators())
                        text += (text.empty() ? "" : "; ") + info.name + ": " + info.description;
@@ -205,10 +208,10 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--runs", options->runs,
                    "Extrapolation at a fixed macro step (no --accuracy): Newmark runs at H, H/2, ..., H/K with H "
-                   "the scene's step; the result has order K (K + K - 2 without cut joints)")
+                   "the scene's step; the result has order K (2K - 2 without cut joints) (default: the scene's "
+                   "settings.extrapolation_runs, 3 unless it says)")
       ->check(CLI::Range(2, 12))
-      ->excludes(accuracy)
-      ->capture_default_str();
+      ->excludes(accuracy);
   command
       ->add_option("--error-estimate", options->error_estimate,
                    "For a fixed Newmark step: estimate the global error from a second run at h/2 (twice the work "

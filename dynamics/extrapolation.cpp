@@ -18,16 +18,16 @@ std::vector<int> errorExponents(const Model& model, const NewmarkSettings& setti
   return exponents;
 }
 
-Eigen::VectorXd ExtrapolationTableau::weights(int first) const {
-  const int count = rows() - first;
-  if (count < 1 || count > static_cast<int>(exponents_.size()) + 1)
-    throw std::invalid_argument("ExtrapolationTableau: no combination of " + std::to_string(count) + " runs");
+Eigen::VectorXd extrapolationWeights(const std::vector<int>& exponents, int first, int runs) {
+  const int count = runs - first;
+  if (first < 0 || count < 1 || count > static_cast<int>(exponents.size()) + 1)
+    throw std::invalid_argument("extrapolation: no combination of " + std::to_string(count) + " runs");
   // Row 0: Σ c_i = 1; row m: Σ c_i h_i^{p_m} = 0 with h_i = 1/n_i (H factors out), n_i = i.
   Eigen::MatrixXd system(count, count);
   for (int i = 0; i < count; ++i) {
     const double h = 1.0 / (first + i + 1);
     system(0, i) = 1.0;
-    for (int m = 1; m < count; ++m) system(m, i) = std::pow(h, exponents_[static_cast<std::size_t>(m - 1)]);
+    for (int m = 1; m < count; ++m) system(m, i) = std::pow(h, exponents[static_cast<std::size_t>(m - 1)]);
   }
   return system.fullPivLu().solve(Eigen::VectorXd::Unit(count, 0));
 }

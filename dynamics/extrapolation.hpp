@@ -78,6 +78,11 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
 /// elimination of h² falls as h³ (docs/integrators.md).
 std::vector<int> errorExponents(const Model& model, const NewmarkSettings& settings);
 
+/// The weights of runs first + 1 … runs (1-based; run i at H/i) in the combination that keeps a
+/// constant and cancels the first runs − first − 1 terms h^{p_m} of the expansion:
+/// Σ c_i = 1, Σ c_i (1/i)^{p_m} = 0. What the tableau, and the design functionals' extrapolation, combine.
+Eigen::VectorXd extrapolationWeights(const std::vector<int>& exponents, int first, int runs);
+
 /// The runs at H/1, H/2, H/3, … of one macro step H, and their combinations: the j runs so far give
 /// T_{j,j−1}, the combination of runs 2 … j that cancels the first j − 2 terms of the expansion
 /// (of order p_{j−1}), and T_{j,j}, that of all j runs (of order p_j), whose difference from it is its
@@ -98,9 +103,8 @@ class ExtrapolationTableau {
   const IntegratorStatistics& statistics() const { return statistics_; }
   /// Every run's step, in order.
   const std::vector<double>& steps() const { return steps_; }
-  /// The weights of runs first+1 … rows() (1-based) in the combination that cancels the first
-  /// rows() − first − 1 terms: Σ c_i = 1, Σ c_i (1/n_i)^{p_m} = 0.
-  Eigen::VectorXd weights(int first) const;
+  /// extrapolationWeights(exponents, first, rows()).
+  Eigen::VectorXd weights(int first) const { return extrapolationWeights(exponents_, first, rows()); }
 
  private:
   /// The runs from `first` (0-based) on, combined by weights(first).

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 
+#include "mbsopt/dynamics/integrator_choice.hpp"
 #include "mbsopt/dynamics/model.hpp"
 #include "mbsopt/dynamics/newmark.hpp"
 
@@ -13,6 +14,7 @@ struct Scene {
   Eigen::VectorXd q0;  ///< initial coordinates (all, driven ones included)
   Eigen::VectorXd v0;  ///< initial rates
   NewmarkSettings settings;
+  IntegratorChoice integrator;  ///< the scene's `settings.integrator` (fixed-step Newmark by default)
 };
 
 }  // namespace mbsopt

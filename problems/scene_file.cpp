@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "mbsopt/dynamics/assembly.hpp"
+#include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/problems/design_file.hpp"
 #include "mbsopt/problems/scene_parameters.hpp"
 #include "mbsopt/problems/scene_text.hpp"
@@ -220,12 +221,33 @@ class SceneBuilder {
     context_.fail(settings.isDefined() ? settings : root_.node(), "settings: " + what);
   }
 
+  /// `integrator` (a name of the registry) and `extrapolation_runs` (2 … 12).
+  void readIntegrator(const MapReader& settings) {
+    IntegratorChoice& choice = result_.scene.integrator;
+    if (settings.has("integrator")) {
+      choice.name = settings.name("integrator");
+      try {
+        integratorInfo(choice.name);
+      } catch (const std::invalid_argument& e) {
+        settings.fail("integrator", std::string("integrator: ") + e.what());
+      }
+    }
+    choice.extrapolation_runs = settings.positiveInteger("extrapolation_runs", choice.extrapolation_runs);
+    if (choice.extrapolation_runs < 2 || choice.extrapolation_runs > 12)
+      settings.fail("extrapolation_runs", "extrapolation_runs: " + std::to_string(choice.extrapolation_runs) +
+                                              " runs; between 2 and 12");
+    if (choice.extrapolated())
+      if (const std::string defect = extrapolationDefect(result_.scene.settings); !defect.empty())
+        settings.fail("integrator", "integrator: " + defect);
+  }
+
   void readSettings() {
     NewmarkSettings& s = result_.scene.settings;
     if (!root_.has("settings")) return;
     const MapReader settings(context_, root_.node()["settings"], "settings");
     settings.allowKeys({"step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
-                        "svd_threshold", "closure", "closure_tolerance", "energy_tolerance"});
+                        "svd_threshold", "closure", "closure_tolerance", "energy_tolerance", "integrator",
+                        "extrapolation_runs"});
     s.step = settings.number("step", s.step);
     s.end_time = settings.number("end_time", s.end_time);
     s.beta = settings.number("beta", s.beta);
@@ -240,6 +262,7 @@ class SceneBuilder {
                     : ClosureLevel::Position;
     if (const SettingsDefect defect = settingsDefect(s); !defect.field.empty())
       settings.fail(settings.has(defect.field) ? defect.field : "step", defect.field + ": " + defect.message);
+    readIntegrator(settings);
     // The Newmark family is unconditionally stable for linear problems iff 2β ≥ γ ≥ ½ (Hughes, The
     // Finite Element Method, 2000, §9.1.2); outside, a small enough step is needed.
     if (!(s.gamma >= 0.5 && 2.0 * s.beta >= s.gamma))
@@ -660,7 +683,8 @@ std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& s
       {"settings.max_newton_iterations", s.max_newton_iterations},
       {"settings.svd_threshold", s.svd_threshold},
       {"settings.closure_tolerance", s.closure_tolerance},
-      {"settings.energy_tolerance", s.energy_tolerance}};
+      {"settings.energy_tolerance", s.energy_tolerance},
+      {"settings.extrapolation_runs", scene.integrator.extrapolation_runs}};
   for (const std::string& name : scene.model.parameterNames()) defaults.emplace_back(name, scene.model.parameter(name));
   for (const int i : scene.model.freeCoordinates()) {
     const std::string& name = scene.model.coordinates()[static_cast<std::size_t>(i)].name;

@@ -18,7 +18,7 @@ constexpr std::array<const char*, 10> kVectorKeys{"gravity", "translation", "axi
 constexpr std::array<const char*, 6> kNamedSections{"tracks", "elements", "bodies", "forces", "cuts", "sensors"};
 constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
 // Settings whose value is a word (problems/scenes/README.md, "Top level"); the loader checks the word.
-constexpr std::array<const char*, 1> kWordSettings{"settings.closure"};
+constexpr std::array<const char*, 2> kWordSettings{"settings.closure", "settings.integrator"};
 
 bool isVectorKey(const std::string& key) {
   return std::any_of(kVectorKeys.begin(), kVectorKeys.end(), [&](const char* k) { return key == k; });

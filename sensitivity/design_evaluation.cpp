@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mbsopt/dynamics/extrapolation.hpp"
 #include "mbsopt/sensitivity/initial_state.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
 
@@ -30,10 +31,37 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
 }
 
 const Trajectory& caseTrajectory(const DesignResponse& response, std::size_t c) {
+  if (!response.runs.empty()) return caseTrajectory(response.runs.back(), c);
   return response.load_cases.empty() ? response.trajectory : response.load_cases.at(c).trajectory;
 }
 
+Eigen::VectorXd runWeights(const DesignProblem& problem, int first) {
+  return extrapolationWeights(errorExponents(problem.scene.model, problem.scene.settings), first,
+                              extrapolationRuns(problem));
+}
+
+namespace {
+
+/// Σ w_i value(run first + i) over the runs of an extrapolated response.
+template <class Value>
+auto combineRuns(const DesignProblem& problem, const DesignResponse& response, int first, Value&& value) {
+  const Eigen::VectorXd w = runWeights(problem, first);
+  auto sum = value(extrapolationRunProblem(problem, first + 1), response.runs[static_cast<std::size_t>(first)]);
+  sum *= w[0];
+  for (Eigen::Index i = 1; i < w.size(); ++i) {
+    const int j = first + static_cast<int>(i);
+    sum += w[i] * value(extrapolationRunProblem(problem, j + 1), response.runs[static_cast<std::size_t>(j)]);
+  }
+  return sum;
+}
+
+}  // namespace
+
 double costFunctional(const DesignProblem& problem, const DesignResponse& response) {
+  if (!response.runs.empty())
+    return combineRuns(problem, response, 1, [](const DesignProblem& run, const DesignResponse& r) {
+      return costFunctional(run, r);
+    });
   const ResponseCost& cost = problem.design.cost;
   const int sensor = sensorIndex(problem.scene.model, cost.sensor);
   const std::optional<TimeMeasure> exact = exactMeasure(cost.of);
@@ -48,9 +76,34 @@ double costFunctional(const DesignProblem& problem, const DesignResponse& respon
   return worst;
 }
 
+double costFunctionalError(const DesignProblem& problem, const DesignResponse& response) {
+  if (response.runs.empty()) return 0.0;
+  const auto value = [](const DesignProblem& run, const DesignResponse& r) { return costFunctional(run, r); };
+  return combineRuns(problem, response, 0, value) - combineRuns(problem, response, 1, value);
+}
+
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                     const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
                     bool keep_step_matrices) {
+  if (const int runs = extrapolationRuns(problem); runs > 1) {
+    if (stored) throw std::logic_error("evaluateDesign: an extrapolated problem reports no stored points");
+    if (!problem.load_cases.empty())
+      throw std::invalid_argument("the extrapolation does not combine load cases: take settings.integrator newmark");
+    out.runs.resize(static_cast<std::size_t>(runs));
+    for (int j = 0; j < runs; ++j)
+      evaluateDesign(extrapolationRunProblem(problem, j + 1), functionals, x, out.runs[static_cast<std::size_t>(j)], {},
+                     keep_step_matrices);
+    out.cost = out.runs.front().cost;
+    const auto constraints = [](const DesignProblem&, const DesignResponse& r) -> Eigen::VectorXd { return r.constraints; };
+    out.constraints = combineRuns(problem, out, 1, constraints);
+    out.constraint_errors = combineRuns(problem, out, 0, constraints) - out.constraints;
+    out.trajectory = {};
+    out.functionals.clear();
+    out.load_cases.clear();
+    return;
+  }
+  out.runs.clear();
+  out.constraint_errors.resize(0);
   if (!problem.load_cases.empty()) {
     if (stored) throw std::logic_error("evaluateDesign: a problem with load cases reports no stored points");
     out.load_cases.resize(problem.load_cases.size());
@@ -104,6 +157,10 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
 
 Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                  const DesignResponse& response) {
+  if (!response.runs.empty())
+    return combineRuns(problem, response, 1, [&](const DesignProblem& run, const DesignResponse& r) {
+      return artificialColumn(run, functionals, r);
+    });
   Eigen::VectorXd column = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(functionals.size()));
   for (std::size_t j = 0; j < functionals.size(); ++j)
     if (functionals[j].artificial == ArtificialUse::InSamples)  // ∂φ_k/∂b = −1 at every k

@@ -24,9 +24,16 @@ struct DesignResponse {
   /// order of loadCaseFunctionals); `trajectory` is then empty and the vectors above hold every
   /// case's, in the problem's order.
   std::vector<DesignResponse> load_cases;
+  /// With an extrapolated problem (extrapolationRuns(problem) = k ≥ 2), each Newmark run's own response
+  /// (run j at h/j); `constraints` is then their combination T_{k,k−1} (runs 2 … k, dynamics/
+  /// extrapolation.hpp), `constraint_errors` its estimated discretisation error T_{k,k} − T_{k,k−1},
+  /// and `trajectory`, `functionals` are empty (caseTrajectory gives the finest run's).
+  std::vector<DesignResponse> runs;
+  Eigen::VectorXd constraint_errors;
 };
 
-/// The trajectory of load case c of a response (c = 0: the only one of a problem without cases).
+/// The trajectory of load case c of a response (c = 0: the only one of a problem without cases); of an
+/// extrapolated response, its finest run's.
 const Trajectory& caseTrajectory(const DesignResponse& response, std::size_t c);
 
 /// Simulates the problem's scene at the scaled point x and measures every transcribed constraint.
@@ -45,6 +52,13 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
 /// its integral or its RMS (ResponseCost); with load cases the largest over them, the worst case that
 /// b_{k+1} bounds. What an optimizer's progress is judged by, b_{k+1} being only its bound.
 double costFunctional(const DesignProblem& problem, const DesignResponse& response);
+/// Of an extrapolated response, the estimated discretisation error of costFunctional (T_{k,k} −
+/// T_{k,k−1} of the runs' values); 0 otherwise.
+double costFunctionalError(const DesignProblem& problem, const DesignResponse& response);
+
+/// The weights of runs `first` + 1 … k of an extrapolated problem in its combination
+/// (extrapolationWeights with the scene's error exponents): first = 1 gives the result, 0 the check.
+Eigen::VectorXd runWeights(const DesignProblem& problem, int first);
 
 /// The cost and the constraints at one point (DesignResponse without the histories).
 struct DesignValues {

@@ -73,6 +73,17 @@ DesignProblem loadCaseProblem(const DesignProblem& problem, std::size_t c) {
   return {problem.load_cases.at(c).scene, problem.design, {}};
 }
 
+int extrapolationRuns(const DesignProblem& problem) {
+  return problem.scene.integrator.extrapolated() ? problem.scene.integrator.extrapolation_runs : 1;
+}
+
+DesignProblem extrapolationRunProblem(const DesignProblem& problem, int j) {
+  DesignProblem run{problem.scene, problem.design, {}};
+  run.scene.settings.step /= j;
+  run.scene.integrator = {};
+  return run;
+}
+
 std::vector<ConstraintFunctional> loadCaseFunctionals(const std::vector<ConstraintFunctional>& functionals, int c,
                                                       std::vector<Eigen::Index>* rows) {
   std::vector<ConstraintFunctional> out;

@@ -101,6 +101,13 @@ struct DesignProblem {
 /// Case c of a problem with load cases as a problem of its own: its scene, the same design.
 DesignProblem loadCaseProblem(const DesignProblem& problem, std::size_t c);
 
+/// Newmark runs whose values the problem combines: the scene's settings.extrapolation_runs when its
+/// integrator is the extrapolation, else 1 (dynamics/extrapolation.hpp).
+int extrapolationRuns(const DesignProblem& problem);
+/// Run j (1-based) of an extrapolated problem as a problem of its own: the scene's step over j, one
+/// Newmark run.
+DesignProblem extrapolationRunProblem(const DesignProblem& problem, int j);
+
 /// How a transcribed constraint uses the artificial variable b_{k+1}.
 enum class ArtificialUse {
   None,

@@ -42,12 +42,42 @@ DesignGradient perLoadCase(const std::string& method, const DesignProblem& probl
   return out;
 }
 
+/// An exact method on an extrapolated problem: each run's gradient (runs 2 … k, those of the result
+/// T_{k,k−1}) on its own simulation, combined with the result's weights; the values likewise.
+DesignGradient perExtrapolationRun(const std::string& method, const DesignProblem& problem,
+                                   const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
+                                   double fd_step, const DesignResponse* simulated, int jobs) {
+  const Eigen::VectorXd w = runWeights(problem, 1);
+  DesignGradient out;
+  DesignValues values;
+  bool every_value = true;
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    const int j = static_cast<int>(i) + 2;
+    const DesignResponse* response = simulated ? &simulated->runs.at(static_cast<std::size_t>(j - 1)) : nullptr;
+    const DesignGradient g =
+        designGradient(method, extrapolationRunProblem(problem, j), functionals, x, fd_step, response, jobs);
+    if (i == 0) {
+      out.cost = g.cost;
+      out.constraints = w[0] * g.constraints;
+      if (g.values) values = {g.values->cost, w[0] * g.values->constraints};
+    } else {
+      out.constraints += w[i] * g.constraints;
+      if (g.values) values.constraints += w[i] * g.values->constraints;
+    }
+    every_value = every_value && g.values.has_value();
+  }
+  if (every_value) out.values = std::move(values);
+  return out;
+}
+
 }  // namespace
 
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
                               double fd_step, const DesignResponse* simulated, int jobs) {
   const bool exact = method == "adjoint" || method == "continuous-adjoint" || method == "direct";
+  if (exact && extrapolationRuns(problem) > 1)
+    return perExtrapolationRun(method, problem, functionals, x, fd_step, simulated, jobs);
   if (exact && !problem.load_cases.empty()) return perLoadCase(method, problem, functionals, x, fd_step, simulated, jobs);
   if (method == "adjoint") return adjointGradient(problem, functionals, x, simulated, jobs);
   if (method == "continuous-adjoint") return continuousAdjointGradient(problem, functionals, x, simulated);

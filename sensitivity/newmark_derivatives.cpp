@@ -25,6 +25,8 @@ namespace {
 Model checkedModel(const DesignProblem& problem, const Eigen::VectorXd& x) {
   if (!problem.load_cases.empty())
     throw std::logic_error("exact gradients: a problem with load cases is differentiated case by case (designGradient)");
+  if (extrapolationRuns(problem) > 1)
+    throw std::logic_error("exact gradients: an extrapolated problem is differentiated run by run (designGradient)");
   if (problem.scene.model.constraintCount() > 0 && problem.scene.settings.closure != ClosureLevel::Position)
     throw std::invalid_argument("exact gradients: loops closed at acceleration level are not supported (use fd)");
   Model model = problem.scene.model;
