@@ -5,14 +5,34 @@
 #   scripts/peer_comparison.sh --mechanisms four_bar,chain8        # a subset
 #   scripts/peer_comparison.sh --mechanisms nfourbar16             # opt-in, ~10 minutes more
 #   scripts/peer_comparison.sh --quick --out /tmp/peer             # a smoke run
-# Note: Debian's libsimbody is built with assertions on, roughly 2x slower than upstream's Release build.
+# Note: Debian's libsimbody is built with assertions on (CMAKE_BUILD_TYPE=None, no -DNDEBUG), roughly 2x
+# slower than upstream's Release build. Environment:
+#   SIMBODY_RELEASE=1   compare with Simbody at its best instead: runs bench/build_simbody_release.sh first
+#                       (Debian's source package built with upstream's Release flags, -O2 -DNDEBUG, into
+#                       build/simbody-release/; ~10 minutes once on 2 cores) and builds against it
+#                       (-DSimbody_DIR=build/simbody-release/lib/cmake/simbody) in build/peer-release.
+#   PEER_BUILD_DIR=DIR  the build directory (default build/peer, or build/peer-release with SIMBODY_RELEASE=1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/install-deps.sh
-build=${PEER_BUILD_DIR:-build/peer}  # the build directory (PEER_BUILD_DIR overrides)
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DMBSOPT_BUILD_TESTS=OFF > /dev/null
+simbody_args=()
+if [ "${SIMBODY_RELEASE:-0}" = 1 ]; then
+  bench/build_simbody_release.sh
+  simbody_dir=$PWD/build/simbody-release/lib/cmake/simbody
+  simbody_args=(-DSimbody_DIR="$simbody_dir")
+  build=${PEER_BUILD_DIR:-build/peer-release}
+else
+  build=${PEER_BUILD_DIR:-build/peer}  # the build directory (PEER_BUILD_DIR overrides)
+fi
+configure=$(cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DMBSOPT_BUILD_TESTS=OFF "${simbody_args[@]}")
+grep '^-- peer_comparison: Simbody' <<< "$configure" || true  # which Simbody (bench/peer/CMakeLists.txt)
 cmake --build "$build" -j"$(nproc)" --target peer_comparison
+simbody_lib=$(ldd "$build"/bench/peer/peer_comparison | awk '/libSimTKsimbody/ {print $3}')
+if [ "${SIMBODY_RELEASE:-0}" = 1 ] && [ "$(dirname "$(realpath "$simbody_lib")")" != "$(realpath "$PWD/build/simbody-release/lib")" ]; then
+  echo "peer_comparison: $build/bench/peer/peer_comparison loads $simbody_lib, not the Release build" >&2
+  exit 1
+fi
 
 out=results/peer-comparison
 args=("$@")
@@ -25,9 +45,18 @@ grep -v '^$' "$out/run.log" | grep -E '^(==|   (simbody|mbsopt|agreement|Simbody
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//') ($(nproc) cores)"
-  echo "simbody package: $(dpkg-query -W -f='${Package} ${Version}' libsimbody-dev 2>/dev/null || echo unknown)"
-  echo "compiler: $(c++ --version | head -1)"
-  echo "note: Debian's Simbody is built with assertions on, roughly 2x slower than upstream's Release build"
+  if [ "${SIMBODY_RELEASE:-0}" = 1 ]; then
+    source_version=$(cd build/simbody-src && ls simbody_*.dsc 2>/dev/null | sed 's/^simbody_//; s/\.dsc$//' || true)
+    echo "simbody: Release build of Debian's source package simbody ${source_version:-unknown} (bench/build_simbody_release.sh)"
+    echo "simbody flags: $(sed -n "s/^CMAKE_CXX_FLAGS_RELEASE:STRING=//p" build/simbody-build/CMakeCache.txt 2>/dev/null | tr -d "'" | xargs)"
+    echo "simbody config: $simbody_dir"
+    echo "simbody library: $simbody_lib"
+    echo "compiler: $(c++ --version | head -1)"
+  else
+    echo "simbody package: $(dpkg-query -W -f='${Package} ${Version}' libsimbody-dev 2>/dev/null || echo unknown)"
+    echo "compiler: $(c++ --version | head -1)"
+    echo "note: Debian's Simbody is built with assertions on, roughly 2x slower than upstream's Release build"
+  fi
 } > "$out/environment.txt"
 
 (cd "$out" && for plot in work_precision_*.gp; do gnuplot "$plot"; done)

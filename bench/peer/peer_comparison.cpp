@@ -41,10 +41,16 @@
 #include <vector>
 
 #include "bench/peer/simbody_models.hpp"
+#include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/dynamics/model.hpp"
 #include "mbsopt/dynamics/newmark.hpp"
 #include "mbsopt/dynamics/scene.hpp"
 #include "mbsopt/problems/scene_file.hpp"
+
+// Which Simbody this was built against (bench/peer/CMakeLists.txt: Debian's package or a Release build).
+#ifndef MBSOPT_PEER_SIMBODY_BUILD
+#define MBSOPT_PEER_SIMBODY_BUILD "unknown Simbody build (MBSOPT_PEER_SIMBODY_BUILD not defined)"
+#endif
 
 namespace {
 
@@ -265,6 +271,48 @@ MbsoptRun runMbsopt(const mbsopt::Scene& scene, const std::vector<int>& indices,
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!result.ok) result.outputs.clear();
+  return result;
+}
+
+/// A run driven by accuracy (`mbsopt simulate --accuracy TOL`: the extrapolation chooses its macro
+/// step and runs), its results at the output times; the counters add the largest estimated error of
+/// the compared coordinates there, and the controller's attempts. The time includes every attempt.
+MbsoptRun runMbsoptToAccuracy(const mbsopt::Scene& scene, const std::vector<int>& indices, double tolerance,
+                              double output_interval, int outputs) {
+  MbsoptRun result;
+  mbsopt::NewmarkSettings settings = scene.settings;
+  settings.end_time = output_interval * outputs;
+  mbsopt::IntegrationRequest request;
+  request.integrator = "extrapolation";
+  request.accuracy = mbsopt::ErrorTolerance{tolerance, tolerance};
+  request.output_step = output_interval;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const mbsopt::Integration integration = mbsopt::integrate(scene.model, settings, scene.q0, scene.v0, request);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const mbsopt::Trajectory& t = integration.run.trajectory;
+    double estimate = 0.0;
+    for (int k = 1; k <= outputs; ++k) {
+      std::vector<double> q;
+      for (int i : indices) {
+        q.push_back(t.q(i, k));
+        estimate = std::max(estimate, std::abs(integration.run.q_error(i, k)));
+      }
+      result.outputs.push_back(std::move(q));
+    }
+    const mbsopt::IntegratorStatistics& stats = t.statistics;
+    result.ok = true;
+    result.counters = {{"steps", stats.steps},
+                       {"newton_iterations", stats.newton_iterations},
+                       {"macro_step", integration.control->macro_step},
+                       {"runs", integration.run.steps.size()},
+                       {"order", integration.run.order},
+                       {"attempts_rejected", integration.control->rejected.size()},
+                       {"estimated_error", estimate}};
+  } catch (const std::exception& error) {
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.message = error.what();
+  }
   return result;
 }
 
@@ -513,32 +561,45 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     for (std::size_t i = 0; i < ladder.size(); i += 3) thinned.push_back(ladder[i]);
     ladder = thinned;
   }
-  for (int k : ladder) {
-    Run run;
-    run.engine = "mbsopt";
-    run.integrator = "Newmark";
-    run.step = mech.output_interval / k;
-    MbsoptRun first = runMbsopt(scene, indices, k, mech.output_interval, outputs);
+  // One mbsopt run of the sweep: `once()` timed over the repetitions, its first result compared.
+  const auto sweep = [&](Run run, const std::function<MbsoptRun()>& once) {
+    MbsoptRun first = once();
     run.seconds.push_back(first.seconds);
     const int repetitions = repetitionsFor(first.seconds, options.quick);
-    for (int r = 1; r < repetitions; ++r)
-      run.seconds.push_back(runMbsopt(scene, indices, k, mech.output_interval, outputs).seconds);
+    for (int r = 1; r < repetitions; ++r) run.seconds.push_back(once().seconds);
     run.ok = first.ok;
     run.message = first.message;
     run.outputs = std::move(first.outputs);
     run.median_seconds = median(run.seconds);
     run.counters = first.counters;
     run.error = run.ok ? maxAbsError(run.outputs, reference.outputs) : kNaN;
-    std::cerr << "   mbsopt  h " << sci(run.step) << ": error " << sci(run.error) << ", " << format(run.median_seconds)
-              << " s" << (run.ok ? "" : " FAILED " + oneLine(run.message)) << '\n';
+    std::cerr << "   mbsopt  " << run.integrator << " "
+              << (std::isfinite(run.step) ? "h " + sci(run.step) : "acc " + sci(run.accuracy)) << ": error "
+              << sci(run.error);
+    if (run.counters.contains("estimated_error")) std::cerr << " (estimated " << sci(run.counters["estimated_error"].get<double>()) << ")";
+    std::cerr << ", " << format(run.median_seconds) << " s" << (run.ok ? "" : " FAILED " + oneLine(run.message)) << '\n';
     runs.push_back(std::move(run));
+  };
+  for (int k : ladder) {
+    Run run;
+    run.engine = "mbsopt";
+    run.integrator = "Newmark";
+    run.step = mech.output_interval / k;
+    sweep(std::move(run), [&] { return runMbsopt(scene, indices, k, mech.output_interval, outputs); });
+  }
+  for (double tolerance : accuracies) {
+    Run run;
+    run.engine = "mbsopt";
+    run.integrator = "extrapolation";
+    run.accuracy = tolerance;
+    sweep(std::move(run), [&] { return runMbsoptToAccuracy(scene, indices, tolerance, mech.output_interval, outputs); });
   }
 
   // Fronts.
   std::map<std::string, std::vector<Point>> series;  // "mbsopt Newmark", "simbody CPodes", ...
   json runs_json = json::array();
   for (const Run& run : runs) {
-    const std::string label = run.engine == "mbsopt" ? "h=" + sci(run.step) : "accuracy=" + sci(run.accuracy);
+    const std::string label = std::isfinite(run.step) ? "h=" + sci(run.step) : "accuracy=" + sci(run.accuracy);
     if (run.ok) series[run.engine + " " + run.integrator].push_back({run.error, run.median_seconds, label});
     json r = {{"engine", run.engine},
               {"integrator", run.integrator},
@@ -547,7 +608,7 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
               {"median_seconds", run.median_seconds},
               {"seconds", run.seconds},
               {"counters", run.counters}};
-    if (run.engine == "mbsopt") r["step"] = run.step; else r["accuracy"] = run.accuracy;
+    if (std::isfinite(run.step)) r["step"] = run.step; else r["accuracy"] = run.accuracy;
     if (!run.ok) {
       r["message"] = run.message;
       result.failure_rows.push_back("| " + mech.key + " | " + run.engine + " " + run.integrator + " | " + label + " | " +
@@ -617,8 +678,8 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     std::ofstream gp(out / (base + ".gp"));
     gp << "set terminal pngcairo noenhanced size 900,600\n"
        << "set output '" << base << ".png'\n"
-       << "set title '" << mech.key << ": work-precision, Simbody " << peer::simbodyVersion()
-       << " (Debian build, assertions on) vs mbsopt Newmark'\n"
+       << "set title \"" << mech.key << ": work-precision, Simbody " << peer::simbodyVersion()
+       << " vs mbsopt\\nSimbody: " << MBSOPT_PEER_SIMBODY_BUILD << "\"\n"
        << "set logscale xy\nset format x '1e%T'\nset format y '1e%T'\n"
        << "set xlabel 'max abs joint-angle error at the output times [rad]'\n"
        << "set ylabel 'wall time of the integration [s] (median)'\n"
@@ -695,9 +756,7 @@ int main(int argc, char** argv) {
   }
   const auto start = std::chrono::steady_clock::now();
   json all = {{"simbody_version", peer::simbodyVersion()},
-              {"simbody_build_note",
-               "Debian's libsimbody (3.7+dfsg) is built with assertions on and is roughly 2x slower than "
-               "upstream's Release build: Simbody's times here are pessimistic by about that factor"},
+              {"simbody_build_note", MBSOPT_PEER_SIMBODY_BUILD},
               {"error_measure",
                "largest absolute joint-angle error [rad] over every coordinate and every output time (every 0.1 s), "
                "against Simbody at accuracy 1e-12 (RungeKuttaMerson unless it failed)"},
@@ -725,8 +784,7 @@ int main(int argc, char** argv) {
   std::ofstream md(options.out / "peer_comparison.md");
   md << "# Simbody " << peer::simbodyVersion() << " vs mbsopt: time at equal error\n\n"
      << "Error: " << all["error_measure"].get<std::string>() << ". Times: "
-     << all["timing"].get<std::string>() << ". **Debian's Simbody is built with assertions and is roughly 2x slower "
-     << "than upstream's Release build**; halve Simbody's times (and the ratios) for a Release Simbody.\n\n"
+     << all["timing"].get<std::string>() << ". Simbody: **" << MBSOPT_PEER_SIMBODY_BUILD << "**.\n\n"
      << "Ratio = Simbody time / mbsopt time at the same error, each interpolated log-log on its engine's Pareto "
      << "front (Simbody: the fastest of its integrators at that error). Above 1: mbsopt is faster.\n\n"
      << "| mechanism | error [rad] | mbsopt [ms] | Simbody [ms] | Simbody integrator | ratio | verdict |\n"
