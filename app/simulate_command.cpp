@@ -31,7 +31,8 @@ struct SimulateOptions {
   long every = 1;  ///< write every N-th time point (and the last) to the CSV
   /// Empty: the scene's settings.integrator at a fixed step, extrapolation with --accuracy.
   std::string integrator;
-  double accuracy = 0.0, absolute_accuracy = -1.0;  ///< 0: a fixed step; absolute < 0: the same as accuracy
+  double accuracy = 0.0;           ///< the absolute part; 0: a fixed step
+  double relative_accuracy = 0.0;  ///< the relative part
   double output_step = 0.0;
   int runs = 0;  ///< 0: the scene's settings.extrapolation_runs
   std::string error_estimate = "auto";
@@ -45,8 +46,7 @@ IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene)
                        : options.accuracy > 0.0   ? "extrapolation"
                                                   : scene.integrator.name;
   if (options.accuracy > 0.0)
-    request.accuracy = ErrorTolerance{options.absolute_accuracy >= 0.0 ? options.absolute_accuracy : options.accuracy,
-                                      options.accuracy};
+    request.accuracy = ErrorTolerance{options.accuracy, options.relative_accuracy};
   request.output_step = options.output_step;
   request.runs = options.runs > 0 ? options.runs : scene.integrator.extrapolation_runs;
   const double steps = std::ceil(settings.end_time / settings.step - 1e-9);
@@ -191,12 +191,13 @@ void registerSimulateCommand(CLI::App& app) {
           ->add_option("--accuracy", options->accuracy,
                        "Run to this accuracy instead of at a fixed step: the steps (and, for extrapolation, the "
                        "number of runs) are chosen until the estimated global error e of every coordinate q meets "
-                       "|e| <= A + TOL |q| at every output time (A = TOL unless --absolute-accuracy); the estimate "
-                       "is printed. The scene's settings.step is the first attempt's step")
+                       "|e| <= TOL + R |q| at every output time, in the coordinate's unit (rad or m; R: "
+                       "--relative-accuracy, default 0: an angle that winds up over many turns would otherwise be "
+                       "allowed a larger error with every turn); the estimate is printed")
           ->check(CLI::PositiveNumber);
   command
-      ->add_option("--absolute-accuracy", options->absolute_accuracy,
-                   "The absolute part A of --accuracy, in the coordinates' units (m, rad); default: TOL")
+      ->add_option("--relative-accuracy", options->relative_accuracy,
+                   "The relative part R of --accuracy (IDA's rtol beside its atol)")
       ->check(CLI::NonNegativeNumber)
       ->needs(accuracy);
   command

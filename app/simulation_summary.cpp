@@ -74,9 +74,8 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
   out.json["runs_unit"] = "s (the step of every Newmark run made, in order)";
   std::string line = "simulated " + path;
   if (request.accuracy) {
-    line += " to accuracy " + format("%g", request.accuracy->relative);
-    if (request.accuracy->absolute != request.accuracy->relative)
-      line += " (absolute " + format("%g", request.accuracy->absolute) + ")";
+    line += " to accuracy " + format("%g", request.accuracy->absolute);
+    if (request.accuracy->relative > 0.0) line += " (relative " + format("%g", request.accuracy->relative) + ")";
     out.json["accuracy"] = {{"absolute", request.accuracy->absolute}, {"relative", request.accuracy->relative}};
   } else {
     out.json["accuracy"] = nullptr;

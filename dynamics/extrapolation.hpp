@@ -42,7 +42,7 @@ SampledRun sampledNewmarkRun(const Model& model, const NewmarkSettings& settings
 /// |e| ≤ absolute + relative·|y|.
 struct ErrorTolerance {
   double absolute = 1e-6;
-  double relative = 1e-6;
+  double relative = 0.0;
 };
 
 /// max over the entries of |error| / (absolute + relative·|value|): at most 1 where `error` meets it.

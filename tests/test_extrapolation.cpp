@@ -162,7 +162,7 @@ TEST(AccuracyControl, OscillatorMeetsEveryToleranceAndSaysHowWell) {
   const Scene scene = oscillator(3.0);
   for (const double tolerance : {1e-3, 1e-5, 1e-7, 1e-9}) {
     AccuracyGoal goal;
-    goal.tolerance = {tolerance, tolerance};
+    goal.tolerance = {tolerance, 0.0};
     const AccurateRun run = simulateToAccuracy(scene.model, scene.settings, scene.q0, scene.v0, goal);
     const double error = trueOscillatorError(run.run.trajectory);
     EXPECT_LE(run.weighted_error, kAcceptedFraction);
@@ -199,7 +199,7 @@ TEST(AccuracyControl, AndrewsSqueezerMeetsThePublishedAngles) {
                                       1.0480807410422630};
   for (const double tolerance : {1e-4, 1e-7}) {
     IntegrationRequest request;
-    request.accuracy = ErrorTolerance{tolerance, tolerance};
+    request.accuracy = ErrorTolerance{tolerance, 0.0};
     request.integrator = "extrapolation";
     request.output_step = 0.03;
     const Integration integration = integrate(scene.model, scene.settings, scene.q0, scene.v0, request);

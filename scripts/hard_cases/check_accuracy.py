@@ -12,8 +12,9 @@ estimated for that sensor. A run passes when
   - the estimate holds: true / estimated is at most RATIO_LIMIT and at least 1 / RATIO_LIMIT wherever the
     true error is above the floor of the comparison (FLOOR: the references' own accuracy, 1e-9, and the
     few ulps the CSV's 17 digits carry), and
-  - the true error is below the tolerance, with the safety factor SAFETY, in the tolerance's own
-    weighting: |e| <= SAFETY * TOL * (1 + |y|).
+  - the true error is below the tolerance (absolute, in the coordinates' units) with the safety factor
+    SAFETY, measured on the reference's sensors (positions of points 1 m or more from their joints):
+    |e| <= SAFETY * TOL * (1 + |y|).
 
 Standard library only. Exit status 1 when a run fails either check, 2 on an error.
 """
