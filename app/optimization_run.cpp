@@ -125,6 +125,12 @@ RunChoice resolvedChoice(const DesignProblem& problem, RunChoice choice) {
   return choice;
 }
 
+DesignProblem formulatedProblem(DesignProblem problem, const RunChoice& resolved) {
+  problem.design.transcription.measure = formulationMeasure(resolved.formulation);
+  problem.design.transcription.tolerance = *resolved.epsilon;
+  return problem;
+}
+
 void addSweepOptions(CLI::App& command, SweepAxes& axes, RunChoice& shared) {
   command.add_option("--optimizers", axes.optimizers, "Optimizers to run")
       ->delimiter(',')
@@ -187,9 +193,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 std::shared_ptr<ThreadBudget> shared_threads) {
   OptimizationRun run;
   run.choice = resolvedChoice(problem, choice);
-  problem.design.transcription.measure = formulationMeasure(run.choice.formulation);
-  problem.design.transcription.tolerance = *run.choice.epsilon;
-  DesignNlp nlp(std::move(problem), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
+  DesignNlp nlp(formulatedProblem(std::move(problem), run.choice), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
   if (choice.gradient_cost) {
     nlp.setGradientCost(*choice.gradient_cost);
     run.gradient_cost_source = "given";

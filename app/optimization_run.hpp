@@ -124,6 +124,9 @@ RunChoice resolvedChoice(const DesignProblem& problem, RunChoice choice);
 /// A resolved choice's file name without extension: OPTIMIZER-GRADIENT-FORMULATION[-epsE].
 std::string runFileStem(const RunChoice& choice);
 
+/// The problem with the transcription of a resolved choice (its formulation's measure and its ε).
+DesignProblem formulatedProblem(DesignProblem problem, const RunChoice& resolved);
+
 /// Runs `choice` on `problem` (its transcription replaced by the choice's formulation). With
 /// `shared_threads`, the threads its evaluations use beyond their own are borrowed from it while idle
 /// (runs at once lend theirs to one another; thread_budget.hpp).

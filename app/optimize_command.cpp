@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
+#include "app/accurate_optimization.hpp"
 #include "app/atomic_file.hpp"
 #include "app/exit_status.hpp"
 #include "app/gnuplot.hpp"
@@ -22,7 +24,32 @@ struct OptimizeOptions {
   RunChoice choice;
   std::string json;
   std::string out;
+  double accuracy = 0.0;  ///< > 0: optimizeToAccuracy
 };
+
+/// What the discretisation estimates say of a run driven by accuracy, for the JSON record.
+nlohmann::json discretisationJson(const AccurateOptimization& accurate) {
+  const auto estimate = [](const DiscretisationError& e) {
+    return nlohmann::json{{"step", e.step},
+                          {"cost_functional", e.cost},
+                          {"cost_error", e.cost_error},
+                          {"order", e.order},
+                          {"constraint_errors", std::vector<double>(e.constraint_errors.data(),
+                                                                     e.constraint_errors.data() + e.constraint_errors.size())}};
+  };
+  nlohmann::json out = {{"tolerance", accurate.tolerance}, {"met", accurate.met}};
+  out["grid_choice"] = nlohmann::json::array();
+  for (const DiscretisationError& e : accurate.grid_choice) out["grid_choice"].push_back(estimate(e));
+  out["rounds"] = nlohmann::json::array();
+  for (std::size_t r = 0; r < accurate.rounds.size(); ++r) {
+    const OptimizerResult& result = accurate.rounds[r].result;
+    out["rounds"].push_back({{"at_optimum", estimate(accurate.at_optimum[r])},
+                             {"status", toString(result.status)},
+                             {"simulation_equivalents", result.simulation_equivalents},
+                             {"wall_time_s", result.wall_time_s}});
+  }
+  return out;
+}
 
 /// The paper's figures 6-8 for one run: cost, max violation and design variables against
 /// iterations, and the cost's sensor over time at the start and at the final design.
@@ -77,8 +104,21 @@ void optimize(const OptimizeOptions& options) {
   const RunChoice& c = options.choice;
   std::printf("optimize %s with %s, %s gradients, %s formulation\n", source.path.c_str(), c.optimizer.c_str(),
               c.gradient.c_str(), c.formulation.empty() ? "the problem's" : c.formulation.c_str());
-  std::printf(" iter  b_{k+1}         max_viol     step        sims   grads\n");
-  const OptimizationRun run = runOptimization(problem, c, printIteration);
+  std::optional<AccurateOptimization> accurate;
+  if (options.accuracy > 0.0) {
+    accurate = optimizeToAccuracy(problem, c, options.accuracy, printIteration, [](const std::string& news) {
+      std::printf("%s\n", news.c_str());
+      if (news.starts_with("optimizing")) std::printf(" iter  b_{k+1}         max_viol     step        sims   grads\n");
+      std::fflush(stdout);
+    });
+  } else {
+    std::printf(" iter  b_{k+1}         max_viol     step        sims   grads\n");
+  }
+  OptimizationRun run = accurate ? accurate->rounds.back() : runOptimization(problem, c, printIteration);
+  if (accurate) {  // the start is the first grid's; the histories (and response.png) are the last grid's
+    run.start = accurate->rounds.front().start;
+    run.initial_cost = accurate->rounds.front().initial_cost;
+  }
   const OptimizerResult& r = run.result;
   std::printf("%s: %s (%s)\n", r.optimizer.c_str(), toString(r.status).c_str(), r.message.c_str());
   std::printf("b_{k+1} %.8g, max violation %.3g, %d iterations, %ld simulations, %ld gradients: %.4g "
@@ -101,17 +141,36 @@ void optimize(const OptimizeOptions& options) {
               final_cost <= run.initial_cost ? "lowered" : "RAISED",
               100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost, run.initial_cost);
   std::printf("\n");
+  if (accurate) {
+    const DiscretisationError& e = accurate->at_optimum.back();
+    double wall = 0.0, equivalents = 0.0;
+    for (const OptimizationRun& round : accurate->rounds) {
+      wall += round.result.wall_time_s;
+      equivalents += round.result.simulation_equivalents;
+    }
+    std::printf("%s = %.8g +- %.2g %s at the optimum (discretisation error at h = %g s, from h, h/2 and h/4: order "
+                "%.2g; constraints' up to %.2g); accuracy %g %s after %zu grid%s (%.4g simulation-equivalents, %.3g s)\n",
+                run.cost_response.c_str(), e.cost, e.cost_error, run.cost_unit.c_str(), e.step, e.order,
+                e.constraint_errors.size() ? e.constraint_errors.cwiseAbs().maxCoeff() : 0.0, accurate->tolerance,
+                accurate->met ? "met" : "NOT met", accurate->rounds.size(), accurate->rounds.size() == 1 ? "" : "s",
+                equivalents, wall);
+  }
   printVerdicts(run.verdicts);
+  nlohmann::json record = toJson(run, source.path);
+  if (accurate) record["discretisation"] = discretisationJson(*accurate);
   if (!options.json.empty())
-    writeAtomically(options.json, [&](std::ostream& out) { out << toJson(run, source.path).dump(2) << '\n'; });
+    writeAtomically(options.json, [&](std::ostream& out) { out << record.dump(2) << '\n'; });
   if (!options.out.empty()) {
     std::filesystem::create_directories(options.out);
-    writeAtomically(options.out + "/result.json", [&](std::ostream& out) { out << toJson(run, source.path).dump(2) << '\n'; });
+    writeAtomically(options.out + "/result.json", [&](std::ostream& out) { out << record.dump(2) << '\n'; });
     plotRun(options.out, source.path, run);
     std::printf("wrote %s/result.json, history.png, response.png (with their .dat and .gp)\n", options.out.c_str());
   }
   if (r.status != OptimizerStatus::Converged)
     throw NotConverged(r.optimizer + " did not converge: " + toString(r.status) + " (exit status 2)");
+  if (accurate && !accurate->met)
+    throw NotConverged("the discretisation error at the optimum exceeds --accuracy after " +
+                       std::to_string(kMaxAccuracyRounds) + " grids (exit status 2)");
 }
 
 }  // namespace
@@ -175,6 +234,15 @@ void registerOptimizeCommand(CLI::App& app) {
                       "wall_time_s, history[{iteration, cost (b_{k+1}), max_violation, step, cost_functional (the cost's own, "
                       "in cost_functional.name's unit), simulations, gradient_evaluations, simulation_equivalents, design "
                       "(SI; null, as cost_functional, where the optimizer does not say which point it is)}]");
+  command
+      ->add_option("--accuracy", options->accuracy,
+                   "Optimize to this discretisation accuracy (the cost's functional and each transcribed constraint, "
+                   "in their own units): the time step is chosen at the start from the values on h, h/2 and h/4 and "
+                   "kept fixed while the optimizer runs (the objective stays smooth in the design); at the optimum the "
+                   "error is estimated again and, where it exceeds TOL, the step is refined and the optimizer goes "
+                   "on from the optimum (at most 4 grids). The summary gives the cost as value +- error; the JSON a "
+                   "`discretisation` record. Exit status 2 when the accuracy is not met")
+      ->check(CLI::PositiveNumber);
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
                       "history.png (the cost's own functional, max violation and design variables against iterations) and response.png "

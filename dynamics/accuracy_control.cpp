@@ -55,6 +55,7 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
     H = onOutputGrid(H, goal.output_step);
     NewmarkSettings macro = settings;
     macro.step = H;
+    macro.newton_tolerance = std::max(settings.newton_tolerance, kNewtonShareOfTolerance * goal.tolerance.absolute);
     const long outputs = stepsToCover(settings.end_time, H);
     ExtrapolationTableau tableau(exponents);
     AccuracyAttempt record{H, 0, std::numeric_limits<double>::quiet_NaN(), {}};
@@ -97,7 +98,7 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
     addStatistics(every_attempt, tableau.statistics());
     out.rejected.push_back(record);
     if (!record.failure.empty()) {
-      H /= 4.0;  // a step too large for Newton (or for a check after it)
+      H /= 2.0;  // a step too large for Newton (or for a check after it)
       continue;
     }
     H = std::min(next_step, 0.9 * H);

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -241,6 +243,15 @@ design:
   EXPECT_FALSE(r["feasible"].get<bool>());
 }
 
+/// The oscillator's design: the RMS of x over 1 s at least, with min x ≥ −0.5.
+constexpr const char* kRmsAboveMinusHalf = R"(design:
+  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
+  cost: {sensor: position, of: rms}
+  artificial: {initial: 1, lower: -2, upper: 2}
+  constraints:
+    - {sensor: position, of: min, bound: -0.5}
+)";
+
 // A run is "converged" only where every constraint is met in its own units. On the oscillator
 // x = cos(√k t) over [0, 1 s], minimising the RMS of x pushes k up against min x ≥ −0.5, which the
 // grid's last point decides: cos(ω_h · 1 s) = −0.5 with the trapezoidal rule's frequency
@@ -248,13 +259,7 @@ design:
 // KS aggregate over the time mean under-estimates the extreme: SLSQP's own test passes at a point
 // where min x is far below −0.5, and the run is a failure that says which constraint and by how much.
 TEST(OptimizeCommand, AConvergedRunThatBreaksALimitInItsOwnUnitsFails) {
-  const std::string text = std::string(test::kOscillator) + R"(design:
-  variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
-  cost: {sensor: position, of: rms}
-  artificial: {initial: 1, lower: -2, upper: 2}
-  constraints:
-    - {sensor: position, of: min, bound: -0.5}
-)";
+  const std::string text = std::string(test::kOscillator) + kRmsAboveMinusHalf;
   const nlohmann::json grid = optimizeScene("grid", text, "--set spring.k=2 --optimizer slsqp --formulation grid_max");
   EXPECT_EQ(grid["status"], "converged") << grid["message"];
   EXPECT_TRUE(grid["feasible"].get<bool>());
@@ -265,6 +270,32 @@ TEST(OptimizeCommand, AConvergedRunThatBreaksALimitInItsOwnUnitsFails) {
   EXPECT_GT(ks["constraints"][0]["excess"].get<double>(), 100 * ks["constraints"][0]["tolerance"].get<double>());
   const std::string message = ks["message"];
   EXPECT_NE(message.find("its own test passed, but position_min = "), std::string::npos) << message;
+}
+
+// --accuracy: the oscillator of the test above, its RMS cost at the optimum against the closed form
+// √(1/2 + sin 2ω / 4ω) at the design found (ω² = k, over 1 s): the true discretisation error of the
+// reported cost is within a factor of 2 of the reported estimate (an order-2 quantity, estimated from
+// h, h/2 and h/4) and below the tolerance; a tighter tolerance refines the grid.
+TEST(OptimizeCommand, AnAccuracyRunReportsItsCostWithItsDiscretisationError) {
+  const std::string text = std::string(test::kOscillator) + kRmsAboveMinusHalf;
+  for (const double tolerance : {1e-6, 1e-8}) {
+    std::ostringstream arguments;
+    arguments << "--set spring.k=2 --optimizer slsqp --formulation grid_max --accuracy " << tolerance;
+    const nlohmann::json r = optimizeScene("accuracy", text, arguments.str());
+    EXPECT_EQ(r["status"], "converged") << r["message"];
+    const nlohmann::json& d = r["discretisation"];
+    ASSERT_TRUE(d["met"].get<bool>());
+    const nlohmann::json& last = d["rounds"].back()["at_optimum"];
+    const double estimate = last["cost_error"].get<double>();
+    const double omega = std::sqrt(r["design"][0].get<double>());
+    const double truth = std::sqrt(0.5 + std::sin(2.0 * omega) / (4.0 * omega));
+    const double error = std::abs(r["cost_functional"]["final"].get<double>() - truth);
+    EXPECT_LE(estimate, tolerance);
+    EXPECT_LE(error, tolerance);
+    EXPECT_GT(error, 0.5 * estimate) << tolerance;
+    EXPECT_LT(error, 2.0 * estimate) << tolerance;
+    if (tolerance < 1e-7) EXPECT_LT(last["step"].get<double>(), 1e-3);  // refined from the scene's 1 ms
+  }
 }
 
 }  // namespace
