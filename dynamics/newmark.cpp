@@ -507,7 +507,8 @@ void NewmarkIntegrator::step() {
       setDriven(t_);
       if (!newton(true))
         fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
-                 " iterations (a step too large for Newton here? take a smaller step, or --accuracy)",
+                 " iterations (a step too large for Newton, or a singular configuration: a smaller step, or --accuracy, "
+                 "which retries smaller ones)",
              r_free_);
     }
   }
