@@ -49,8 +49,8 @@ grep -v '^$' "$out/run.log" | grep -E '^(==|   (simbody|mbsopt|agreement|Simbody
     source_version=$(cd build/simbody-src && ls simbody_*.dsc 2>/dev/null | sed 's/^simbody_//; s/\.dsc$//' || true)
     echo "simbody: Release build of Debian's source package simbody ${source_version:-unknown} (bench/build_simbody_release.sh)"
     echo "simbody flags: $(sed -n "s/^CMAKE_CXX_FLAGS_RELEASE:STRING=//p" build/simbody-build/CMakeCache.txt 2>/dev/null | tr -d "'" | xargs)"
-    echo "simbody config: $simbody_dir"
-    echo "simbody library: $simbody_lib"
+    echo "simbody config: $(realpath --relative-to="$PWD" "$simbody_dir") (in the repository)"
+    echo "simbody library: $(realpath --relative-to="$PWD" "$simbody_lib") (in the repository)"
     echo "compiler: $(c++ --version | head -1)"
   else
     echo "simbody package: $(dpkg-query -W -f='${Package} ${Version}' libsimbody-dev 2>/dev/null || echo unknown)"
