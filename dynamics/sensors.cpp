@@ -97,6 +97,7 @@ Eigen::MatrixXd sensorHistory(const Model& model, const Trajectory& trajectory) 
   Workspace<double> ws(model);
   const Eigen::Index points = trajectory.time.size();
   Eigen::MatrixXd out(points, static_cast<Eigen::Index>(model.sensors().size()));
+  if (out.cols() == 0) return out;  // no sensors: a row of an empty matrix would offset a null pointer
   Eigen::VectorXd q, v, a, lambda;
   for (Eigen::Index k = 0; k < points; ++k) {
     q = trajectory.q.col(k);
