@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "mbsopt/dynamics/overloaded.hpp"
+#include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/time_functional.hpp"
 
 namespace mbsopt {
@@ -73,6 +74,24 @@ std::string sensorUnit(const Model& model, const Sensor& sensor) {
 }
 
 std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, const DesignResponse& response) {
+  if (!response.runs.empty()) {  // the verdicts of the combination the optimizer saw, not of one run
+    const Eigen::VectorXd w = runWeights(problem, 1);
+    std::vector<ConstraintVerdict> out;
+    for (Eigen::Index i = 0; i < w.size(); ++i) {
+      const int j = static_cast<int>(i) + 1;  // runs 2 … k
+      const std::vector<ConstraintVerdict> run =
+          constraintVerdicts(extrapolationRunProblem(problem, j + 1), response.runs[static_cast<std::size_t>(j)]);
+      if (out.empty()) {
+        out = run;
+        for (ConstraintVerdict& v : out) v.value *= w[i], v.excess *= w[i];
+      } else {
+        for (std::size_t c = 0; c < out.size(); ++c) out[c].value += w[i] * run[c].value, out[c].excess += w[i] * run[c].excess;
+      }
+    }
+    for (ConstraintVerdict& v : out)  // |value − bound| is not linear in the runs' values
+      if (v.equality) v.excess = std::abs(v.value - v.bound);
+    return out;
+  }
   const Model& model = problem.scene.model;
   const std::size_t cases = std::max<std::size_t>(problem.load_cases.size(), 1);
   std::vector<ConstraintVerdict> out;

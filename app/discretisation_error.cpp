@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mbsopt/dynamics/extrapolation.hpp"
+
 namespace mbsopt {
 
 namespace {
@@ -23,10 +25,15 @@ DiscretisationError discretisationError(const DesignProblem& problem, const std:
                                         const Eigen::VectorXd& x) {
   std::vector<double> costs;
   std::vector<Eigen::VectorXd> constraints;
+  // Every grid ends where h's does (the first multiple of h at or after the end time).
+  const auto divide = [](NewmarkSettings& s, int divisor) {
+    s.end_time = static_cast<double>(stepsToCover(s.end_time, s.step)) * s.step;
+    s.step /= divisor;
+  };
   for (const int divisor : {1, 2, 4}) {
     DesignProblem grid = problem;
-    grid.scene.settings.step /= divisor;
-    for (LoadCase& c : grid.load_cases) c.scene.settings.step /= divisor;
+    divide(grid.scene.settings, divisor);
+    for (LoadCase& c : grid.load_cases) divide(c.scene.settings, divisor);
     const DesignResponse response = evaluateDesign(grid, functionals, x);
     costs.push_back(costFunctional(grid, response));
     constraints.push_back(response.constraints);
@@ -34,10 +41,16 @@ DiscretisationError discretisationError(const DesignProblem& problem, const std:
   DiscretisationError out;
   out.step = problem.scene.settings.step;
   out.cost = costs[0];
-  out.order = observedOrder(costs[0] - costs[1], costs[1] - costs[2]);
-  const double factor = 1.0 / (1.0 - std::pow(2.0, -out.order));
-  out.cost_error = std::abs(costs[0] - costs[1]) * factor;
-  out.constraint_errors = (constraints[0] - constraints[1]) * factor;
+  // e_h = (ψ_h − ψ_{h/2}) / (1 − 2^{−p}), each value with the order its own differences show.
+  const auto error = [](double coarse, double middle, double fine, double* order = nullptr) {
+    const double p = observedOrder(coarse - middle, middle - fine);
+    if (order) *order = p;
+    return (coarse - middle) / (1.0 - std::pow(2.0, -p));
+  };
+  out.cost_error = std::abs(error(costs[0], costs[1], costs[2], &out.order));
+  out.constraint_errors.resize(constraints[0].size());
+  for (Eigen::Index j = 0; j < constraints[0].size(); ++j)
+    out.constraint_errors[j] = error(constraints[0][j], constraints[1][j], constraints[2][j]);
   return out;
 }
 

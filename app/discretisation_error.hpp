@@ -14,7 +14,9 @@ struct DiscretisationError {
   double step = 0.0;        ///< h [s]
   double cost = 0.0;        ///< the cost's functional at h (costFunctional, SI)
   double cost_error = 0.0;  ///< its estimated error |ψ_h − ψ|
-  Eigen::VectorXd constraint_errors;  ///< each transcribed constraint's, in its own units
+  /// Each transcribed constraint's, in its own units, with the order its own values show (value at h
+  /// minus the converged value, as every estimate of docs/integrators.md).
+  Eigen::VectorXd constraint_errors;
   /// The order the cost's values show, log₂ |ψ_h − ψ_{h/2}| / |ψ_{h/2} − ψ_{h/4}|, clamped to [1, 4]
   /// (a functional of extremes or of ⟨·⟩ converges irregularly: the clamp keeps the estimate
   /// conservative).
@@ -24,7 +26,8 @@ struct DiscretisationError {
 };
 
 /// The values of the problem (one Newmark run per grid, at its scene's step h) at the scaled point x on
-/// h, h/2, h/4, and their error at h: e_h = (ψ_h − ψ_{h/2}) / (1 − 2^{−p}) with p the order above.
+/// h, h/2, h/4 (every grid ending where h's does), and their error at h: e_h = (ψ_h − ψ_{h/2}) / (1 − 2^{−p})
+/// with p the order each value shows.
 DiscretisationError discretisationError(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                         const Eigen::VectorXd& x);
 

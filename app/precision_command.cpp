@@ -293,7 +293,7 @@ void registerPrecisionCommand(CLI::App& app) {
       command->add_option("--alpha", options->alpha, "The numerical damping alpha of the damped variant")
           ->check(CLI::Range(0.0, 0.5));
   CLI::Option* runs = command->add_option("--runs", options->runs, "Runs per macro step of the extrapolation variant")
-                          ->check(CLI::Range(2, 12))
+                          ->check(CLI::Range(2, kMaxExtrapolationRuns))
                           ->capture_default_str();
   CLI::Option* reference =
       command->add_option("--reference", options->reference,

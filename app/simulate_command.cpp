@@ -211,7 +211,7 @@ void registerSimulateCommand(CLI::App& app) {
                    "Extrapolation at a fixed macro step (no --accuracy): Newmark runs at H, H/2, ..., H/K with H "
                    "the scene's step; the result has order K (2K - 2 without cut joints) (default: the scene's "
                    "settings.extrapolation_runs, 3 unless it says)")
-      ->check(CLI::Range(2, 12))
+      ->check(CLI::Range(2, kMaxExtrapolationRuns))
       ->excludes(accuracy);
   command
       ->add_option("--error-estimate", options->error_estimate,
@@ -231,7 +231,8 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--every", options->every,
                    "Write only every N-th time point to the CSV, and always the first and the last (t = 0, N·h, "
-                   "2N·h, ..., T); the peaks printed still cover every step (default 1: every step)")
+                   "2N·h, ..., T); the peaks printed still cover every time point of the run (every step of a "
+                   "fixed Newmark step; the output times of --output-step and of the extrapolation) (default 1)")
       ->check(CLI::PositiveNumber)
       ->needs(out);
   command->callback([options] { run(*options); });

@@ -71,7 +71,7 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
               {"max_relative_newton_residual", stats.max_relative_residual},
               {"wall_time_s", wall},
               {"sensors", sensors}};
-  out.json["runs_unit"] = "s (the step of every Newmark run made, in order)";
+  out.json["runs_unit"] = "s (the step of every Newmark run of the result, in order; steps counts the rejected attempts' too)";
   std::string line = "simulated " + path;
   if (request.accuracy) {
     line += " to accuracy " + format("%g", request.accuracy->absolute);
@@ -122,6 +122,8 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
     line += ", no error estimate";
     out.json["estimated_global_error"] = nullptr;
   }
+  if (request.accuracy || request.integrator != "newmark" || request.output_step > 0.0)  // the peaks' points
+    line += ", " + std::to_string(trajectory.time.size()) + " output times";
   line += ", wall time " + format("%.3g", wall) + " s";
   out.json["warnings"] = out.warnings;
   out.line = line;

@@ -12,8 +12,8 @@ namespace {
 void requireGoal(const AccuracyGoal& goal) {
   const ErrorTolerance& t = goal.tolerance;
   if (!(t.absolute >= 0.0 && t.relative >= 0.0 && std::isfinite(t.absolute) && std::isfinite(t.relative)) ||
-      !(t.absolute + t.relative > 0.0))
-    throw std::invalid_argument("the accuracy needs finite parts, not negative, not both zero");
+      !(t.absolute > 0.0))
+    throw std::invalid_argument("the accuracy needs a positive absolute part and a relative part that is not negative");
   if (!(goal.output_step >= 0.0 && std::isfinite(goal.output_step)))
     throw std::invalid_argument("the output step must be positive and finite");
   if (goal.max_runs < 2) throw std::invalid_argument("a run driven by accuracy needs at least 2 runs per attempt");

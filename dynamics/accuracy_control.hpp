@@ -9,7 +9,7 @@
 //     (ρ = kStepSafety), at a work of (1 + 2 + … + j) / H_j steps per unit time;
 //   - the attempt goes on to j + 1 while the estimates fall, up to max_runs; when they stop falling
 //     (the expansion does not hold yet at this H) or max_runs is reached, the next attempt takes the
-//     cheapest H_j (and at most that j + 1 runs), never more than H / 2.
+//     cheapest H_j (and at most that j + 1 runs), never more than 0.9 H.
 // A run that fails (Newton does not converge, a singular iteration matrix, a check after a step)
 // means H was too large for Newton: the next attempt takes H / 2, and the message of the failure is
 // kept. Newton's tolerance follows the accuracy asked for (kNewtonShareOfTolerance), as SUNDIALS ties
@@ -59,8 +59,8 @@ struct AccurateRun {
 /// of about 2 of the true error (docs/integrators.md), so the true error stays below the tolerance.
 inline constexpr double kAcceptedFraction = 0.5;
 /// Newton's tolerance in a run driven by accuracy: at least this fraction of the absolute tolerance
-/// (and never below the scene's own). Its error in q̈, a fraction of it per step, stays far below the
-/// tolerance after the combination's weights (at most ~20 for 6 runs) and T² scale it.
+/// (and never below the scene's own). Its error in q̈, a fraction of it per step, stays below the
+/// tolerance after the combination's weights (their sum is 69 for 6 runs with cut joints) and T² scale it.
 inline constexpr double kNewtonShareOfTolerance = 1e-3;
 /// The next attempt aims at this fraction of the accepted level.
 inline constexpr double kStepSafety = 0.7;

@@ -171,7 +171,9 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
 EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& settings, int runs,
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress) {
-  if (runs < 2) throw std::invalid_argument("extrapolation needs at least 2 runs, not " + std::to_string(runs));
+  if (runs < 2 || runs > kMaxExtrapolationRuns)
+    throw std::invalid_argument("extrapolation takes 2 to " + std::to_string(kMaxExtrapolationRuns) + " runs, not " +
+                                std::to_string(runs));
   if (const std::string defect = extrapolationDefect(settings); !defect.empty()) throw std::invalid_argument(defect);
   const double H = settings.step;
   const long outputs = stepsToCover(settings.end_time, H);
@@ -190,9 +192,9 @@ EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, c
   result.order = tableau.order();
   result.trajectory = sampledTrajectory(model, settings, tableau.result());
   const Trajectory check = sampledTrajectory(model, settings, tableau.check());
-  result.q_error = check.q - result.trajectory.q;
-  result.v_error = check.v - result.trajectory.v;
-  result.sensor_error = check.sensors - result.trajectory.sensors;
+  result.q_error = result.trajectory.q - check.q;  // result − exact ≈ T_{j,j−1} − T_{j,j}
+  result.v_error = result.trajectory.v - check.v;
+  result.sensor_error = result.trajectory.sensors - check.sensors;
   return result;
 }
 

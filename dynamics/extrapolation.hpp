@@ -1,16 +1,16 @@
 // Global extrapolation of the trapezoidal Newmark scheme, and the global error estimates it gives
-// (issue 18; docs/integrators.md).
+// (issue 18; docs/integrators.md §2-3).
 //
-// With β = 1/4, γ = 1/2 the Newmark step (32)-(33) is the trapezoidal rule, a symmetric one-step
-// method, so the global error of a run at step h expands in even powers of h at every point of its
-// grid (Hairer, Nørsett and Wanner, Solving ODEs I, §II.8-9):
-//     y_h(t) = y(t) + e₂(t) h² + e₄(t) h⁴ + …
-// Runs at H/n₁, H/n₂, … (the harmonic sequence n_j = j, the cheapest) meet at the multiples of H,
-// where the Aitken–Neville tableau
-//     T_{j,1} = y_{H/n_j},   T_{j,k+1} = T_{j,k} + (T_{j,k} − T_{j−1,k}) / ((n_j / n_{j−k})² − 1)
-// eliminates the error terms one by one: T_{j,k} is of order 2k. T_{j,j} − T_{j,j−1} is then the error
-// of T_{j,j−1} to within a factor 1 + O(H²) (T_{j,j} being two orders better), which is the estimate
-// an extrapolated run reports with T_{j,j−1}.
+// The global error of a run at step h expands in powers of h at every point of its grid:
+//     y_h(t) = y(t) + e_{p₁}(t) h^{p₁} + e_{p₂}(t) h^{p₂} + …
+// with p = 2, 4, 6, … for the trapezoidal rule (β = 1/4, γ = 1/2), a symmetric one-step method
+// (Hairer, Nørsett and Wanner, Solving ODEs I, §II.8-9), and p = 2, 3, 4, … once cut joints are closed
+// at position level: the projections of q̇ and q̈ after each step break the symmetry (measured on the
+// four-bar: an h³ term; errorExponents). Runs at H/1, H/2, H/3, … (the harmonic sequence, the
+// cheapest) meet at the multiples of H. The combination of runs first + 1 … j with Σ c_i = 1 and
+// Σ c_i (1/i)^{p_m} = 0 for the first j − first − 1 powers (extrapolationWeights) cancels those terms:
+// the result T_{j,j−1} (runs 2 … j) is of order p_{j−1}, and T_{j,j} − T_{j,j−1} (T_{j,j}: all j runs,
+// of order p_j) is its error to within a factor 1 + O(H), the estimate it is reported with.
 #pragma once
 
 #include <Eigen/Core>
@@ -56,7 +56,7 @@ struct EstimatedRun {
   /// At the kept time points: q, q̇, q̈, λ and the sensors; `statistics` summed over every run made.
   Trajectory trajectory;
   /// Estimated global error of each entry of trajectory.q, trajectory.v and trajectory.sensors (same
-  /// shapes).
+  /// shapes), signed as every estimate of mbsopt: the result minus the exact value.
   Eigen::MatrixXd q_error, v_error, sensor_error;
   std::vector<double> steps;  ///< the step of every Newmark run made, in order
   int order = 2;              ///< of the result in h (2: plain Newmark)
@@ -77,6 +77,11 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
 /// projections of q̇ and q̈ after each step break the symmetry: on the four-bar the error of a first
 /// elimination of h² falls as h³ (docs/integrators.md).
 std::vector<int> errorExponents(const Model& model, const NewmarkSettings& settings);
+
+/// The most runs an extrapolation combines: the weights grow with them (their sum is 69 for 6 runs with
+/// cut joints, ~5e4 for 12) and multiply the runs' round-off, whose floor on closed loops is ~5e-9
+/// (docs/integrators.md §7).
+inline constexpr int kMaxExtrapolationRuns = 8;
 
 /// The weights of runs first + 1 … runs (1-based; run i at H/i) in the combination that keeps a
 /// constant and cancels the first runs − first − 1 terms h^{p_m} of the expansion:
@@ -128,9 +133,10 @@ EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, c
 /// NewmarkIntegrator::simulate ends.
 long stepsToCover(double end_time, double step);
 
-/// `runs` ≥ 2 Newmark runs at H/1, H/2, …, H/runs (H = settings.step) from (q0, v0), combined at the
-/// multiples of H (up to the first at or after settings.end_time) into T_{runs,runs−1}, of order
-/// 2(runs − 1), with its error estimate T_{runs,runs} − T_{runs,runs−1}. The combined q and q̇ are moved
+/// `runs` (2 … kMaxExtrapolationRuns) Newmark runs at H/1, H/2, …, H/runs (H = settings.step) from
+/// (q0, v0), combined at the multiples of H (up to the first at or after settings.end_time) into
+/// T_{runs,runs−1}, of order p_{runs−1} (2(runs − 1) without cut joints, runs with them), with its
+/// error estimate T_{runs,runs−1} − T_{runs,runs}. The combined q and q̇ are moved
 /// back onto the closure and its derivative (assemble(); the error that removes is the estimate's
 /// order squared), then the sensors are evaluated there. std::invalid_argument unless β = 1/4,
 /// γ = 1/2 and the loops are closed at position level; SimulationError from a run.

@@ -37,7 +37,8 @@ struct IntegrationRequest {
   std::optional<ErrorTolerance> accuracy;
   /// The result's time points are the multiples of this [s]; 0: every step (Newmark) or every macro
   /// step (extrapolation, or a run driven by accuracy). With a fixed Newmark step it must be a whole
-  /// number of steps.
+  /// number of steps; at most the end time. The last output time is the last of its multiples that
+  /// the run reaches.
   double output_step = 0.0;
   int runs = 4;  ///< extrapolation at a fixed macro step: runs at H/1 … H/runs
   /// A fixed-step Newmark run also estimates its global error (from a run at h/2: three times the work).

@@ -233,9 +233,9 @@ class SceneBuilder {
       }
     }
     choice.extrapolation_runs = settings.positiveInteger("extrapolation_runs", choice.extrapolation_runs);
-    if (choice.extrapolation_runs < 2 || choice.extrapolation_runs > 12)
+    if (choice.extrapolation_runs < 2 || choice.extrapolation_runs > kMaxExtrapolationRuns)
       settings.fail("extrapolation_runs", "extrapolation_runs: " + std::to_string(choice.extrapolation_runs) +
-                                              " runs; between 2 and 12");
+                                              " runs; between 2 and " + std::to_string(kMaxExtrapolationRuns));
     if (choice.extrapolated())
       if (const std::string defect = extrapolationDefect(result_.scene.settings); !defect.empty())
         settings.fail("integrator", "integrator: " + defect);

@@ -7,12 +7,14 @@
 #include <pybind11/stl.h>
 
 #include <mutex>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "app/optimization_run.hpp"
 #include "app/scene_argument.hpp"
+#include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/dynamics/newmark.hpp"
 #include "mbsopt/problems/design_nlp.hpp"
 #include "mbsopt/problems/scene_file.hpp"
@@ -89,14 +91,24 @@ class PythonScene {
     return out;
   }
 
-  py::dict simulate() const {
+  /// As `mbsopt simulate` runs the scene: its own integrator at its step, or to `accuracy` (absolute,
+  /// the extrapolation unless `integrator` says), rows at the multiples of `output_step` when given.
+  py::dict simulate(const std::optional<std::string>& integrator, const std::optional<double>& accuracy,
+                    double output_step, bool estimate_error) const {
     const Scene& s = loaded_.scene;
-    Trajectory t;
+    IntegrationRequest request;
+    request.integrator = integrator ? *integrator : accuracy ? "extrapolation" : s.integrator.name;
+    if (accuracy) request.accuracy = ErrorTolerance{*accuracy, 0.0};
+    request.output_step = output_step;
+    request.runs = s.integrator.extrapolation_runs;
+    request.estimate_error = estimate_error;
+    Integration integration;
     {
       const py::gil_scoped_release unlocked;  // released first, so the mutex is never awaited with it
       const std::lock_guard<std::mutex> lock(mutex_);
-      t = NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0);
+      integration = integrate(s.model, s.settings, s.q0, s.v0, request);
     }
+    const Trajectory& t = integration.run.trajectory;
     py::dict out;
     out["time"] = array(t.time);
     out["coordinates"] = coordinates();  // the columns of q, v and a
@@ -106,6 +118,15 @@ class PythonScene {
     out["sensor_names"] = sensorNames();  // the columns of sensors
     out["sensors"] = array(t.sensors);
     out["newton_iterations"] = array(Eigen::VectorXd(t.newton_iterations.cast<double>()));
+    out["integrator"] = request.integrator;
+    out["steps"] = integration.run.steps;  // the step of every Newmark run made
+    out["order"] = integration.run.order;
+    if (integration.estimated) {  // the estimated global error of q and of the sensors, same shapes
+      py::dict estimate;
+      estimate["q"] = array(Eigen::MatrixXd(integration.run.q_error.transpose()));
+      estimate["sensors"] = array(integration.run.sensor_error);
+      out["estimated_error"] = estimate;
+    }
     return out;
   }
 
@@ -249,9 +270,14 @@ PYBIND11_MODULE(mbsopt, m) {
       .def(py::init<const std::string&, const py::dict&>(), py::arg("scene"), py::arg("set") = py::dict())
       .def("set", &PythonScene::set, py::arg("values"),
            "Adds overrides {name: value} (model parameters, settings.*) and reloads the scene with all of them.")
-      .def("simulate", &PythonScene::simulate,
-           "Simulates: a dict with time, coordinates, q, v, a (rows = time points), sensor_names, sensors, "
-           "newton_iterations.")
+      .def("simulate", &PythonScene::simulate, py::arg("integrator") = py::none(), py::arg("accuracy") = py::none(),
+           py::arg("output_step") = 0.0, py::arg("estimate_error") = false,
+           "Simulates as `mbsopt simulate` does: the scene's integrator at its step, or to `accuracy` (absolute, "
+           "in the coordinates' units; the extrapolation unless `integrator` names one), rows at the multiples "
+           "of `output_step` when given. A dict with time, coordinates, q, v, a (rows = time points), "
+           "sensor_names, sensors, newton_iterations, integrator, steps (of every Newmark run), order, and "
+           "estimated_error {q, sensors} (same shapes) when there is an estimate (`accuracy`, the extrapolation, "
+           "or estimate_error=True for a fixed step).")
       .def_property_readonly("parameters", &PythonScene::parameters, "Every model parameter by its dotted name (SI).")
       .def_property_readonly("coordinates", &PythonScene::coordinates, "The columns of q, v and a.")
       .def_property_readonly("sensor_names", &PythonScene::sensorNames, "The columns of the sensors.")
@@ -295,8 +321,15 @@ PYBIND11_MODULE(mbsopt, m) {
       });
 
   // One call each, for scripts that need one result: the classes' methods on a fresh object.
-  m.def("simulate", [](const std::string& scene, const py::dict& set) { return PythonScene(scene, set).simulate(); },
-        py::arg("scene"), py::arg("set") = py::dict(), "Scene(scene, set).simulate().");
+  m.def(
+      "simulate",
+      [](const std::string& scene, const py::dict& set, const std::optional<std::string>& integrator,
+         const std::optional<double>& accuracy, double output_step, bool estimate_error) {
+        return PythonScene(scene, set).simulate(integrator, accuracy, output_step, estimate_error);
+      },
+      py::arg("scene"), py::arg("set") = py::dict(), py::arg("integrator") = py::none(), py::arg("accuracy") = py::none(),
+      py::arg("output_step") = 0.0, py::arg("estimate_error") = false,
+      "Scene(scene, set).simulate(integrator, accuracy, output_step, estimate_error).");
   m.def("parameters", [](const std::string& scene, const py::dict& set) { return PythonScene(scene, set).parameters(); },
         py::arg("scene"), py::arg("set") = py::dict(), "Scene(scene, set).parameters.");
   m.def(

@@ -79,7 +79,7 @@ double costFunctional(const DesignProblem& problem, const DesignResponse& respon
 double costFunctionalError(const DesignProblem& problem, const DesignResponse& response) {
   if (response.runs.empty()) return 0.0;
   const auto value = [](const DesignProblem& run, const DesignResponse& r) { return costFunctional(run, r); };
-  return combineRuns(problem, response, 0, value) - combineRuns(problem, response, 1, value);
+  return combineRuns(problem, response, 1, value) - combineRuns(problem, response, 0, value);  // result − exact
 }
 
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
@@ -96,7 +96,7 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
     out.cost = out.runs.front().cost;
     const auto constraints = [](const DesignProblem&, const DesignResponse& r) -> Eigen::VectorXd { return r.constraints; };
     out.constraints = combineRuns(problem, out, 1, constraints);
-    out.constraint_errors = combineRuns(problem, out, 0, constraints) - out.constraints;
+    out.constraint_errors = out.constraints - combineRuns(problem, out, 0, constraints);  // result − exact
     out.trajectory = {};
     out.functionals.clear();
     out.load_cases.clear();

@@ -26,7 +26,7 @@ struct DesignResponse {
   std::vector<DesignResponse> load_cases;
   /// With an extrapolated problem (extrapolationRuns(problem) = k ≥ 2), each Newmark run's own response
   /// (run j at h/j); `constraints` is then their combination T_{k,k−1} (runs 2 … k, dynamics/
-  /// extrapolation.hpp), `constraint_errors` its estimated discretisation error T_{k,k} − T_{k,k−1},
+  /// extrapolation.hpp), `constraint_errors` its estimated discretisation error T_{k,k−1} − T_{k,k},
   /// and `trajectory`, `functionals` are empty (caseTrajectory gives the finest run's).
   std::vector<DesignResponse> runs;
   Eigen::VectorXd constraint_errors;
@@ -52,8 +52,8 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
 /// its integral or its RMS (ResponseCost); with load cases the largest over them, the worst case that
 /// b_{k+1} bounds. What an optimizer's progress is judged by, b_{k+1} being only its bound.
 double costFunctional(const DesignProblem& problem, const DesignResponse& response);
-/// Of an extrapolated response, the estimated discretisation error of costFunctional (T_{k,k} −
-/// T_{k,k−1} of the runs' values); 0 otherwise.
+/// Of an extrapolated response, the estimated discretisation error of costFunctional (T_{k,k−1} −
+/// T_{k,k} of the runs' values: the result minus the exact value); 0 otherwise.
 double costFunctionalError(const DesignProblem& problem, const DesignResponse& response);
 
 /// The weights of runs `first` + 1 … k of an extrapolated problem in its combination

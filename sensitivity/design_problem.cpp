@@ -1,5 +1,7 @@
 #include "mbsopt/sensitivity/design_problem.hpp"
 
+#include "mbsopt/dynamics/extrapolation.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -79,7 +81,9 @@ int extrapolationRuns(const DesignProblem& problem) {
 
 DesignProblem extrapolationRunProblem(const DesignProblem& problem, int j) {
   DesignProblem run{problem.scene, problem.design, {}};
-  run.scene.settings.step /= j;
+  NewmarkSettings& s = run.scene.settings;
+  s.end_time = static_cast<double>(stepsToCover(s.end_time, s.step)) * s.step;  // every run ends there
+  s.step /= j;
   run.scene.integrator = {};
   return run;
 }

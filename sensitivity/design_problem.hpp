@@ -104,8 +104,8 @@ DesignProblem loadCaseProblem(const DesignProblem& problem, std::size_t c);
 /// Newmark runs whose values the problem combines: the scene's settings.extrapolation_runs when its
 /// integrator is the extrapolation, else 1 (dynamics/extrapolation.hpp).
 int extrapolationRuns(const DesignProblem& problem);
-/// Run j (1-based) of an extrapolated problem as a problem of its own: the scene's step over j, one
-/// Newmark run.
+/// Run j (1-based) of an extrapolated problem as a problem of its own: the scene's step h over j, one
+/// Newmark run, ending at the first multiple of h at or after the end time (as every run does).
 DesignProblem extrapolationRunProblem(const DesignProblem& problem, int j);
 
 /// How a transcribed constraint uses the artificial variable b_{k+1}.

@@ -49,8 +49,18 @@ TEST(ExtrapolatedDesign, ValuesAreTheLagrangeCombinationOfTheRuns) {
   const Eigen::VectorXd check = runs[0] / 24.0 - 16.0 / 15.0 * runs[1] + 81.0 / 40.0 * runs[2];
   const double scale = result.cwiseAbs().maxCoeff();
   EXPECT_LT((combined.constraints - result).cwiseAbs().maxCoeff(), 1e-12 * scale);
-  EXPECT_LT((combined.constraint_errors - (check - result)).cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_LT((combined.constraint_errors - (result - check)).cwiseAbs().maxCoeff(), 1e-12 * scale);
   EXPECT_EQ(caseTrajectory(combined, 0).time.size(), 2251);  // the finest run's: 1.5 s in steps of h/3
+}
+
+TEST(ExtrapolatedDesign, EveryRunEndsWhereTheCoarsestDoes) {
+  // T = 1.5 s on h = 7 ms is not a whole number of steps: the coarsest run ends at 215 h = 1.505 s, and
+  // so must every other one, or integrals over time would cover different intervals and not combine.
+  const DesignProblem problem =
+      openChain({ParameterOverride::ofWord("settings.integrator", "extrapolation"), {"settings.extrapolation_runs", 3.0},
+                 {"settings.step", 7e-3}});
+  const DesignResponse combined = evaluateDesign(problem, transcribe(problem), initialPoint(problem));
+  for (const DesignResponse& run : combined.runs) EXPECT_NEAR(run.trajectory.time[run.trajectory.time.size() - 1], 1.505, 1e-12);
 }
 
 TEST(ExtrapolatedDesign, AdjointEqualsDirectRunByRun) {
@@ -93,7 +103,7 @@ TEST(ExtrapolatedDesign, TheCostFunctionalAndItsErrorComeFromTheRuns) {
   const double result = -4.0 / 5.0 * runs[1] + 9.0 / 5.0 * runs[2];
   const double check = runs[0] / 24.0 - 16.0 / 15.0 * runs[1] + 81.0 / 40.0 * runs[2];
   EXPECT_NEAR(costFunctional(problem, combined), result, 1e-12 * std::abs(result));
-  EXPECT_NEAR(costFunctionalError(problem, combined), check - result, 1e-12 * std::abs(result));
+  EXPECT_NEAR(costFunctionalError(problem, combined), result - check, 1e-12 * std::abs(result));
 }
 
 }  // namespace

