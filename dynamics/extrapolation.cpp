@@ -139,11 +139,6 @@ double weightedErrorNorm(const Eigen::MatrixXd& error, const Eigen::MatrixXd& va
   return (error.array().abs() / (tolerance.absolute + tolerance.relative * value.array().abs())).maxCoeff();
 }
 
-Eigen::VectorXd largestPerTimePoint(const Eigen::MatrixXd& error) {
-  if (error.rows() == 0) return Eigen::VectorXd::Zero(error.cols());
-  return error.cwiseAbs().colwise().maxCoeff().transpose();
-}
-
 double EstimatedRun::positionError() const { return q_error.size() ? q_error.cwiseAbs().maxCoeff() : 0.0; }
 double EstimatedRun::velocityError() const { return v_error.size() ? v_error.cwiseAbs().maxCoeff() : 0.0; }
 

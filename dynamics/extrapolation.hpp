@@ -48,9 +48,6 @@ struct ErrorTolerance {
 /// max over the entries of |error| / (absolute + relative·|value|): at most 1 where `error` meets it.
 double weightedErrorNorm(const Eigen::MatrixXd& error, const Eigen::MatrixXd& value, const ErrorTolerance& tolerance);
 
-/// The largest |entry| of each column, a time point's error over its coordinates.
-Eigen::VectorXd largestPerTimePoint(const Eigen::MatrixXd& error);
-
 /// A result with its estimated global error.
 struct EstimatedRun {
   /// At the kept time points: q, q̇, q̈, λ and the sensors; `statistics` summed over every run made.
