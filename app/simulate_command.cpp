@@ -33,6 +33,7 @@ struct SimulateOptions {
   std::string integrator;
   double accuracy = 0.0;           ///< the absolute part; 0: a fixed step
   double relative_accuracy = 0.0;  ///< the relative part
+  double local_tolerance = 0.0;    ///< adaptive without --accuracy; 0: ErrorTolerance's default
   double output_step = 0.0;
   int runs = 0;  ///< 0: the scene's settings.extrapolation_runs
   std::string error_estimate = "auto";
@@ -47,13 +48,16 @@ IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene)
                                                   : scene.integrator.name;
   if (options.accuracy > 0.0)
     request.accuracy = ErrorTolerance{options.accuracy, options.relative_accuracy};
+  if (options.local_tolerance > 0.0) request.local_tolerance = ErrorTolerance{options.local_tolerance, 0.0};
   request.output_step = options.output_step;
   request.runs = options.runs > 0 ? options.runs : scene.integrator.extrapolation_runs;
   const double steps = std::ceil(settings.end_time / settings.step - 1e-9);
-  // auto: not for a scheme whose error is not even in h (damped β, γ; --fast-newton), where "on" is refused.
+  // auto: not for a scheme whose error is not even in h (damped β, γ; --fast-newton), where "on" is refused;
+  // an adaptive run's steps are not known before it, so auto estimates it.
   request.estimate_error =
       options.error_estimate == "on" ||
-      (options.error_estimate == "auto" && steps <= static_cast<double>(kEstimateByDefaultUpTo) &&
+      (options.error_estimate == "auto" &&
+       (request.integrator == "adaptive" || steps <= static_cast<double>(kEstimateByDefaultUpTo)) &&
        extrapolationDefect(settings).empty());
   return request;
 }
@@ -201,10 +205,17 @@ void registerSimulateCommand(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->needs(accuracy);
   command
+      ->add_option("--local-tolerance", options->local_tolerance,
+                   "The adaptive integrator without --accuracy: each step's local error in a coordinate (1/12 h^2 "
+                   "times the change of its acceleration over the step) at most TOL, in its unit (default " +
+                       formatNumber(ErrorTolerance{}.absolute) + "); the global error is what the estimate says")
+      ->check(CLI::PositiveNumber)
+      ->excludes(accuracy);
+  command
       ->add_option("--output-step", options->output_step,
                    "Results (CSV rows, peaks, the estimate) at the multiples of DT [s], whatever steps the "
-                   "integrator takes; with a fixed Newmark step DT must be a whole number of steps (default: every "
-                   "step, or every macro step of an extrapolation)")
+                   "integrator takes (an adaptive run's steps end there); with a fixed Newmark step DT must be a whole "
+                   "number of steps (default: every step, or every macro step of an extrapolation)")
       ->check(CLI::PositiveNumber);
   command
       ->add_option("--runs", options->runs,
@@ -215,9 +226,10 @@ void registerSimulateCommand(CLI::App& app) {
       ->excludes(accuracy);
   command
       ->add_option("--error-estimate", options->error_estimate,
-                   "For a fixed Newmark step: estimate the global error from a second run at h/2 (twice the work "
-                   "of the first): on, off, or auto (on up to " + std::to_string(kEstimateByDefaultUpTo) +
-                       " steps). Extrapolation and --accuracy always estimate it")
+                   "For a fixed Newmark step or an adaptive run: estimate the global error from a second run at "
+                   "its steps halved (twice the work of the first): on, off, or auto (on up to " +
+                       std::to_string(kEstimateByDefaultUpTo) +
+                       " fixed steps, and for an adaptive run). Extrapolation and --accuracy always estimate it")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   command

@@ -24,6 +24,12 @@ std::string stepsText(const Integration& integration, const IntegrationRequest& 
     if (integration.estimated) text += " (and " + std::to_string(steps - own) + " of h/2 for the error estimate)";
     return text;
   }
+  if (request.integrator == "adaptive") {
+    std::string text = "adaptive Newmark (order 2, local error control), steps up to " + format("%g", run.steps.front()) +
+                       " s, " + std::to_string(steps) + " steps in all";
+    if (integration.estimated && !request.accuracy) text += " (a third of them the run's, the rest its halved steps' for the error estimate)";
+    return text + ", " + std::to_string(run.trajectory.statistics.rejected_steps) + " rejected by the local error or Newton";
+  }
   const std::string runs = std::to_string(run.steps.size()) + " runs at H/1 ... H/" + std::to_string(run.steps.size()) +
                            ", H = " + format("%g", run.steps.front()) + " s";
   if (request.integrator == "newmark")  // driven by accuracy: the result is the run at H/2
@@ -66,12 +72,15 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
               {"runs", run.steps},
               {"order", run.order},
               {"steps", stats.steps},
+              {"rejected_steps", stats.rejected_steps},
               {"newton_iterations", stats.newton_iterations},
               {"max_closure_error", stats.max_closure_error},
               {"max_relative_newton_residual", stats.max_relative_residual},
               {"wall_time_s", wall},
               {"sensors", sensors}};
-  out.json["runs_unit"] = "s (the step of every Newmark run of the result, in order; steps counts the rejected attempts' too)";
+  out.json["runs_unit"] =
+      "s (the step of every Newmark run of the result, in order; for adaptive, its largest step and that halved; steps "
+      "counts the rejected attempts' too, except the steps of a run that failed)";
   std::string line = "simulated " + path;
   if (request.accuracy) {
     line += " to accuracy " + format("%g", request.accuracy->absolute);

@@ -28,14 +28,22 @@ double onOutputGrid(double H, double output_step) {
   return output_step / std::ceil(output_step / H - 1e-9);
 }
 
-std::string format(double value) {
+}  // namespace
+
+std::vector<double> outputTimes(double output_step, double end_time) {
+  std::vector<double> times;
+  if (output_step > 0.0)
+    for (long m = 1; static_cast<double>(m) * output_step < end_time * (1.0 - 1e-12); ++m)
+      times.push_back(static_cast<double>(m) * output_step);
+  return times;
+}
+
+std::string threeDigits(double value) {
   std::ostringstream text;
   text.precision(3);
   text << value;
   return text.str();
 }
-
-}  // namespace
 
 AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
                                const Eigen::VectorXd& v0, const AccuracyGoal& goal,
@@ -104,16 +112,16 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
     H = std::min(next_step, 0.9 * H);
     max_runs = std::min(goal.max_runs, next_runs + 1);
   }
-  std::string what = "no run met the accuracy (absolute " + format(goal.tolerance.absolute) + ", relative " +
-                     format(goal.tolerance.relative) + ") in " + std::to_string(out.rejected.size()) + " attempts";
+  std::string what = "no run met the accuracy (absolute " + threeDigits(goal.tolerance.absolute) + ", relative " +
+                     threeDigits(goal.tolerance.relative) + ") in " + std::to_string(out.rejected.size()) + " attempts";
   double best = std::numeric_limits<double>::infinity();
   const AccuracyAttempt* closest = nullptr;
   for (const AccuracyAttempt& a : out.rejected)
     if (a.weighted_error < best) best = a.weighted_error, closest = &a;
   if (closest)
-    what += "; the closest estimated " + format(best) + " times the tolerance, at macro step " +
-            format(closest->macro_step) + " s with " + std::to_string(closest->runs) + " runs";
-  if (H < min_step) what += "; the next macro step, " + format(H) + " s, would take more than 1e7 steps";
+    what += "; the closest estimated " + threeDigits(best) + " times the tolerance, at macro step " +
+            threeDigits(closest->macro_step) + " s with " + std::to_string(closest->runs) + " runs";
+  if (H < min_step) what += "; the next macro step, " + threeDigits(H) + " s, would take more than 1e7 steps";
   if (!out.rejected.empty() && !out.rejected.back().failure.empty()) what += "; the last run failed: " + out.rejected.back().failure;
   throw AccuracyError(what);
 }

@@ -69,6 +69,10 @@ inline constexpr double kStepSafety = 0.7;
 /// that its runs cost little, and refined from their estimates.
 inline constexpr double kFirstMacroSteps = 64.0;
 
+/// A number with three significant digits, as the controllers' messages print it.
+std::string threeDigits(double value);
+/// The multiples of `output_step` before `end_time` (the run's end is a time point anyway).
+std::vector<double> outputTimes(double output_step, double end_time);
 /// No attempt reached the goal: says what the best one reached.
 class AccuracyError : public std::runtime_error {
  public:

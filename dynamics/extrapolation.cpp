@@ -48,6 +48,7 @@ SampledRun ExtrapolationTableau::combination(int first) const {
 
 void addStatistics(IntegratorStatistics& sum, const IntegratorStatistics& run) {
   sum.steps += run.steps;
+  sum.rejected_steps += run.rejected_steps;
   sum.newton_iterations += run.newton_iterations;
   sum.jacobian_updates += run.jacobian_updates;
   sum.mass_updates += run.mass_updates;
@@ -139,6 +140,19 @@ double weightedErrorNorm(const Eigen::MatrixXd& error, const Eigen::MatrixXd& va
   return (error.array().abs() / (tolerance.absolute + tolerance.relative * value.array().abs())).maxCoeff();
 }
 
+void keepPoints(EstimatedRun& run, const std::vector<Eigen::Index>& kept) {
+  Trajectory& t = run.trajectory;
+  t.time = Eigen::VectorXd(t.time(kept));
+  for (Eigen::MatrixXd* columns : {&t.q, &t.v, &t.a, &t.lambda, &t.v_unprojected, &t.a_unprojected, &run.q_error,
+                                   &run.v_error})
+    if (columns->cols() > 0) *columns = Eigen::MatrixXd((*columns)(Eigen::all, kept));
+  for (Eigen::MatrixXd* by_row : {&t.sensors, &run.sensor_error})
+    if (by_row->rows() > 0) *by_row = Eigen::MatrixXd((*by_row)(kept, Eigen::all));
+  if (t.closure_error.size() > 0) t.closure_error = Eigen::VectorXd(t.closure_error(kept));
+  if (t.newton_iterations.size() > 0) t.newton_iterations = Eigen::VectorXi(t.newton_iterations(kept));
+  t.step_matrices.resize(0, 0);
+}
+
 double EstimatedRun::positionError() const { return q_error.size() ? q_error.cwiseAbs().maxCoeff() : 0.0; }
 double EstimatedRun::velocityError() const { return v_error.size() ? v_error.cwiseAbs().maxCoeff() : 0.0; }
 
@@ -149,6 +163,16 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
     throw std::invalid_argument("the global error estimate: " + defect);
   NewmarkSettings half = settings;
   half.step = 0.5 * settings.step;
+  if (settings.time_grid) {  // every step split in two
+    const std::vector<double>& grid = *settings.time_grid;
+    auto halved = std::make_shared<std::vector<double>>(2 * grid.size() - 1);
+    for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
+      (*halved)[2 * k] = grid[k];
+      (*halved)[2 * k + 1] = 0.5 * (grid[k] + grid[k + 1]);
+    }
+    halved->back() = grid.back();
+    half.time_grid = std::move(halved);
+  }
   const long points = trajectory.time.size();
   SampledRun fine = sampledNewmarkRun(model, half, q0, v0, 2, points - 1, progress);
   addStatistics(trajectory.statistics, fine.statistics);

@@ -62,9 +62,13 @@ struct EstimatedRun {
   double velocityError() const;  ///< largest estimated |error| of a rate
 };
 
+/// Keeps only the time points `kept` (increasing) of a result and of its estimates (the step
+/// matrices are dropped).
+void keepPoints(EstimatedRun& run, const std::vector<Eigen::Index>& kept);
 /// The global error of `trajectory`, a run of `settings` from (q0, v0) (β = 1/4, γ = 1/2: the
 /// trapezoidal rule), estimated from a second run at h/2: e_h = 4/3 (y_h − y_{h/2}) at each of its
-/// points. Returns the trajectory (moved) with the estimate; `steps` = {h, h/2}.
+/// points (with settings.time_grid: each of its steps split in two). Returns the trajectory (moved)
+/// with the estimate; `steps` = {h, h/2}.
 EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& settings, Trajectory trajectory,
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress = {});

@@ -1,5 +1,7 @@
 #include "mbsopt/dynamics/integration.hpp"
 
+#include "mbsopt/dynamics/adaptive_newmark.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -16,6 +18,11 @@ const std::vector<IntegratorInfo>& integrators() {
        "powers of h), order up to 10 when driven by accuracy (6 runs), 14 with --runs 8; driven by accuracy, it "
        "chooses H and the number of runs",
        6},
+      {"adaptive",
+       "the same Newmark scheme at variable steps, each step's local error (1/12 h^2 times the change of the "
+       "accelerations, Zienkiewicz-Xie) held to the tolerance; order 2; driven by accuracy, the local tolerance is "
+       "tightened until the global estimate (the same steps halved) meets it",
+       2},
   };
   return registry;
 }
@@ -47,18 +54,34 @@ long stepsPerOutput(double output_step, double step) {
 /// Keeps every `stride`-th time point (and the estimates there).
 void keepEvery(EstimatedRun& run, long stride) {
   if (stride == 1) return;
-  Trajectory& t = run.trajectory;
-  const Eigen::Index points = (t.time.size() - 1) / stride + 1;
-  const auto rows = Eigen::seqN(0, points, stride);
-  t.time = Eigen::VectorXd(t.time(rows));
-  for (Eigen::MatrixXd* columns : {&t.q, &t.v, &t.a, &t.lambda, &t.v_unprojected, &t.a_unprojected, &run.q_error,
-                                   &run.v_error})
-    if (columns->cols() > 0) *columns = Eigen::MatrixXd((*columns)(Eigen::all, rows));
-  for (Eigen::MatrixXd* by_row : {&t.sensors, &run.sensor_error})
-    if (by_row->rows() > 0) *by_row = Eigen::MatrixXd((*by_row)(rows, Eigen::all));
-  if (t.closure_error.size() > 0) t.closure_error = Eigen::VectorXd(t.closure_error(rows));
-  if (t.newton_iterations.size() > 0) t.newton_iterations = Eigen::VectorXi(t.newton_iterations(rows));
-  t.step_matrices.resize(0, 0);
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < run.trajectory.time.size(); k += stride) kept.push_back(k);
+  keepPoints(run, kept);
+}
+
+/// An adaptive run at the request's local tolerance (its `accuracy` is the goal of a run driven by
+/// accuracy, so here the default ErrorTolerance), with its estimate when asked for.
+Integration adaptiveIntegration(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
+                                const Eigen::VectorXd& v0, const IntegrationRequest& request,
+                                const std::function<void(double)>& progress) {
+  LocalErrorControl control;
+  control.tolerance = request.local_tolerance;
+  control.stop_times = outputTimes(request.output_step, settings.end_time);
+  AdaptiveRun adaptive = adaptiveNewmarkRun(model, settings, q0, v0, control, progress);
+  Integration out;
+  if (request.estimate_error) {
+    NewmarkSettings grid = settings;
+    grid.time_grid = timeGrid(adaptive.trajectory.time);
+    out.run = estimateGlobalError(model, grid, std::move(adaptive.trajectory), q0, v0, progress);
+    out.estimated = true;
+  } else {
+    out.run.trajectory = std::move(adaptive.trajectory);
+  }
+  const Eigen::VectorXd& time = out.run.trajectory.time;
+  const double largest = (time.tail(time.size() - 1) - time.head(time.size() - 1)).maxCoeff();
+  out.run.steps = {largest};
+  if (request.output_step > 0.0) keepPoints(out.run, adaptive.stops);
+  return out;
 }
 
 }  // namespace
@@ -78,9 +101,12 @@ Integration integrate(const Model& model, const NewmarkSettings& settings, const
     goal.tolerance = *request.accuracy;
     goal.output_step = request.output_step;
     goal.max_runs = info.max_runs;
-    AccurateRun accurate = simulateToAccuracy(model, settings, q0, v0, goal, progress);
+    const bool adaptive = info.name == "adaptive";
+    AccurateRun accurate = adaptive ? adaptiveToAccuracy(model, settings, q0, v0, goal, progress)
+                                    : simulateToAccuracy(model, settings, q0, v0, goal, progress);
     out.run = std::move(accurate.run);
-    if (request.output_step > 0.0) keepEvery(out.run, stepsPerOutput(request.output_step, accurate.macro_step));
+    if (request.output_step > 0.0 && !adaptive)  // an adaptive run's steps end at the output times
+      keepEvery(out.run, stepsPerOutput(request.output_step, accurate.macro_step));
     out.estimated = true;
     out.control = std::move(accurate);
     out.control->run = {};
@@ -94,6 +120,7 @@ Integration integrate(const Model& model, const NewmarkSettings& settings, const
     out.estimated = true;
     return out;
   }
+  if (info.name == "adaptive") return adaptiveIntegration(model, settings, q0, v0, request, progress);
   const long stride = request.output_step > 0.0 ? stepsPerOutput(request.output_step, settings.step) : 1;
   Trajectory trajectory = NewmarkIntegrator(model, settings).simulate(q0, v0, progress);
   if (request.estimate_error) {

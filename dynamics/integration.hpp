@@ -22,11 +22,11 @@ struct IntegratorInfo {
   int max_runs = 2;
 };
 
-/// newmark (the paper's; the default), extrapolation.
+/// newmark (the paper's; the default), extrapolation, adaptive.
 const std::vector<IntegratorInfo>& integrators();
 /// The registered integrator `name`; std::invalid_argument listing the names otherwise.
 const IntegratorInfo& integratorInfo(const std::string& name);
-/// "newmark, extrapolation".
+/// "newmark, extrapolation, adaptive".
 std::string integratorNameList();
 
 /// How to run a scene.
@@ -41,6 +41,8 @@ struct IntegrationRequest {
   /// the run reaches.
   double output_step = 0.0;
   int runs = 4;  ///< extrapolation at a fixed macro step: runs at H/1 … H/runs
+  /// The adaptive integrator without `accuracy`: what each step's local error may be.
+  ErrorTolerance local_tolerance;
   /// A fixed-step Newmark run also estimates its global error (from a run at h/2: three times the work).
   bool estimate_error = false;
 };

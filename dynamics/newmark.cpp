@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -75,7 +76,15 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
   const auto finitePositive = [](double x) { return x > 0.0 && std::isfinite(x); };
   if (!finitePositive(s.step)) return {"step", "the time step must be positive and finite"};
   if (!finitePositive(s.end_time)) return {"end_time", "the end time must be positive and finite"};
-  if (!(s.end_time / s.step <= kMaxNewmarkSteps)) {
+  if (s.time_grid) {
+    const std::vector<double>& grid = *s.time_grid;
+    if (grid.size() < 2 || grid.front() != 0.0) return {"time_grid", "a time grid starts at 0 and has a step"};
+    for (std::size_t k = 1; k < grid.size(); ++k)
+      if (!(grid[k] > grid[k - 1]) || !std::isfinite(grid[k]))
+        return {"time_grid", "the time grid must increase strictly and stay finite"};
+    if (!(grid.back() >= s.end_time * (1.0 - 1e-12))) return {"time_grid", "the time grid ends before the end time"};
+    if (!(static_cast<double>(grid.size()) <= kMaxNewmarkSteps)) return {"time_grid", "the time grid has too many steps"};
+  } else if (!(s.end_time / s.step <= kMaxNewmarkSteps)) {
     std::ostringstream text;
     text << "end time / step = " << s.end_time / s.step << " steps, more than the " << kMaxNewmarkSteps
          << " a run may take";
@@ -109,7 +118,8 @@ StepMatrixLayout stepMatrixLayout(const Model& model) {
 }  // namespace
 
 double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool step_matrices) {
-  const double points = std::ceil(settings.end_time / settings.step) + 1.0;
+  const double points = settings.time_grid ? static_cast<double>(settings.time_grid->size())
+                                           : std::ceil(settings.end_time / settings.step) + 1.0;
   double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
                      static_cast<double>(model.constraintCount()) + static_cast<double>(model.sensors().size()) +
                      2.0 + 0.5;  // the count is an int
@@ -175,7 +185,7 @@ void NewmarkIntegrator::factor(const Eigen::MatrixXd& matrix, const char* name) 
     if (&matrix == &J_ && tangents_in_use_ && partition_.setIterationMatrix(mass_)) {
       const std::string element = unresistedCoordinate(matrix);
       throw SimulationError("the iteration matrix M + gamma h C + beta h^2 K is singular on the free directions "
-                            "although the mass matrix is not: at h = " + formatStep(settings_.step) +
+                            "although the mass matrix is not: at h = " + formatStep(h_) +
                                 " s its stiffness and damping terms cancel the inertia of '" + element +
                                 "', a step too large for Newton here (take a smaller step, or --accuracy)",
                             t_, step_count_, r_free_.size() ? r_free_.norm() : 0.0, element);
@@ -220,20 +230,32 @@ void NewmarkIntegrator::updateConstraintPartition() {
 }
 
 void NewmarkIntegrator::updateIterationMatrix() {
-  const double h = settings_.step;
   tangentMatrices(model_, ad_ws_, q_, v_, a_, lambda_, t_, tangents_);
   const Eigen::Index nf = static_cast<Eigen::Index>(free_.size());
   mass_.resize(nf, nf);
-  tangent_part_.resize(nf, nf);
+  damping_.resize(nf, nf);
+  stiffness_.resize(nf, nf);
   for (Eigen::Index r = 0; r < nf; ++r)
     for (Eigen::Index c = 0; c < nf; ++c) {
       const int i = free_[static_cast<std::size_t>(r)], j = free_[static_cast<std::size_t>(c)];
       mass_(r, c) = tangents_.mass(i, j);
-      tangent_part_(r, c) = settings_.gamma * h * tangents_.damping(i, j) + settings_.beta * h * h * tangents_.stiffness(i, j);
+      damping_(r, c) = tangents_.damping(i, j);
+      stiffness_(r, c) = tangents_.stiffness(i, j);
     }
+  tangent_part_ = settings_.gamma * h_ * damping_ + settings_.beta * h_ * h_ * stiffness_;
   J_ = mass_ + tangent_part_;  // (33)
   mass_by_recursion_ = false;
   ++stats_.jacobian_updates;
+  reduced_dirty_ = true;
+}
+
+void NewmarkIntegrator::setStepSize(double h) {
+  if (h == h_) return;
+  h_ = h;
+  predictor_.reset();
+  if (!tangents_in_use_ || J_.size() == 0 || damping_.size() == 0) return;  // J = M, or formed at the first iterate
+  tangent_part_ = settings_.gamma * h_ * damping_ + settings_.beta * h_ * h_ * stiffness_;
+  if (!mass_by_recursion_) J_ = mass_ + tangent_part_;  // (33) at the new h
   reduced_dirty_ = true;
 }
 
@@ -284,6 +306,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   if (!q0.allFinite() || !v0.allFinite()) throw std::invalid_argument("Newmark: initial state is not finite");
   t_ = t0;
   t0_ = t0;
+  h_ = settings_.time_grid ? (*settings_.time_grid)[1] - (*settings_.time_grid)[0] : settings_.step;
   step_count_ = 0;
   predictor_.reset();
   contraction_ = 0.0;
@@ -313,6 +336,8 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   // factorization serve the next step's Newton iterations too: the tangent part γh C_T + βh² K_T
   // stays out of J until Newton's contraction asks for it. Otherwise J keeps it from the first step.
   J_.resize(0, 0);
+  damping_.resize(0, 0);
+  stiffness_.resize(0, 0);
   tangents_in_use_ = !closesLoopsAtPositionLevel();
   v_unprojected_ = v_;
   a_unprojected_ = a_;
@@ -343,7 +368,7 @@ double NewmarkIntegrator::incrementRoundoffFloor(double beta_h2) const {
 }
 
 void NewmarkIntegrator::applyNewmarkUpdate() {
-  const double h = settings_.step;
+  const double h = h_;
   for (int i : free_) {  // (32)
     q_[i] = q_pred_[i] + settings_.beta * h * h * a_[i];
     v_[i] = v_pred_[i] + settings_.gamma * h * a_[i];
@@ -351,7 +376,7 @@ void NewmarkIntegrator::applyNewmarkUpdate() {
 }
 
 bool NewmarkIntegrator::newton(bool fresh_jacobian) {
-  const double h = settings_.step;
+  const double h = h_;
   const double beta_h2 = settings_.beta * h * h;
   const bool position_closure = settings_.closure == ClosureLevel::Position;
   Refresh refresh = fresh_jacobian || J_.size() == 0 ? Refresh::Tangents : Refresh::None;
@@ -472,8 +497,37 @@ void NewmarkIntegrator::measureClosure() {
 }
 
 void NewmarkIntegrator::step() {
-  const double h = settings_.step;
+  const long next = step_count_ + 1;
+  if (settings_.time_grid) {
+    if (next >= static_cast<long>(settings_.time_grid->size()))
+      throw std::logic_error("Newmark: a step past the end of the time grid");
+    advance((*settings_.time_grid)[static_cast<std::size_t>(next)], std::nullopt);
+  } else {  // t from the step count (no round-off drift of the time grid), h exactly the step
+    advance(t0_ + static_cast<double>(next) * settings_.step, settings_.step);
+  }
+}
+
+void NewmarkIntegrator::advanceTo(double t_next) { advance(t_next, std::nullopt); }
+
+void NewmarkIntegrator::advance(double t_next, std::optional<double> h) {
+  if (!attempt(t_next, h))
+    fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
+             " iterations (a step too large for Newton, or a singular configuration: a smaller step, or --accuracy, "
+             "which retries smaller ones)",
+         r_free_);
+  acceptStep();
+}
+
+bool NewmarkIntegrator::attemptStep(double t_next) { return attempt(t_next, std::nullopt); }
+
+bool NewmarkIntegrator::attempt(double t_next, std::optional<double> step) {
+  if (!(t_next > t_)) throw std::logic_error("Newmark: a step must move time forward");
+  setStepSize(step.value_or(t_next - t_));
+  const double h = h_;
   const double beta = settings_.beta, gamma = settings_.gamma;
+  q_accepted_ = q_;
+  v_accepted_ = v_;
+  t_accepted_ = t_;
   q_pred_ = q_ + h * v_ + (0.5 - beta) * h * h * a_;  // (32), the parts known at tₙ
   v_pred_ = v_ + (1.0 - gamma) * h * a_;
   // Newton starts from an extrapolation of its own last solutions before projection
@@ -485,6 +539,7 @@ void NewmarkIntegrator::step() {
     for (std::size_t k = 0; k < free_.size(); ++k) a_start_[free_[k]] = free_accelerations_[static_cast<Eigen::Index>(k)];
   if (step_count_ >= 2) lambda_start_ = 2.0 * lambda_ - lambda_previous_;
   else lambda_start_ = lambda_;
+  lambda_before_ = lambda_previous_;
   lambda_previous_ = lambda_;
   acceleration_scale_ = 0.0;
   for (int i : free_) acceleration_scale_ = std::max(acceleration_scale_, std::abs(a_[i]));
@@ -492,26 +547,35 @@ void NewmarkIntegrator::step() {
   a_ = a_start_;
   lambda_ = lambda_start_;
   ++step_count_;
-  t_ = t0_ + static_cast<double>(step_count_) * h;  // no round-off drift of the time grid
+  t_ = t_next;
   setDriven(t_);
-  if (!newton(false)) {
-    // Retry from the same start with freshly evaluated tangent matrices; then from the last step's
-    // accelerations and multipliers (a constant predictor): near a singular configuration the
-    // extrapolated start can lie across the bifurcation, where Newton wanders between branches.
-    a_ = a_start_;
-    lambda_ = lambda_start_;
-    setDriven(t_);
-    if (!newton(true)) {
-      a_ = a_accepted_;
-      lambda_ = lambda_previous_;
-      setDriven(t_);
-      if (!newton(true))
-        fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
-                 " iterations (a step too large for Newton, or a singular configuration: a smaller step, or --accuracy, "
-                 "which retries smaller ones)",
-             r_free_);
-    }
-  }
+  if (newton(false)) return true;
+  // Retry from the same start with freshly evaluated tangent matrices; then from the last step's
+  // accelerations and multipliers (a constant predictor): near a singular configuration the
+  // extrapolated start can lie across the bifurcation, where Newton wanders between branches.
+  a_ = a_start_;
+  lambda_ = lambda_start_;
+  setDriven(t_);
+  if (newton(true)) return true;
+  a_ = a_accepted_;
+  lambda_ = lambda_previous_;
+  setDriven(t_);
+  return newton(true);
+}
+
+void NewmarkIntegrator::rejectStep() {
+  q_ = q_accepted_;
+  v_ = v_accepted_;
+  a_ = a_accepted_;
+  lambda_ = lambda_previous_;
+  lambda_previous_ = lambda_before_;
+  t_ = t_accepted_;
+  --step_count_;
+  ++stats_.rejected_steps;
+  predictor_.reset();
+}
+
+void NewmarkIntegrator::acceptStep() {
   for (std::size_t k = 0; k < free_.size(); ++k) free_accelerations_[static_cast<Eigen::Index>(k)] = a_[free_[k]];
   predictor_.record(free_accelerations_);
   v_unprojected_ = v_;
@@ -571,7 +635,9 @@ void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorX
   if (const double bytes = trajectoryBytes(model_, settings_, keep_step_matrices_); !(bytes <= kMaxTrajectoryBytes))
     throw std::length_error("the trajectory would take " + std::to_string(bytes / (1 << 30)) +
                             " GiB, more than the limit of 4 GiB (kMaxTrajectoryBytes)");
-  const long steps = std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
+  const long steps = settings_.time_grid
+                         ? static_cast<long>(settings_.time_grid->size()) - 1
+                         : std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
   initialize(q0, v0, 0.0);
   const Eigen::Index n = model_.coordinateCount();
   out.time.resize(steps + 1);

@@ -17,8 +17,11 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "mbsopt/dynamics/model.hpp"
 #include "mbsopt/dynamics/newton_convergence.hpp"
@@ -43,8 +46,13 @@ inline constexpr double kMaxNewmarkSteps = 1e7;
 inline constexpr double kMaxTrajectoryBytes = 4.0 * 1024 * 1024 * 1024;
 
 struct NewmarkSettings {
-  double step = 1e-3;      ///< h [s], fixed
+  double step = 1e-3;      ///< h [s], fixed (unless time_grid is set)
   double end_time = 1.0;   ///< [s]
+  /// When set, the run's time points instead of the multiples of `step`: t₀ = 0, then strictly
+  /// increasing, the last at or after end_time (where the run ends). A variable step sequence, as an
+  /// adaptive run chose it (adaptive_newmark.hpp), replayed exactly: its exact gradients are those of
+  /// this sequence. Shared, so that copies of the settings do not copy it.
+  std::shared_ptr<const std::vector<double>> time_grid;
   double beta = 0.25;      ///< Newmark β
   double gamma = 0.5;      ///< Newmark γ
   /// On ‖Δq̈‖∞ relative to 1 + ‖q̈‖∞ (‖q̈‖∞ capped at 2‖q̈ₙ‖∞ + 1, the last accepted step's), or
@@ -132,6 +140,7 @@ class SimulationError : public std::runtime_error {
 
 struct IntegratorStatistics {
   long steps = 0;
+  long rejected_steps = 0;  ///< solved and rejected by a step controller (adaptive_newmark.hpp)
   long newton_iterations = 0;
   long jacobian_updates = 0;  ///< full tangent matrices (AD)
   long mass_updates = 0;      ///< mass-matrix-only refreshes of the iteration matrix
@@ -179,9 +188,23 @@ class NewmarkIntegrator {
   /// q0 must already satisfy the closure equations, with weld cuts in their intended orientation
   /// (see assemble()); otherwise std::invalid_argument.
   void initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, double t0 = 0.0);
-  /// Advances one step of size settings.step.
+  /// Advances one step: to the next multiple of settings.step, or to the next point of settings.time_grid.
   void step();
-  /// initialize + ⌈end_time/step⌉ steps (the grid covers [0, end_time]), storing every step.
+  /// Advances one step to t_next > time() (its size t_next − time()); SimulationError when it fails.
+  void advanceTo(double t_next);
+  /// Solves the step to t_next > time() without accepting it: q(), v(), a(), lambda() are then Newton's
+  /// solution at t_next, before the projections. False when Newton did not converge from any of its
+  /// starts. A SimulationError from inside the step (a non-finite residual, a singular iteration
+  /// matrix) may also mean a step too large: a caller that can retry smaller calls rejectStep() and
+  /// does. After it, acceptStep() or rejectStep() and nothing else.
+  bool attemptStep(double t_next);
+  /// Accepts the attempted step: the projections onto the velocity and acceleration constraints and
+  /// the checks of run_checks.hpp (SimulationError when one fails).
+  void acceptStep();
+  /// Returns to the state before the attempted step (or before a SimulationError thrown inside it).
+  void rejectStep();
+  /// initialize + ⌈end_time/step⌉ steps (the grid covers [0, end_time]), or the steps of
+  /// settings.time_grid, storing every step.
   /// `progress(t)` is called after each step.
   Trajectory simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                       const std::function<void(double)>& progress = {});
@@ -209,10 +232,19 @@ class NewmarkIntegrator {
   int lastNewtonIterations() const { return last_iterations_; }
   const IntegratorStatistics& statistics() const { return stats_; }
   const NewmarkSettings& settings() const { return settings_; }
+  /// q̈ at time(), the start of the step being attempted (after rejectStep(), the accepted one's).
+  const Eigen::VectorXd& acceptedAcceleration() const { return a_accepted_; }
 
  private:
   enum class Refresh { None, Mass, Tangents };
   bool newton(bool fresh_jacobian);
+  /// advanceTo / attemptStep with the step h (t_next − time() when not given: a uniform grid gives
+  /// h exactly, where t_next − time() carries the round-off of the times).
+  void advance(double t_next, std::optional<double> h);
+  bool attempt(double t_next, std::optional<double> h);
+  /// Makes h the step of the next attempt: J's tangent part follows it (γh C_T + βh² K_T), and Newton's
+  /// start forgets its history, an extrapolation at unit spacing, when h changes.
+  void setStepSize(double h);
   void updateIterationMatrix();
   void updateMassMatrix();
   /// M(q_) by the CRBA into mass_, and J_ from it (with its tangent part when in use). Needs ws_ as
@@ -258,6 +290,8 @@ class NewmarkIntegrator {
   TangentMatrices tangents_;
   Eigen::MatrixXd J_;  ///< free × free iteration matrix (33), kept between steps until it goes stale
   Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
+  Eigen::MatrixXd damping_, stiffness_;  ///< C_T, K_T on the free coordinates, for tangent_part_ at a new h
+  double h_ = 0.0;                       ///< the step being taken (settings_.step unless the steps vary)
   bool tangents_in_use_ = false;  ///< J has its tangent part (else J = M, see initialize())
   ArticulatedBodyFactorization articulated_mass_;
   bool mass_by_recursion_ = false;  ///< J = M(q), held by articulated_mass_ (J_ and mass_ are stale)
@@ -270,6 +304,8 @@ class NewmarkIntegrator {
   Eigen::VectorXd q_pred_, v_pred_;  // full-size predictors q̃, ṽ
   Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
   Eigen::VectorXd a_accepted_;  ///< q̈ₙ, the start of the last retry
+  Eigen::VectorXd q_accepted_, v_accepted_, lambda_before_;  ///< qₙ, q̇ₙ and λₙ₋₁, for rejectStep()
+  double t_accepted_ = 0.0;
   NewtonPredictor predictor_;          ///< Newton's start, from its converged free accelerations
   Eigen::VectorXd free_accelerations_;  ///< scratch: q̈ on the free coordinates, for predictor_
   Eigen::VectorXd f_, closure_, r_free_, da_, dlambda_, correction_;

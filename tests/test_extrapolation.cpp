@@ -21,34 +21,15 @@
 #include "mbsopt/dynamics/accuracy_control.hpp"
 #include "mbsopt/dynamics/extrapolation.hpp"
 #include "mbsopt/dynamics/integration.hpp"
-#include "mbsopt/problems/scene_file.hpp"
-#include "tests/sensitivity_scenes.hpp"
+#include "tests/integrator_scenes.hpp"
 
 namespace mbsopt {
 namespace {
 
-constexpr double kOmega = 2.0 * std::numbers::pi;  // the oscillator's ω: k = (2π)² N/m, m = 1 kg
-
-Scene oscillator(double end_time) {
-  LoadedScene loaded = loadScene({"oscillator.yaml", test::kOscillator});
-  loaded.scene.settings.end_time = end_time;
-  return std::move(loaded.scene);
-}
-
-Scene sceneFile(const std::string& relative) {
-  const std::string path = std::string(MBSOPT_SOURCE_DIR) + "/" + relative;
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return loadScene({path, text.str()}).scene;
-}
-
-/// max over the time points of |x − cos ωt|: the true global error of a run's coordinate 0.
-double trueOscillatorError(const Trajectory& t) {
-  double worst = 0.0;
-  for (Eigen::Index k = 0; k < t.time.size(); ++k) worst = std::max(worst, std::abs(t.q(0, k) - std::cos(kOmega * t.time[k])));
-  return worst;
-}
+using test::kOmega;
+using test::oscillator;
+using test::sceneFile;
+using test::trueOscillatorError;
 
 TEST(ExtrapolationWeights, EvenPowersAreLagrangeExtrapolationInHSquared) {
   ExtrapolationTableau tableau({2, 4, 6, 8});
@@ -193,31 +174,7 @@ TEST(AccuracyControl, OutputTimesAreTheMultiplesOfTheOutputStep) {
 }
 
 TEST(AccuracyControl, AndrewsSqueezerMeetsThePublishedAngles) {
-  // Andrews' squeezer (stiff spring, three loops meeting at one point) against the test set's values
-  // at t = 0.03 s; the sensors β, Θ, γ, Φ, δ, Ω, ε are the published angles.
-  const Scene scene = sceneFile("problems/scenes/hard/andrews_squeezer.yaml");
-  const std::vector<double> published{15.810771196299040, -15.756371059842980, 0.040822240130731012,
-                                      -0.53473011632269485, 0.52440996588053035, 0.53473011632269485,
-                                      1.0480807410422630};
-  for (const double tolerance : {1e-4, 1e-7}) {
-    IntegrationRequest request;
-    request.accuracy = ErrorTolerance{tolerance, 0.0};
-    request.integrator = "extrapolation";
-    request.output_step = 0.03;
-    const Integration integration = integrate(scene.model, scene.settings, scene.q0, scene.v0, request);
-    const Trajectory& t = integration.run.trajectory;
-    ASSERT_EQ(t.time.size(), 2);
-    double error = 0.0, estimate = 0.0;
-    for (Eigen::Index s = 0; s < 7; ++s) {
-      error = std::max(error, std::abs(t.sensors(1, s) - published[static_cast<std::size_t>(s)]) /
-                                  (1.0 + std::abs(published[static_cast<std::size_t>(s)])));
-      estimate = std::max(estimate, std::abs(integration.run.sensor_error(1, s)) /
-                                        (1.0 + std::abs(published[static_cast<std::size_t>(s)])));
-    }
-    EXPECT_LT(error, 2.0 * tolerance) << tolerance;
-    EXPECT_LT(error, 10.0 * estimate) << tolerance;
-    EXPECT_LT(estimate, 10.0 * error) << tolerance;
-  }
+  test::expectAndrewsMeetsThePublishedAngles("extrapolation", {1e-4, 1e-7});
 }
 
 TEST(AccuracyControl, ATooCoarseStartIsRefinedAndAnUnreachableGoalSaysWhatItReached) {
@@ -247,13 +204,13 @@ TEST(AccuracyControl, ATooCoarseStartIsRefinedAndAnUnreachableGoalSaysWhatItReac
 }
 
 TEST(Integration, RegistryNamesEveryIntegratorOnce) {
-  EXPECT_EQ(integratorNameList(), "newmark, extrapolation");
+  EXPECT_EQ(integratorNameList(), "newmark, extrapolation, adaptive");
   EXPECT_EQ(integratorInfo("extrapolation").max_runs, 6);
   try {
     integratorInfo("rk4");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("known: newmark, extrapolation"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("known: newmark, extrapolation, adaptive"), std::string::npos);
   }
 }
 
