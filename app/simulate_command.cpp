@@ -48,7 +48,8 @@ IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene)
                                                   : scene.integrator.name;
   if (options.accuracy > 0.0)
     request.accuracy = ErrorTolerance{options.accuracy, options.relative_accuracy};
-  if (options.local_tolerance > 0.0) request.local_tolerance = ErrorTolerance{options.local_tolerance, 0.0};
+  request.local_tolerance = ErrorTolerance{
+      options.local_tolerance > 0.0 ? options.local_tolerance : scene.integrator.local_tolerance, 0.0};
   request.output_step = options.output_step;
   request.runs = options.runs > 0 ? options.runs : scene.integrator.extrapolation_runs;
   const double steps = std::ceil(settings.end_time / settings.step - 1e-9);
@@ -207,8 +208,8 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--local-tolerance", options->local_tolerance,
                    "The adaptive integrator without --accuracy: each step's local error in a coordinate (1/12 h^2 "
-                   "times the change of its acceleration over the step) at most TOL, in its unit (default " +
-                       formatNumber(ErrorTolerance{}.absolute) + "); the global error is what the estimate says")
+                   "times the change of its acceleration over the step) at most TOL, in its unit (default: the scene's "
+                   "settings.local_tolerance, 1e-6 unless it says); the global error is what the estimate says")
       ->check(CLI::PositiveNumber)
       ->excludes(accuracy);
   command

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "mbsopt/dynamics/adaptive_newmark.hpp"
 #include "mbsopt/dynamics/assembly.hpp"
 #include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/problems/design_file.hpp"
@@ -221,7 +222,7 @@ class SceneBuilder {
     context_.fail(settings.isDefined() ? settings : root_.node(), "settings: " + what);
   }
 
-  /// `integrator` (a name of the registry) and `extrapolation_runs` (2 … 12).
+  /// `integrator` (a name of the registry), `extrapolation_runs` (2 … 8) and `local_tolerance`.
   void readIntegrator(const MapReader& settings) {
     IntegratorChoice& choice = result_.scene.integrator;
     if (settings.has("integrator")) {
@@ -236,9 +237,15 @@ class SceneBuilder {
     if (choice.extrapolation_runs < 2 || choice.extrapolation_runs > kMaxExtrapolationRuns)
       settings.fail("extrapolation_runs", "extrapolation_runs: " + std::to_string(choice.extrapolation_runs) +
                                               " runs; between 2 and " + std::to_string(kMaxExtrapolationRuns));
-    if (choice.extrapolated())
-      if (const std::string defect = extrapolationDefect(result_.scene.settings); !defect.empty())
+    choice.local_tolerance = settings.number("local_tolerance", choice.local_tolerance);
+    if (!(choice.local_tolerance > 0.0 && std::isfinite(choice.local_tolerance)))
+      settings.fail("local_tolerance", "local_tolerance: must be positive and finite");
+    if (choice.extrapolated() || choice.adaptive())
+      if (std::string defect = extrapolationDefect(result_.scene.settings); !defect.empty()) {
+        // "extrapolation needs …": the adaptive integrator's error estimates need the same.
+        if (choice.adaptive()) defect = "the adaptive integrator's error estimates " + defect.substr(defect.find("need"));
         settings.fail("integrator", "integrator: " + defect);
+      }
   }
 
   void readSettings() {
@@ -247,7 +254,7 @@ class SceneBuilder {
     const MapReader settings(context_, root_.node()["settings"], "settings");
     settings.allowKeys({"step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",
                         "svd_threshold", "closure", "closure_tolerance", "energy_tolerance", "integrator",
-                        "extrapolation_runs"});
+                        "extrapolation_runs", "local_tolerance"});
     s.step = settings.number("step", s.step);
     s.end_time = settings.number("end_time", s.end_time);
     s.beta = settings.number("beta", s.beta);
@@ -645,6 +652,24 @@ LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOver
   return SceneBuilder(context, root).build();
 }
 
+namespace {
+
+/// A scene run by the adaptive integrator, as a design problem: on the steps it takes at the initial
+/// design, frozen, so that the values are smooth in the design and the exact gradients those of the steps.
+void freezeAdaptiveSteps(const SceneSource& source, Scene& scene) {
+  if (!scene.integrator.adaptive()) return;
+  LocalErrorControl control;
+  control.tolerance = {scene.integrator.local_tolerance, 0.0};
+  try {
+    const AdaptiveRun run = adaptiveNewmarkRun(scene.model, scene.settings, scene.q0, scene.v0, control);
+    scene.settings.time_grid = timeGrid(run.trajectory.time);
+  } catch (const SimulationError& e) {
+    throw SceneError(source.path, 0, 0, std::string("the adaptive run that chooses the steps failed: ") + e.what());
+  }
+}
+
+}  // namespace
+
 DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   LoadedScene loaded = loadScene(source, overrides);
   if (!loaded.design) throw SceneError(source.path, 0, 0, "the scene has no 'design:' section");
@@ -656,11 +681,13 @@ DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<Par
     for (const auto& [name, value] : description.set) own.emplace_back(name, value);
     try {
       problem.load_cases.push_back({description.name, loadScene(source, own).scene});
+      freezeAdaptiveSteps(source, problem.load_cases.back().scene);
     } catch (const SceneError& e) {  // at the case's entry, whose number it is
       const YamlMark mark = parse(source)["design"]["load_cases"][c].mark();
       throw SceneError(source.path, mark.line + 1, mark.column + 1, "load case '" + description.name + "': " + e.reason());
     }
   }
+  freezeAdaptiveSteps(source, problem.scene);
   return problem;
 }
 
@@ -684,7 +711,8 @@ std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& s
       {"settings.svd_threshold", s.svd_threshold},
       {"settings.closure_tolerance", s.closure_tolerance},
       {"settings.energy_tolerance", s.energy_tolerance},
-      {"settings.extrapolation_runs", scene.integrator.extrapolation_runs}};
+      {"settings.extrapolation_runs", scene.integrator.extrapolation_runs},
+      {"settings.local_tolerance", scene.integrator.local_tolerance}};
   for (const std::string& name : scene.model.parameterNames()) defaults.emplace_back(name, scene.model.parameter(name));
   for (const int i : scene.model.freeCoordinates()) {
     const std::string& name = scene.model.coordinates()[static_cast<std::size_t>(i)].name;

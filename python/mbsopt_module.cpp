@@ -101,6 +101,7 @@ class PythonScene {
     if (accuracy) request.accuracy = ErrorTolerance{*accuracy, 0.0};
     request.output_step = output_step;
     request.runs = s.integrator.extrapolation_runs;
+    request.local_tolerance = ErrorTolerance{s.integrator.local_tolerance, 0.0};
     request.estimate_error = estimate_error;
     Integration integration;
     {

@@ -87,6 +87,9 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
   // alone would make it first order). Eliminating p_k: w_k A + ½h ν̄ B̄ = R with A = M + ½h C + ¼h² K,
   // the transposed trapezoidal Newmark matrix. So w_k = ξ V₂ᵀ with V₂ the independent directions of
   // B_k, and ν̄ drops out against those of B̄: ξ (V₂ᵀ Aᵀ V̄₂) = R V̄₂.
+  if (problem.scene.settings.time_grid)
+    throw std::invalid_argument("the continuous adjoint integrates backward at a fixed step; this problem's steps vary "
+                                "(a time grid): use the discrete adjoint or the direct method, exact for any steps");
   TrajectoryDerivatives d(problem, functionals, x, simulated);
   const bool moves_loops = designMovesLoopClosure(problem);
   const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;

@@ -36,7 +36,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
                               const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
   TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
   const NewmarkSettings& settings = d.settings();
-  const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
+  const double beta = settings.beta, gamma = settings.gamma;
   const Eigen::Index p = d.variableCount(), m = d.constraintCount();
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), p);
   // t₀: the initial state closed on the design's loops, and its accelerations.
@@ -56,6 +56,7 @@ DesignGradient directGradient(const DesignProblem& problem, const std::vector<Co
   TrajectoryDerivatives::PointStream points(d, 1, last, jobs);
   for (Eigen::Index k = 1; k <= last; ++k) {
     const TrajectoryDerivatives::PointDerivatives& point = points.next();
+    const double h = d.stepSize(k);
     // (32): the parts known at tₙ; then the step's equations (28) and b(qₙ₊₁) = 0, the system
     // (39)-(41) with the iteration matrix (33), differentiated at their solution:
     // [A Bᵀ; B 0][S_a*; S_λ] = −[∂f/∂b + K_T S_q̃ + C_T S_ṽ; (B S_q̃ + ∂b/∂b) / (βh²)],

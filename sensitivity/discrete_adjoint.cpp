@@ -41,10 +41,10 @@ struct BackwardStep {
 
 /// The transpose of directGradient's step k for the adjoint rows `bar` (the active constraints),
 /// into `out`; `solver` is kept from step to step for its buffers.
-void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::PointDerivatives& point,
+void backThroughStep(TrajectoryDerivatives& d, const TrajectoryDerivatives::PointDerivatives& point, double h,
                      const ResponseSeeds& bar, AugmentedSolver& solver, BackwardStep& out) {
   const NewmarkSettings& settings = d.settings();
-  const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
+  const double beta = settings.beta, gamma = settings.gamma;
   const StepDerivatives& s = point.step;
   const ClosureDerivatives& c = point.closure;
   const bool loops = d.constraintCount() > 0;
@@ -121,7 +121,7 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
                                const Eigen::VectorXd& x, const DesignResponse* simulated, int jobs) {
   TrajectoryDerivatives d(problem, functionals, x, simulated, jobs);
   const NewmarkSettings& settings = d.settings();
-  const double h = settings.step, beta = settings.beta, gamma = settings.gamma;
+  const double beta = settings.beta, gamma = settings.gamma;
   Eigen::MatrixXd dpsi_db = Eigen::MatrixXd::Zero(d.functionalCount(), d.variableCount());
   // Adjoints of q_k, q̇_k, q̈_k (one row per constraint): their direct seeds, plus what flows back
   // from the later steps. Each step is the transpose of directGradient's, in reverse order.
@@ -143,9 +143,10 @@ DesignGradient adjointGradient(const DesignProblem& problem, const std::vector<C
     TrajectoryDerivatives::PointStream points(d, k, 1, jobs);
     const TrajectoryDerivatives::PointDerivatives* point = &points.next();  // its seeds are bar's
     for (;; --k) {
+      const double h = d.stepSize(k);  // of step k, from point k − 1
       if (!rows.empty()) {
         copyRows(bar, rows, active);
-        backThroughStep(d, *point, active, solver, back);
+        backThroughStep(d, *point, h, active, solver, back);
       }
       // Back through the predictor (32) to step k − 1, added to its own seeds.
       if (k > 1) {

@@ -9,12 +9,25 @@
 
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt::test {
 
 /// max |a − b| relative to the largest entry of b.
 inline double relativeGap(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+}
+
+/// The discrete adjoint against the direct method at x (two derivations of the same recursion): equal to
+/// 1e-12 of the largest entry, which must not vanish (a check of zeros would pass anyway). Returns the adjoint's.
+inline DesignGradient expectAdjointEqualsDirect(const DesignProblem& problem,
+                                                const std::vector<ConstraintFunctional>& functionals,
+                                                const Eigen::VectorXd& x) {
+  DesignGradient adjoint = designGradient("adjoint", problem, functionals, x);
+  const DesignGradient direct = designGradient("direct", problem, functionals, x);
+  EXPECT_GT(direct.constraints.cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_LE(relativeGap(adjoint.constraints, direct.constraints), 1e-12);
+  return adjoint;
 }
 
 /// Each row of `exact` (the constraints' gradients at x) against central differences at the best

@@ -67,10 +67,7 @@ TEST(ExtrapolatedDesign, AdjointEqualsDirectRunByRun) {
   for (const DesignProblem& problem : {openChain(kExtrapolated), fourBar(kExtrapolated)}) {
     const std::vector<ConstraintFunctional> functionals = transcribe(problem);
     const Eigen::VectorXd x = initialPoint(problem);
-    const DesignGradient adjoint = designGradient("adjoint", problem, functionals, x);
-    const DesignGradient direct = designGradient("direct", problem, functionals, x);
-    EXPECT_GT(direct.constraints.cwiseAbs().maxCoeff(), 1e-3);
-    EXPECT_LE(test::relativeGap(adjoint.constraints, direct.constraints), 1e-12);
+    const DesignGradient adjoint = test::expectAdjointEqualsDirect(problem, functionals, x);
     ASSERT_TRUE(adjoint.values.has_value());
     // The values an exact method returns are the combination evaluateDesign gives.
     const DesignResponse response = evaluateDesign(problem, functionals, x);
