@@ -305,6 +305,7 @@ class NewmarkIntegrator {
   Eigen::VectorXd a_start_, lambda_start_, lambda_previous_;
   Eigen::VectorXd a_accepted_;  ///< q̈ₙ, the start of the last retry
   Eigen::VectorXd q_accepted_, v_accepted_, lambda_before_;  ///< qₙ, q̇ₙ and λₙ₋₁, for rejectStep()
+  Eigen::VectorXd lambda_older_;  ///< λₙ₋₂, for the quadratic start of λ
   double t_accepted_ = 0.0;
   NewtonPredictor predictor_;          ///< Newton's start, from its converged free accelerations
   Eigen::VectorXd free_accelerations_;  ///< scratch: q̈ on the free coordinates, for predictor_
