@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Side by side with a peer (issue 11): builds bench/peer/peer_comparison against Debian's Simbody and
 # writes results/peer-comparison/ (peer_comparison.json, peer_comparison.md, work_precision_<mechanism>.png).
-# Not part of the test suite: ~5-10 minutes on the 2-core VM. Extra arguments go to the program, e.g.
-#   scripts/peer_comparison.sh --mechanisms four_bar,chain8        # a subset
+# By default: four_bar, chain8, nfourbar4, andrews (Andrews' squeezer, problems/scenes/hard/) and the
+# a02_singular survey. Not part of the test suite: ~5-10 minutes on the 2-core VM. Extra arguments go to
+# the program, e.g.
+#   scripts/peer_comparison.sh --mechanisms four_bar,andrews       # a subset
 #   scripts/peer_comparison.sh --mechanisms nfourbar16             # opt-in, ~10 minutes more
 #   scripts/peer_comparison.sh --quick --out /tmp/peer             # a smoke run
 # Note: Debian's libsimbody is built with assertions on (CMAKE_BUILD_TYPE=None, no -DNDEBUG), roughly 2x

@@ -1,16 +1,23 @@
 // Side by side with a peer (issue 11): the same mechanisms in Simbody and in mbsopt, an agreement
 // check at tight accuracy, and both engines' work-precision curves.
 //
-//   peer_comparison --out DIR [--quick] [--mechanisms four_bar,chain8,nfourbar4,nfourbar16,a02_singular]
+//   peer_comparison --out DIR [--quick] [--mechanisms four_bar,chain8,nfourbar4,andrews,nfourbar16,a02_singular]
 //
-// For each mechanism:
+// Mechanisms (allMechanisms; all but nfourbar16 by default): the four-bar of problems/scenes/four_bar.yaml,
+// an 8-link pendulum chain, IFToMM A02's N four-bar with N = 4 (and 16), Andrews' squeezing mechanism of
+// problems/scenes/hard/andrews_squeezer.yaml (the Simbody model read off the loaded scene: pinTreeOf);
+// a02_singular is a survey of A02 as specified, without a reference. For each mechanism:
 //   - reference: Simbody's RungeKuttaMerson at accuracy 1e-12 (RungeKuttaFeldberg, then CPodes, if it
 //     fails); its agreement with the other two at 1e-12 and with mbsopt at two tiny steps (and their
 //     Richardson extrapolation, the trapezoidal rule's error being even in h) is reported;
 //   - error of a run: the largest absolute joint-angle error [rad] over every coordinate and every
-//     output time (every 0.1 s, the integrators step onto them: no interpolated reports);
+//     output time (every 0.1 s; Andrews' squeezer, 0.03 s long, every 1 ms; the integrators step onto
+//     them: no interpolated reports);
 //   - Simbody: RungeKuttaFeldberg, RungeKuttaMerson, CPodes at accuracies 1e-2 … 1e-10; mbsopt:
-//     Newmark (β = 1/4, γ = 1/2, the project's defaults otherwise) over a ladder of fixed steps;
+//     Newmark (β = 1/4, γ = 1/2, the project's defaults otherwise) over a ladder of fixed steps, and
+//     driven by accuracy (`mbsopt simulate --integrator extrapolation|adaptive --accuracy TOL`) at
+//     Simbody's accuracies taken as absolute tolerances on the angles (the adaptive Newmark down to
+//     kAdaptiveDownTo), the error measured;
 //   - time of a run: wall time of the integration only (integrator creation, initialisation and the
 //     steps; the models are built beforehand), median of several repetitions;
 //   - each engine's Pareto front (time against error), and the time ratio Simbody/mbsopt at errors
@@ -24,6 +31,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +46,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "bench/peer/simbody_models.hpp"
@@ -62,6 +71,7 @@ constexpr double kAgreementThreshold = 1e-8;
 constexpr double kReferenceBudget = 60.0;  ///< [s] of wall time for one Simbody run at 1e-12
 constexpr double kRunBudget = 15.0;        ///< [s] for one Simbody run of the sweep (beyond: failed)
 const std::vector<double> kTargetErrors = {1e-3, 1e-5, 1e-7};
+constexpr double kAdaptiveDownTo = 1e-7;  ///< the adaptive Newmark's tightest accuracy in the sweep
 
 // ---------------------------------------------------------------------------------------------
 // Mechanisms
@@ -79,23 +89,114 @@ struct Mechanism {
   bool by_default = true;        ///< run without --mechanisms
 };
 
+std::array<double, 3> array3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+peer::Bar barFrom(const mbsopt::Model& model, const mbsopt::Body& body) {
+  if (!body.products_of_inertia.isZero(0.0))
+    throw std::runtime_error("body '" + body.name + "': products of inertia are not supported here");
+  return peer::Bar{model.value(body.mass), array3(model.centreOfMass(body)),
+                   array3(model.vector(body.moments_of_inertia))};
+}
+
 peer::Bar barOf(const mbsopt::Model& model, const std::string& name) {
-  for (const mbsopt::Body& body : model.bodies()) {
-    if (body.name != name) continue;
-    if (!body.products_of_inertia.isZero(0.0))
-      throw std::runtime_error("body '" + name + "': products of inertia are not supported here");
-    const Eigen::Vector3d com = model.centreOfMass(body), moments = model.vector(body.moments_of_inertia);
-    return peer::Bar{model.value(body.mass), {com.x(), com.y(), com.z()}, {moments.x(), moments.y(), moments.z()}};
-  }
+  for (const mbsopt::Body& body : model.bodies())
+    if (body.name == name) return barFrom(model, body);
   throw std::runtime_error("no body '" + name + "' in the four-bar scene");
+}
+
+/// The scene a file describes, the loader's warnings on stderr.
+mbsopt::Scene loaded(const mbsopt::SceneSource& source) {
+  mbsopt::LoadedScene loaded = mbsopt::loadScene(source);
+  for (const std::string& warning : loaded.warnings) std::cerr << source.path << ": " << warning << '\n';
+  return std::move(loaded.scene);
 }
 
 mbsopt::Scene fourBarScene() {
   const std::optional<mbsopt::SceneSource> source = mbsopt::builtinScene("four_bar");
   if (!source) throw std::runtime_error("the built-in scene four_bar is missing");
-  mbsopt::LoadedScene loaded = mbsopt::loadScene(*source);
-  for (const std::string& warning : loaded.warnings) std::cerr << "four_bar: " << warning << '\n';
-  return std::move(loaded.scene);
+  return loaded(*source);
+}
+
+/// problems/scenes/hard/andrews_squeezer.yaml, read from the source tree: the hard scenes are not
+/// compiled in (problems/CMakeLists.txt takes problems/scenes/*.yaml only).
+mbsopt::Scene andrewsScene() {
+  return loaded(mbsopt::readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/hard/andrews_squeezer.yaml"));
+}
+
+// ---- an mbsopt model of revolute joints about z and offsets, as Simbody's pins (peer::PinTree) ----
+
+/// The point `point` of `frame` as a point of the pin whose frame carries it (the coordinate of the
+/// nearest revolute joint towards the ground; −1: the ground); the offsets in between must only translate.
+peer::PinPoint pinPoint(const mbsopt::Model& model, mbsopt::FrameIndex frame, Eigen::Vector3d point) {
+  for (;;) {
+    const int e = model.frames()[static_cast<std::size_t>(frame)].element;
+    if (e < 0) return {-1, array3(point)};
+    const mbsopt::KinematicElement& element = model.elements()[static_cast<std::size_t>(e)];
+    if (std::holds_alternative<mbsopt::RevoluteJoint>(element.kind)) return {element.coordinate, array3(point)};
+    const auto* offset = std::get_if<mbsopt::Offset>(&element.kind);
+    if (!offset || offset->rotates)
+      throw std::runtime_error("element '" + element.name + "': only revolute joints and translating offsets here");
+    point += model.vector(offset->translation);
+    frame = element.entry;
+  }
+}
+
+/// The one body on a joint's frame.
+peer::Bar barOn(const mbsopt::Model& model, mbsopt::FrameIndex frame) {
+  const auto on = [&](const mbsopt::Body& body) { return body.frame == frame; };
+  if (std::count_if(model.bodies().begin(), model.bodies().end(), on) != 1)
+    throw std::runtime_error("frame '" + model.frames()[static_cast<std::size_t>(frame)].name +
+                             "': not exactly one body");
+  return barFrom(model, *std::find_if(model.bodies().begin(), model.bodies().end(), on));
+}
+
+/// The scene's pins in the order of `coordinates` (their names), with its initial state, spherical cuts,
+/// undamped point springs, constant joint actuations and gravity; anything else throws, so that the
+/// Simbody model built from it is the scene's mechanism, all of it.
+peer::PinTree pinTreeOf(const mbsopt::Scene& scene, const std::vector<std::string>& coordinates) {
+  const mbsopt::Model& m = scene.model;
+  if (static_cast<int>(coordinates.size()) != m.coordinateCount() || !m.drivenCoordinates().empty())
+    throw std::runtime_error("pinTreeOf: every coordinate, none driven, must be listed");
+  std::vector<int> position(coordinates.size());  // a model coordinate's position in `coordinates`
+  for (std::size_t i = 0; i < coordinates.size(); ++i)
+    position[static_cast<std::size_t>(m.coordinate(coordinates[i]))] = static_cast<int>(i);
+  const auto at = [&](mbsopt::FrameIndex frame, const Eigen::Vector3d& point) {
+    peer::PinPoint p = pinPoint(m, frame, point);
+    if (p.pin >= 0) p.pin = position[static_cast<std::size_t>(p.pin)];
+    return p;
+  };
+  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  peer::PinTree tree;
+  for (const std::string& name : coordinates) {
+    const int c = m.coordinate(name);
+    const int element = m.coordinates()[static_cast<std::size_t>(c)].element;
+    const mbsopt::KinematicElement& joint = m.elements()[static_cast<std::size_t>(element)];
+    const auto* revolute = std::get_if<mbsopt::RevoluteJoint>(&joint.kind);
+    if (!revolute || revolute->axis != Eigen::Vector3d::UnitZ())
+      throw std::runtime_error("joint '" + name + "': only revolute joints about z here");
+    const peer::PinPoint location = at(joint.entry, origin);
+    tree.pins.push_back({location.pin, location.point, barOn(m, joint.exit), scene.q0[c], scene.v0[c]});
+  }
+  if (m.bodies().size() != coordinates.size()) throw std::runtime_error("pinTreeOf: a body not on a joint's frame");
+  for (const mbsopt::CutJoint& cut : m.cuts()) {
+    const auto* spherical = std::get_if<mbsopt::SphericalCut>(&cut.kind);
+    if (!spherical) throw std::runtime_error("cut '" + cut.name + "': only spherical cuts here");
+    tree.closures.push_back({at(spherical->frame_a, origin), at(spherical->frame_b, origin)});
+  }
+  for (const mbsopt::ForceElement& force : m.forces()) {
+    const auto* spring = std::get_if<mbsopt::PointSpringDamper>(&force);
+    const auto* actuation = std::get_if<mbsopt::JointActuation>(&force);
+    if (spring && m.value(spring->damping) == 0.0) {
+      tree.springs.push_back({at(spring->frame_a, spring->point_a), at(spring->frame_b, spring->point_b),
+                              m.value(spring->stiffness), m.value(spring->rest_length)});
+    } else if (actuation && actuation->force.isConstant()) {
+      tree.torques.push_back({position[static_cast<std::size_t>(actuation->coordinate)], m.value(actuation->force, 0.0)});
+    } else {
+      throw std::runtime_error("pinTreeOf: only undamped point springs and constant joint actuations here");
+    }
+  }
+  tree.gravity = array3(m.gravity());
+  return tree;
 }
 
 /// `links` uniform links (length L, mass m, I = mL²/12 about the centre) pinned about z, horizontal
@@ -209,6 +310,25 @@ std::vector<Mechanism> allMechanisms() {
     m.by_default = n <= 4;  // N = 16 takes ~10 minutes on its own (mbsopt ~0.8 ms per step at small h)
     list.push_back(std::move(m));
   }
+  {
+    Mechanism m;
+    m.key = "andrews";
+    m.description = "Andrews' squeezing mechanism of problems/scenes/hard/andrews_squeezer.yaml (loaded by the scene "
+                    "loader; 7 bodies, 3 loops closed at one point, stiff spring, constant torque, no gravity), "
+                    "from rest, 0.03 s";
+    m.end_time = 0.03;
+    m.output_interval = 0.001;
+    m.coordinates = {"crank", "rod", "lever_3", "link_4", "link_5", "link_6", "link_7"};  // the test set's y(1..7)
+    m.mbsopt_scene = andrewsScene;
+    m.simbody_model = [coordinates = m.coordinates] {
+      return peer::SimbodyModel::pinTree(pinTreeOf(andrewsScene(), coordinates));
+    };
+    // The crank reaches ~1000 rad/s in 0.03 s: the error is ~1 rad at h = 1 ms (the scene's own step is
+    // 2e-5 s) and ~2e-8 at 2e-7 s; the agreement steps give ~1e-8 and ~2e-9, ~2e-11 extrapolated.
+    m.ladder = {1, 2, 3, 5, 8, 13, 20, 32, 50, 80, 130, 200, 320, 500, 800, 1300, 2000, 3200, 5000};
+    m.fine_ladder = {8000, 16000};
+    list.push_back(std::move(m));
+  }
   return list;
 }
 
@@ -274,16 +394,16 @@ MbsoptRun runMbsopt(const mbsopt::Scene& scene, const std::vector<int>& indices,
   return result;
 }
 
-/// A run driven by accuracy (`mbsopt simulate --accuracy TOL`: the extrapolation chooses its macro
-/// step and runs), its results at the output times; the counters add the largest estimated error of
+/// A run driven by accuracy (`mbsopt simulate --integrator NAME --accuracy TOL`: the extrapolation
+/// chooses its macro step and runs, the adaptive Newmark its local tolerance), its results at the output times; the counters add the largest estimated error of
 /// the compared coordinates there, and the controller's attempts. The time includes every attempt.
-MbsoptRun runMbsoptToAccuracy(const mbsopt::Scene& scene, const std::vector<int>& indices, double tolerance,
-                              double output_interval, int outputs) {
+MbsoptRun runMbsoptToAccuracy(const mbsopt::Scene& scene, const std::vector<int>& indices, const std::string& integrator,
+                              double tolerance, double output_interval, int outputs) {
   MbsoptRun result;
   mbsopt::NewmarkSettings settings = scene.settings;
   settings.end_time = output_interval * outputs;
   mbsopt::IntegrationRequest request;
-  request.integrator = "extrapolation";
+  request.integrator = integrator;
   request.accuracy = mbsopt::ErrorTolerance{tolerance, 0.0};
   request.output_step = output_interval;
   const auto start = std::chrono::steady_clock::now();
@@ -429,7 +549,8 @@ Options parse(int argc, char** argv) {
       std::stringstream list(argv[++i]);
       for (std::string name; std::getline(list, name, ',');) options.mechanisms.push_back(name);
     } else {
-      std::cerr << "usage: peer_comparison [--out DIR] [--quick] [--mechanisms four_bar,chain8,nfourbar4,nfourbar16,a02_singular]\n";
+      std::cerr << "usage: peer_comparison [--out DIR] [--quick] "
+                   "[--mechanisms four_bar,chain8,nfourbar4,andrews,nfourbar16,a02_singular]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
   }
@@ -587,13 +708,18 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     run.step = mech.output_interval / k;
     sweep(std::move(run), [&] { return runMbsopt(scene, indices, k, mech.output_interval, outputs); });
   }
-  for (double tolerance : accuracies) {
-    Run run;
-    run.engine = "mbsopt";
-    run.integrator = "extrapolation";
-    run.accuracy = tolerance;
-    sweep(std::move(run), [&] { return runMbsoptToAccuracy(scene, indices, tolerance, mech.output_interval, outputs); });
-  }
+  for (const std::string integrator : {"extrapolation", "adaptive"})
+    for (double tolerance : accuracies) {
+      // The adaptive Newmark is of order 2: below 1e-7 a run takes seconds (four-bar, Andrews) and stays
+      // off the front by two orders of magnitude.
+      if (integrator == "adaptive" && tolerance < kAdaptiveDownTo) continue;
+      Run run;
+      run.engine = "mbsopt";
+      run.integrator = integrator;
+      run.accuracy = tolerance;
+      sweep(std::move(run),
+            [&] { return runMbsoptToAccuracy(scene, indices, integrator, tolerance, mech.output_interval, outputs); });
+    }
 
   // Fronts.
   std::map<std::string, std::vector<Point>> series;  // "mbsopt Newmark", "simbody CPodes", ...
@@ -685,10 +811,14 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
        << "set ylabel 'wall time of the integration [s] (median)'\n"
        << "set grid\nset key top right\nset xrange [*:*] reverse\n"
        << "plot ";
+    // mbsopt's integrators in reds (Newmark, extrapolation, adaptive), each with its own marker.
+    const std::map<std::string, std::string> ours{{"mbsopt Newmark", "lw 3 pt 7 lc rgb '#d62728'"},
+                                                  {"mbsopt extrapolation", "lw 3 pt 9 lc rgb '#8c1a1a'"},
+                                                  {"mbsopt adaptive", "lw 3 pt 5 lc rgb '#ff9896'"}};
     for (std::size_t i = 0; i < names.size(); ++i) {
-      const bool ours = names[i].starts_with("mbsopt");
+      const auto style = ours.find(names[i]);
       gp << (i ? ", \\\n     " : "") << "'" << base << ".dat' index " << i << " using 1:2 with linespoints "
-         << (ours ? "lw 3 pt 7 lc rgb '#d62728'" : "lw 1.5 pt " + std::to_string(4 + 2 * static_cast<int>(i)))
+         << (style != ours.end() ? style->second : "lw 1.5 pt " + std::to_string(4 + 2 * static_cast<int>(i)))
          << " title '" << names[i] << "'";
     }
     gp << '\n';
@@ -758,11 +888,13 @@ int main(int argc, char** argv) {
   json all = {{"simbody_version", peer::simbodyVersion()},
               {"simbody_build_note", MBSOPT_PEER_SIMBODY_BUILD},
               {"error_measure",
-               "largest absolute joint-angle error [rad] over every coordinate and every output time (every 0.1 s), "
+               "largest absolute joint-angle error [rad] over every coordinate and every output time (every 0.1 s; "
+               "andrews every 1 ms), "
                "against Simbody at accuracy 1e-12 (RungeKuttaMerson unless it failed)"},
               {"timing", "wall time of the integration only (models built beforehand), median of 5 repetitions "
                          "below 0.3 s, 3 below 3 s, else 1"},
-              {"mbsopt_integrator", "Newmark beta=1/4 gamma=1/2, newton_tolerance 1e-10, position-level closure"},
+              {"mbsopt_integrator", "Newmark beta=1/4 gamma=1/2, newton_tolerance 1e-10, position-level closure; at fixed "
+                                    "steps, and driven by accuracy (extrapolation; adaptive down to 1e-7; absolute tolerance on the angles)"},
               {"quick", options.quick},
               {"mechanisms", json::array()}};
   std::vector<std::string> table, agreement, failures;

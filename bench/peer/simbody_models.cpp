@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
+#include <stdexcept>
 
 namespace peer {
 
@@ -46,12 +48,14 @@ Bar uniformBar(double length, double mass) {
   return Bar{mass, {0.5 * length, 0.0, 0.0}, {i, i, i}};
 }
 
-/// Holds the point `tip_of_follower` (in the follower's frame) on the point (height, 0, 0) of the
-/// plane body's frame, in the plane z = const: two PointInPlane constraints (normals x and y).
-void pinPoints(MobilizedBody& plane_body, double height, MobilizedBody& follower,
-               const Vec3& tip_of_follower) {
-  Constraint::PointInPlane(plane_body, UnitVec3(1, 0, 0), height, follower, tip_of_follower);
-  Constraint::PointInPlane(plane_body, UnitVec3(0, 1, 0), 0.0, follower, tip_of_follower);
+Vec3 vec3(const std::array<double, 3>& v) { return Vec3(v[0], v[1], v[2]); }
+
+/// Holds the point `point_b` of body b on the point `point_a` of body a, in the plane z = const: two
+/// PointInPlane constraints, whose planes (normals x and y of a's frame) meet in the line through
+/// point_a along z.
+void pinPoints(MobilizedBody& a, const Vec3& point_a, MobilizedBody& b, const Vec3& point_b) {
+  Constraint::PointInPlane(a, UnitVec3(1, 0, 0), point_a[0], b, point_b);
+  Constraint::PointInPlane(a, UnitVec3(0, 1, 0), point_a[1], b, point_b);
 }
 
 }  // namespace
@@ -64,7 +68,7 @@ std::unique_ptr<SimbodyModel> SimbodyModel::fourBar(const Bar& crank_bar, const 
   MobilizedBody::Pin crank(m.matter.Ground(), Transform(), rigid(crank_bar), Transform());
   MobilizedBody::Pin coupler(crank, Transform(Vec3(0.4, 0, 0)), rigid(coupler_bar), Transform());
   MobilizedBody::Pin rocker(m.matter.Ground(), Transform(Vec3(1.0, 0, 0)), rigid(rocker_bar), Transform());
-  pinPoints(rocker, 0.8, coupler, Vec3(1.0, 0, 0));
+  pinPoints(rocker, Vec3(0.8, 0, 0), coupler, Vec3(1.0, 0, 0));
   m.pins = {crank.getMobilizedBodyIndex(), coupler.getMobilizedBodyIndex(), rocker.getMobilizedBodyIndex()};
   m.initial = m.system.realizeTopology();
   crank.setOneQ(m.initial, 0, 0.0);
@@ -97,7 +101,7 @@ std::unique_ptr<SimbodyModel> SimbodyModel::nFourBar(int n, double rocker_angle,
     rockers.emplace_back(m.matter.Ground(), Transform(Vec3(i, 0, 0)), rigid(uniformBar(1.0, 1.0)), Transform());
   for (int i = 0; i < n; ++i) {
     couplers.emplace_back(rockers[i], Transform(Vec3(1.0, 0, 0)), rigid(uniformBar(1.0, 1.0)), Transform());
-    pinPoints(rockers[i + 1], 1.0, couplers[i], Vec3(1.0, 0, 0));
+    pinPoints(rockers[i + 1], Vec3(1.0, 0, 0), couplers[i], Vec3(1.0, 0, 0));
   }
   for (auto& r : rockers) m.pins.push_back(r.getMobilizedBodyIndex());
   for (auto& c : couplers) m.pins.push_back(c.getMobilizedBodyIndex());
@@ -110,6 +114,44 @@ std::unique_ptr<SimbodyModel> SimbodyModel::nFourBar(int n, double rocker_angle,
     c.setOneQ(m.initial, 0, -rocker_angle);
     c.setOneU(m.initial, 0, -rocker_rate);
   }
+  return model;
+}
+
+std::unique_ptr<SimbodyModel> SimbodyModel::pinTree(const PinTree& tree) {
+  std::unique_ptr<SimbodyModel> model(new SimbodyModel());
+  Impl& m = *model->impl_;
+  if (vec3(tree.gravity) != Vec3(0)) Force::UniformGravity(m.forces, m.matter, vec3(tree.gravity));
+  // A pin's body, built on first use after its parent's (the list's order is the comparison's, not the tree's).
+  std::vector<MobilizedBody> pins(tree.pins.size());  // empty handles until built
+  const std::function<MobilizedBody(int)> body = [&](int index) {
+    if (index < 0) return MobilizedBody(m.matter.Ground());
+    const PinTree::Pin& pin = tree.pins.at(index);
+    if (pins[index].isEmptyHandle()) {
+      MobilizedBody parent = body(pin.parent);
+      pins[index] = MobilizedBody::Pin(parent, Transform(vec3(pin.location)), rigid(pin.bar), Transform());
+    }
+    return pins[index];
+  };
+  for (std::size_t i = 0; i < pins.size(); ++i) m.pins.push_back(body(static_cast<int>(i)).getMobilizedBodyIndex());
+  for (const PinTree::Closure& closure : tree.closures) {
+    MobilizedBody a = body(closure.a.pin), b = body(closure.b.pin);
+    pinPoints(a, vec3(closure.a.point), b, vec3(closure.b.point));
+  }
+  for (const PinTree::Spring& spring : tree.springs)
+    Force::TwoPointLinearSpring(m.forces, body(spring.a.pin), vec3(spring.a.point), body(spring.b.pin),
+                                vec3(spring.b.point), spring.stiffness, spring.rest_length);
+  for (const PinTree::Torque& torque : tree.torques)
+    Force::MobilityConstantForce(m.forces, pins.at(torque.pin), MobilizerUIndex(0), torque.value);
+  m.initial = m.system.realizeTopology();
+  for (std::size_t i = 0; i < pins.size(); ++i) {
+    pins[i].setOneQ(m.initial, 0, tree.pins[i].q0);
+    pins[i].setOneU(m.initial, 0, tree.pins[i].u0);
+  }
+  State check = m.initial;
+  m.system.realize(check, Stage::Position);
+  const double gap = check.getQErr().normInf();
+  if (!(gap <= 1e-12))
+    throw std::runtime_error("PinTree: the initial angles leave a closure open by " + String(gap) + " m");
   return model;
 }
 

@@ -1,5 +1,6 @@
 // The Simbody side of the peer comparison (issue 11): the benchmark mechanisms built with Simbody's
-// MobilizedBody::Pin and Constraint::PointInPlane, and one timed run with a Simbody integrator.
+// MobilizedBody::Pin and Constraint::PointInPlane (springs and torques as Simbody's force elements),
+// and one timed run with a Simbody integrator.
 //
 // Simbody 3.7's headers do not compile as C++20 (ambiguous reversed operator== in ContactGeometry.h),
 // so this interface uses standard types only and simbody_models.cpp is compiled as C++17.
@@ -18,6 +19,40 @@ struct Bar {
   double mass;
   std::array<double, 3> com;
   std::array<double, 3> inertia;
+};
+
+/// A point fixed in a pin's frame (`pin` indexes PinTree::pins; −1: the ground).
+struct PinPoint {
+  int pin;
+  std::array<double, 3> point;
+};
+
+/// A planar mechanism of pins about z, a tree from the ground closed by point coincidences, with linear
+/// point-to-point springs and constant pin torques: what peer_comparison.cpp reads off an mbsopt model
+/// made of revolute joints about z and offsets (Andrews' squeezer), so that the two cannot differ.
+struct PinTree {
+  struct Pin {
+    int parent;                      ///< the parent pin, −1 for the ground
+    std::array<double, 3> location;  ///< of the pin's axis in the parent's frame
+    Bar bar;
+    double q0, u0;  ///< initial angle (relative to the parent) and rate
+  };
+  struct Closure {  ///< the two points coincide (in the plane: two PointInPlane constraints)
+    PinPoint a, b;
+  };
+  struct Spring {  ///< tension stiffness · (length − rest_length), along the line between the points
+    PinPoint a, b;
+    double stiffness, rest_length;
+  };
+  struct Torque {
+    int pin;
+    double value;
+  };
+  std::vector<Pin> pins;  ///< the coordinates, in the comparison's order
+  std::vector<Closure> closures;
+  std::vector<Spring> springs;
+  std::vector<Torque> torques;
+  std::array<double, 3> gravity{};
 };
 
 enum class SimbodyIntegrator { RungeKuttaFeldberg, RungeKuttaMerson, CPodes };
@@ -49,6 +84,10 @@ class SimbodyModel {
   /// couplers horizontal (A02 itself: π/2 and −1 rad/s, the tips moving at 1 m/s along +x).
   /// Coordinates: rockers 0..N, then couplers 0..N−1 (relative to their rocker).
   static std::unique_ptr<SimbodyModel> nFourBar(int n, double rocker_angle, double rocker_rate);
+
+  /// Any PinTree. Throws when its initial angles leave a closure open by more than 1e-12 m: both engines
+  /// must start from the same state, and Simbody's initialisation would project it onto the closure.
+  static std::unique_ptr<SimbodyModel> pinTree(const PinTree& tree);
 
   int coordinateCount() const;
   /// Integrates from t = 0 to each output time in turn (no interpolated reports) at `accuracy`; fails

@@ -2,10 +2,11 @@
 """Runs driven by accuracy on the hard cases, each against its independent reference (issue 18).
 
     scripts/hard_cases/check_accuracy.py [--mbsopt BINARY] [--scenes a,b] [--tolerances 1e-3,1e-5]
-                                         [--t-end T] [--out FILE.json]
+                                         [--t-end T] [--integrator NAME] [--out FILE.json]
 
 For every scene of problems/scenes/hard/ (or --scenes) and every tolerance, runs
-`mbsopt simulate SCENE --accuracy TOL --output-step DT` (DT: the reference's spacing) and compares,
+`mbsopt simulate SCENE --integrator NAME --accuracy TOL --output-step DT` (NAME: extrapolation unless
+--integrator says; DT: the reference's spacing) and compares,
 sensor by sensor, the largest true error at the reference's times with the largest error the run
 estimated for that sensor. A run passes when
 
@@ -46,13 +47,14 @@ def reference_step(times):
     return times[1] - times[0]
 
 
-def run(mbsopt, scene, tolerance, t_end):
+def run(mbsopt, scene, tolerance, t_end, integrator):
     header, reference = read_csv(os.path.join(HARD, "reference", scene + ".csv"))
     times = [row[0] for row in reference if t_end is None or row[0] <= t_end + 1e-12]
     step = reference_step(times)
     with tempfile.TemporaryDirectory() as tmp:
         out_csv, out_json = os.path.join(tmp, "run.csv"), os.path.join(tmp, "run.json")
-        command = [mbsopt, "simulate", os.path.join(HARD, scene + ".yaml"), "--accuracy", repr(tolerance),
+        command = [mbsopt, "simulate", os.path.join(HARD, scene + ".yaml"), "--integrator", integrator,
+                   "--accuracy", repr(tolerance),
                    "--output-step", repr(step), "--out", out_csv, "--json", out_json]
         if t_end is not None:
             command += ["--t-end", repr(t_end)]
@@ -101,6 +103,7 @@ def main():
                                             "n_four_bar_a02_flat,pendulum_a01")
     parser.add_argument("--tolerances", default="1e-3,1e-4,1e-5,1e-6,1e-7,1e-8")
     parser.add_argument("--t-end", type=float, default=None, help="simulate only up to T (a shorter check)")
+    parser.add_argument("--integrator", default="extrapolation", help="extrapolation, newmark or adaptive")
     parser.add_argument("--out", help="write every result as JSON")
     args = parser.parse_args()
     results, failed = [], 0
@@ -108,7 +111,7 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|")
     for scene in args.scenes.split(","):
         for tolerance in (float(t) for t in args.tolerances.split(",")):
-            result = run(args.mbsopt, scene, tolerance, args.t_end)
+            result = run(args.mbsopt, scene, tolerance, args.t_end, args.integrator)
             result["problems"] = verdict(result)
             results.append(result)
             failed += bool(result["problems"])
