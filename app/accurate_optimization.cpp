@@ -13,10 +13,18 @@ constexpr double kGridMargin = 0.5;
 /// The grid search at the start changes h by at most this many halvings or doublings.
 constexpr int kMaxGridChanges = 6;
 
-DesignProblem withStep(DesignProblem problem, double step) {
-  const double ratio = step / problem.scene.settings.step;
-  problem.scene.settings.step = step;
-  for (LoadCase& c : problem.load_cases) c.scene.settings.step *= ratio;
+/// The problem on its grid refined by `halvings` (coarsened where negative: a fixed step only): the
+/// step divided by 2^halvings, or every step of a time grid split into 2^halvings.
+DesignProblem onGrid(DesignProblem problem, int halvings) {
+  const auto refine = [halvings](NewmarkSettings& s) {
+    if (s.time_grid) {
+      for (int k = 0; k < halvings; ++k) s = halvedSteps(s);
+    } else {
+      s.step = std::ldexp(s.step, -halvings);
+    }
+  };
+  refine(problem.scene.settings);
+  for (LoadCase& c : problem.load_cases) refine(c.scene.settings);
   return problem;
 }
 
@@ -35,9 +43,9 @@ DesignProblem startingAt(DesignProblem problem, const Eigen::VectorXd& x) {
 
 std::string describe(const DiscretisationError& e) {
   char text[200];
-  std::snprintf(text, sizeof text, "h = %g s: cost's functional %.8g, its discretisation error %.2g (order %.2g), "
+  std::snprintf(text, sizeof text, "h %s %g s: cost's functional %.8g, its discretisation error %.2g (order %.2g), "
                 "largest of the constraints' %.2g",
-                e.step, e.cost, e.cost_error, e.order,
+                e.variable_steps ? "<=" : "=", e.step, e.cost, e.cost_error, e.order,
                 e.constraint_errors.size() ? e.constraint_errors.cwiseAbs().maxCoeff() : 0.0);
   return text;
 }
@@ -59,38 +67,41 @@ AccurateOptimization optimizeToAccuracy(const DesignProblem& problem, const RunC
   out.tolerance = tolerance;
   const DesignProblem formulated = formulatedProblem(problem, resolvedChoice(problem, choice));
   const std::vector<ConstraintFunctional> functionals = transcribe(formulated);
-  // The first grid: halve the scene's step until the estimate at the start is within the margin, or
-  // double it while the next coarser grid would still be.
-  double step = problem.scene.settings.step;
+  // The first grid: halve the scene's steps until the estimate at the start is within the margin, or
+  // double a fixed step while the next coarser grid would still be (a variable step sequence, the steps
+  // an adaptive run chose at settings.local_tolerance, is only refined).
+  const bool fixed_step = !problem.scene.settings.time_grid;
+  int halvings = 0;
   bool refined = false;
   for (int change = 0; change < kMaxGridChanges; ++change) {
-    const DesignProblem at = withStep(formulated, step);
+    const DesignProblem at = onGrid(formulated, halvings);
     out.grid_choice.push_back(discretisationError(at, functionals, initialPoint(at)));
     const DiscretisationError& e = out.grid_choice.back();
     say("grid at the start, " + describe(e));
     if (e.largest() > kGridMargin * tolerance) {
-      step /= std::pow(2.0, halvingsFor(e.largest(), e.order, tolerance));
+      halvings += halvingsFor(e.largest(), e.order, tolerance);
       refined = true;
-    } else if (!refined && e.largest() * std::pow(2.0, e.order) <= kGridMargin * tolerance) {
-      step *= 2.0;
+    } else if (fixed_step && !refined && e.largest() * std::pow(2.0, e.order) <= kGridMargin * tolerance) {
+      --halvings;
     } else {
       break;
     }
   }
   DesignProblem current = problem;
   for (int round = 0; round < kMaxAccuracyRounds; ++round) {
-    say("optimizing on the grid h = " + std::to_string(step) + " s");
-    current = withStep(current, step);
-    out.rounds.push_back(runOptimization(current, choice, on_iteration));
+    const DesignProblem grid = onGrid(current, halvings);
+    say("optimizing on the grid h " + std::string(fixed_step ? "= " : "<= ") +
+        std::to_string(largestStep(grid.scene.settings)) + " s");
+    out.rounds.push_back(runOptimization(grid, choice, on_iteration));
     const Eigen::VectorXd& x = out.rounds.back().result.x;
-    out.at_optimum.push_back(discretisationError(withStep(formulated, step), functionals, x));
+    out.at_optimum.push_back(discretisationError(onGrid(formulated, halvings), functionals, x));
     const DiscretisationError& e = out.at_optimum.back();
     say("at the optimum, " + describe(e));
     if (e.largest() <= tolerance) {
       out.met = true;
       break;
     }
-    step /= std::pow(2.0, halvingsFor(e.largest(), e.order, tolerance));
+    halvings += halvingsFor(e.largest(), e.order, tolerance);
     current = startingAt(current, x);
   }
   return out;

@@ -25,21 +25,25 @@ DiscretisationError discretisationError(const DesignProblem& problem, const std:
                                         const Eigen::VectorXd& x) {
   std::vector<double> costs;
   std::vector<Eigen::VectorXd> constraints;
-  // Every grid ends where h's does (the first multiple of h at or after the end time).
-  const auto divide = [](NewmarkSettings& s, int divisor) {
-    s.end_time = static_cast<double>(stepsToCover(s.end_time, s.step)) * s.step;
-    s.step /= divisor;
+  // Every grid ends where h's does (the first multiple of h at or after the end time; a time grid's end).
+  const auto end = [](NewmarkSettings& s) {
+    if (!s.time_grid) s.end_time = static_cast<double>(stepsToCover(s.end_time, s.step)) * s.step;
   };
-  for (const int divisor : {1, 2, 4}) {
-    DesignProblem grid = problem;
-    divide(grid.scene.settings, divisor);
-    for (LoadCase& c : grid.load_cases) divide(c.scene.settings, divisor);
+  DesignProblem grid = problem;
+  end(grid.scene.settings);
+  for (LoadCase& c : grid.load_cases) end(c.scene.settings);
+  for (int halvings = 0; halvings < 3; ++halvings) {
+    if (halvings > 0) {
+      grid.scene.settings = halvedSteps(grid.scene.settings);
+      for (LoadCase& c : grid.load_cases) c.scene.settings = halvedSteps(c.scene.settings);
+    }
     const DesignResponse response = evaluateDesign(grid, functionals, x);
     costs.push_back(costFunctional(grid, response));
     constraints.push_back(response.constraints);
   }
   DiscretisationError out;
-  out.step = problem.scene.settings.step;
+  out.step = largestStep(problem.scene.settings);
+  out.variable_steps = static_cast<bool>(problem.scene.settings.time_grid);
   out.cost = costs[0];
   // e_h = (ψ_h − ψ_{h/2}) / (1 − 2^{−p}), each value with the order its own differences show.
   const auto error = [](double coarse, double middle, double fine, double* order = nullptr) {

@@ -31,6 +31,7 @@ struct OptimizeOptions {
 nlohmann::json discretisationJson(const AccurateOptimization& accurate) {
   const auto estimate = [](const DiscretisationError& e) {
     return nlohmann::json{{"step", e.step},
+                          {"variable_steps", e.variable_steps},
                           {"cost_functional", e.cost},
                           {"cost_error", e.cost_error},
                           {"order", e.order},
@@ -148,9 +149,10 @@ void optimize(const OptimizeOptions& options) {
       wall += round.result.wall_time_s;
       equivalents += round.result.simulation_equivalents;
     }
-    std::printf("%s = %.8g +- %.2g %s at the optimum (discretisation error at h = %g s, from h, h/2 and h/4: order "
+    std::printf("%s = %.8g +- %.2g %s at the optimum (discretisation error at h %s %g s, from h, h/2 and h/4: order "
                 "%.2g; constraints' up to %.2g); accuracy %g %s after %zu grid%s (%.4g simulation-equivalents, %.3g s)\n",
-                run.cost_response.c_str(), e.cost, e.cost_error, run.cost_unit.c_str(), e.step, e.order,
+                run.cost_response.c_str(), e.cost, e.cost_error, run.cost_unit.c_str(), e.variable_steps ? "<=" : "=",
+                e.step, e.order,
                 e.constraint_errors.size() ? e.constraint_errors.cwiseAbs().maxCoeff() : 0.0, accurate->tolerance,
                 accurate->met ? "met" : "NOT met", accurate->rounds.size(), accurate->rounds.size() == 1 ? "" : "s",
                 equivalents, wall);

@@ -163,10 +163,9 @@ AccurateRun adaptiveToAccuracy(const Model& model, const NewmarkSettings& settin
     AccuracyAttempt record{0.0, 2, std::numeric_limits<double>::quiet_NaN(), {}};
     try {
       AdaptiveRun run = adaptiveNewmarkRun(model, run_settings, q0, v0, control, progress);
-      const Eigen::VectorXd& time = run.trajectory.time;
-      record.macro_step = (time.tail(time.size() - 1) - time.head(time.size() - 1)).maxCoeff();
       NewmarkSettings grid = run_settings;
-      grid.time_grid = timeGrid(time);
+      grid.time_grid = timeGrid(run.trajectory.time);
+      record.macro_step = largestStep(grid);
       EstimatedRun estimated = estimateGlobalError(model, grid, std::move(run.trajectory), q0, v0, progress);
       record.weighted_error = weightedErrorNorm(estimated.q_error, estimated.trajectory.q, goal.tolerance);
       addStatistics(every_attempt, estimated.trajectory.statistics);

@@ -161,18 +161,7 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
                                  const std::function<void(double)>& progress) {
   if (const std::string defect = extrapolationDefect(settings); !defect.empty())
     throw std::invalid_argument("the global error estimate: " + defect);
-  NewmarkSettings half = settings;
-  half.step = 0.5 * settings.step;
-  if (settings.time_grid) {  // every step split in two
-    const std::vector<double>& grid = *settings.time_grid;
-    auto halved = std::make_shared<std::vector<double>>(2 * grid.size() - 1);
-    for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
-      (*halved)[2 * k] = grid[k];
-      (*halved)[2 * k + 1] = 0.5 * (grid[k] + grid[k + 1]);
-    }
-    halved->back() = grid.back();
-    half.time_grid = std::move(halved);
-  }
+  const NewmarkSettings half = halvedSteps(settings);
   const long points = trajectory.time.size();
   SampledRun fine = sampledNewmarkRun(model, half, q0, v0, 2, points - 1, progress);
   addStatistics(trajectory.statistics, fine.statistics);

@@ -68,18 +68,16 @@ Integration adaptiveIntegration(const Model& model, const NewmarkSettings& setti
   control.tolerance = request.local_tolerance;
   control.stop_times = outputTimes(request.output_step, settings.end_time);
   AdaptiveRun adaptive = adaptiveNewmarkRun(model, settings, q0, v0, control, progress);
+  NewmarkSettings grid = settings;  // the steps it took
+  grid.time_grid = timeGrid(adaptive.trajectory.time);
   Integration out;
   if (request.estimate_error) {
-    NewmarkSettings grid = settings;
-    grid.time_grid = timeGrid(adaptive.trajectory.time);
     out.run = estimateGlobalError(model, grid, std::move(adaptive.trajectory), q0, v0, progress);
     out.estimated = true;
   } else {
     out.run.trajectory = std::move(adaptive.trajectory);
   }
-  const Eigen::VectorXd& time = out.run.trajectory.time;
-  const double largest = (time.tail(time.size() - 1) - time.head(time.size() - 1)).maxCoeff();
-  out.run.steps = {largest};
+  out.run.steps = {largestStep(grid)};
   if (request.output_step > 0.0) keepPoints(out.run, adaptive.stops);
   return out;
 }

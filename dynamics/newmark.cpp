@@ -56,6 +56,9 @@ constexpr int kOpenPredictorDegree = 6, kOpenPredictorWindow = 12;
 // for a slow rate. Without position-level closure the floor is 0 and every rate counts: there the
 // target, the tolerance, lies far above the increments' round-off.
 constexpr double kRateMeasurable = 16.0;
+// A step that differs from the one J's tangent part was formed at by at most this fraction keeps J
+// (variable steps: no new factorization each step for a change the modified Newton iteration absorbs).
+constexpr double kIterationMatrixStepChange = 0.2;
 
 }  // namespace
 
@@ -66,6 +69,29 @@ SimulationError::SimulationError(const std::string& what, double t, long s, doub
       step(s),
       residual_norm(norm),
       element(std::move(where)) {}
+
+NewmarkSettings halvedSteps(NewmarkSettings settings) {
+  settings.step *= 0.5;
+  if (settings.time_grid) {
+    const std::vector<double>& grid = *settings.time_grid;
+    auto halved = std::make_shared<std::vector<double>>(2 * grid.size() - 1);
+    for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
+      (*halved)[2 * k] = grid[k];
+      (*halved)[2 * k + 1] = 0.5 * (grid[k] + grid[k + 1]);
+    }
+    halved->back() = grid.back();
+    settings.time_grid = std::move(halved);
+  }
+  return settings;
+}
+
+double largestStep(const NewmarkSettings& settings) {
+  if (!settings.time_grid) return settings.step;
+  const std::vector<double>& grid = *settings.time_grid;
+  double largest = 0.0;
+  for (std::size_t k = 1; k < grid.size(); ++k) largest = std::max(largest, grid[k] - grid[k - 1]);
+  return largest;
+}
 
 double closureTolerance(const NewmarkSettings& s) {
   if (s.closure_tolerance > 0.0) return s.closure_tolerance;
@@ -243,6 +269,7 @@ void NewmarkIntegrator::updateIterationMatrix() {
       stiffness_(r, c) = tangents_.stiffness(i, j);
     }
   tangent_part_ = settings_.gamma * h_ * damping_ + settings_.beta * h_ * h_ * stiffness_;
+  matrix_step_ = h_;
   J_ = mass_ + tangent_part_;  // (33)
   mass_by_recursion_ = false;
   ++stats_.jacobian_updates;
@@ -251,10 +278,16 @@ void NewmarkIntegrator::updateIterationMatrix() {
 
 void NewmarkIntegrator::setStepSize(double h) {
   if (h == h_) return;
+  // Newton's start extrapolates its last solutions at equal spacing: still closer than a constant
+  // start while the step changes by up to a factor of 2 (an adaptive run changes it every step).
+  if (!(h <= 2.0 * h_ && h >= 0.5 * h_)) predictor_.reset();
   h_ = h;
-  predictor_.reset();
   if (!tangents_in_use_ || J_.size() == 0 || damping_.size() == 0) return;  // J = M, or formed at the first iterate
+  // J's tangent part at the new h, formed and factored again only when h has moved by more than
+  // kIterationMatrixStepChange since: the modified Newton iteration converges with a J that far off.
+  if (std::abs(h_ / matrix_step_ - 1.0) <= kIterationMatrixStepChange) return;
   tangent_part_ = settings_.gamma * h_ * damping_ + settings_.beta * h_ * h_ * stiffness_;
+  matrix_step_ = h_;
   if (!mass_by_recursion_) J_ = mass_ + tangent_part_;  // (33) at the new h
   reduced_dirty_ = true;
 }

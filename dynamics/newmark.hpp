@@ -125,6 +125,10 @@ struct StepMatrixLayout {
   Eigen::Index partition;  ///< B's partition with its factorization of M (SvdPartition::storeFactored)
   Eigen::Index size;
 };
+/// The same run at half the steps: step / 2, and with a time grid every one of its steps split in two.
+NewmarkSettings halvedSteps(NewmarkSettings settings);
+/// The largest step of a run: settings.step, or the largest of its time grid's.
+double largestStep(const NewmarkSettings& settings);
 /// settings.closure_tolerance, or the default of its closure level when it is 0.
 double closureTolerance(const NewmarkSettings& settings);
 
@@ -242,8 +246,9 @@ class NewmarkIntegrator {
   /// h exactly, where t_next − time() carries the round-off of the times).
   void advance(double t_next, std::optional<double> h);
   bool attempt(double t_next, std::optional<double> h);
-  /// Makes h the step of the next attempt: J's tangent part follows it (γh C_T + βh² K_T), and Newton's
-  /// start forgets its history, an extrapolation at unit spacing, when h changes.
+  /// Makes h the step of the next attempt: J's tangent part follows it (γh C_T + βh² K_T) once it has
+  /// moved far enough, and Newton's start forgets its history (an extrapolation at equal spacing) when h
+  /// changes by more than a factor of 2.
   void setStepSize(double h);
   void updateIterationMatrix();
   void updateMassMatrix();
@@ -292,6 +297,7 @@ class NewmarkIntegrator {
   Eigen::MatrixXd mass_, tangent_part_;  ///< J = M + (γh C_T + βh² K_T), the parts refreshed separately
   Eigen::MatrixXd damping_, stiffness_;  ///< C_T, K_T on the free coordinates, for tangent_part_ at a new h
   double h_ = 0.0;                       ///< the step being taken (settings_.step unless the steps vary)
+  double matrix_step_ = 0.0;             ///< the h at which tangent_part_ was formed
   bool tangents_in_use_ = false;  ///< J has its tangent part (else J = M, see initialize())
   ArticulatedBodyFactorization articulated_mass_;
   bool mass_by_recursion_ = false;  ///< J = M(q), held by articulated_mass_ (J_ and mass_ are stale)

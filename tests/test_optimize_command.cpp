@@ -298,5 +298,27 @@ TEST(OptimizeCommand, AnAccuracyRunReportsItsCostWithItsDiscretisationError) {
   }
 }
 
+TEST(OptimizeCommand, AnAccuracyRunOnAdaptiveStepsRefinesThemAndKnowsItsError) {
+  // The same oscillator on the steps of an adaptive run (settings.integrator: adaptive), refined by
+  // halving every step: the reported cost within a factor of 2 of its true error, below the tolerance.
+  const std::string text = std::string(test::kOscillator) + kRmsAboveMinusHalf;
+  const nlohmann::json r = optimizeScene("adaptive-accuracy", text,
+                                         "--set spring.k=2 --set settings.integrator=adaptive --set "
+                                         "settings.local_tolerance=1e-6 --optimizer slsqp --formulation grid_max "
+                                         "--accuracy 1e-8");
+  EXPECT_EQ(r["status"], "converged") << r["message"];
+  const nlohmann::json& d = r["discretisation"];
+  ASSERT_TRUE(d["met"].get<bool>());
+  const nlohmann::json& last = d["rounds"].back()["at_optimum"];
+  EXPECT_TRUE(last["variable_steps"].get<bool>());
+  const double estimate = last["cost_error"].get<double>();
+  const double omega = std::sqrt(r["design"][0].get<double>());
+  const double truth = std::sqrt(0.5 + std::sin(2.0 * omega) / (4.0 * omega));
+  const double error = std::abs(r["cost_functional"]["final"].get<double>() - truth);
+  EXPECT_LE(error, 1e-8);
+  EXPECT_GT(error, 0.5 * estimate);
+  EXPECT_LT(error, 2.0 * estimate);
+}
+
 }  // namespace
 }  // namespace mbsopt
