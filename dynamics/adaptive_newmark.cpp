@@ -88,6 +88,7 @@ AdaptiveRun adaptiveNewmarkRun(const Model& model, const NewmarkSettings& settin
   out.stops.push_back(0);
   double h = control.first_step > 0.0 ? control.first_step : std::min(settings.step, 0.01 * end);
   const double smallest = kSmallestStep * end;
+  const double most_points = std::min(kMaxNewmarkSteps, kMaxTrajectoryBytes / bytesPerTimePoint(model, settings));
   std::size_t next_stop = 0;
   while (next_stop < stops.size()) {
     const double t = integrator.time(), stop = stops[next_stop];
@@ -119,6 +120,10 @@ AdaptiveRun adaptiveNewmarkRun(const Model& model, const NewmarkSettings& settin
       continue;
     }
     integrator.acceptStep();
+    if (static_cast<double>(kept.time.size()) >= most_points)
+      throw std::length_error("the adaptive run has taken " + std::to_string(kept.time.size()) + " steps by t = " +
+                              threeDigits(integrator.time()) + " s of " + threeDigits(end) +
+                              " s: its trajectory would exceed the limit of 4 GiB or 1e7 steps (kMaxTrajectoryBytes)");
     kept.keep(integrator, integrator.lastNewtonIterations());
     if (progress) progress(integrator.time());
     if (lands) {

@@ -49,7 +49,7 @@ double localErrorNorm(const Model& model, double h, const Eigen::VectorXd& a_sta
 
 /// Runs from (q0, v0) at t = 0 to settings.end_time with steps chosen by the local error (settings.step
 /// is not used). SimulationError when a step fails below the smallest step (end time × 1e-12) or a
-/// check after a step fails.
+/// check after a step fails; std::length_error beyond kMaxNewmarkSteps steps or kMaxTrajectoryBytes.
 AdaptiveRun adaptiveNewmarkRun(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
                                const Eigen::VectorXd& v0, const LocalErrorControl& control,
                                const std::function<void(double)>& progress = {});

@@ -146,11 +146,15 @@ StepMatrixLayout stepMatrixLayout(const Model& model) {
 double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool step_matrices) {
   const double points = settings.time_grid ? static_cast<double>(settings.time_grid->size())
                                            : std::ceil(settings.end_time / settings.step) + 1.0;
+  return points * bytesPerTimePoint(model, settings, step_matrices);
+}
+
+double bytesPerTimePoint(const Model& model, const NewmarkSettings& settings, bool step_matrices) {
   double per_point = 6.0 * static_cast<double>(model.coordinateCount()) +
                      static_cast<double>(model.constraintCount()) + static_cast<double>(model.sensors().size()) +
                      2.0 + 0.5;  // the count is an int
   if (step_matrices && formsStepMatrices(model, settings)) per_point += static_cast<double>(stepMatrixLayout(model).size);
-  return points * per_point * sizeof(double);
+  return per_point * sizeof(double);
 }
 
 NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings settings)

@@ -110,6 +110,8 @@ SettingsDefect settingsDefect(const NewmarkSettings& settings);
 /// the unprojected q̇ and q̈, the closure error and the iteration count; with `step_matrices`, M and
 /// B where the run forms them (formsStepMatrices).
 double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool step_matrices = false);
+/// The memory of one time point of it.
+double bytesPerTimePoint(const Model& model, const NewmarkSettings& settings, bool step_matrices = false);
 /// Whether a run of `model` with `settings` forms M and B at every step, so that
 /// NewmarkIntegrator::keepStepMatrices keeps them.
 bool formsStepMatrices(const Model& model, const NewmarkSettings& settings);
