@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "mbsopt/dynamics/sensors.hpp"
 
@@ -19,29 +20,25 @@ constexpr double kSafety = 0.9, kSmallest = 0.2, kLargest = 2.0, kAfterFailure =
 // Below this fraction of the end time a step is not tried: the run fails there.
 constexpr double kSmallestStep = 1e-12;
 
-/// Appends the integrator's state to the columns kept so far.
+/// Appends the integrator's state to the columns kept so far: each quantity one flat array, column after
+/// column, so that a step allocates nothing but the arrays' amortized growth.
 struct GrowingTrajectory {
-  std::vector<double> time;
-  std::vector<Eigen::VectorXd> q, v, a, lambda;
-  std::vector<double> closure_error;
+  std::vector<double> time, q, v, a, lambda, closure_error;
   std::vector<int> newton_iterations;
 
   void keep(const NewmarkIntegrator& integrator, int iterations) {
     time.push_back(integrator.time());
-    q.push_back(integrator.q());
-    v.push_back(integrator.v());
-    a.push_back(integrator.a());
-    lambda.push_back(integrator.lambda());
+    for (auto [kept, column] : {std::pair{&q, &integrator.q()}, {&v, &integrator.v()}, {&a, &integrator.a()},
+                                {&lambda, &integrator.lambda()}})
+      kept->insert(kept->end(), column->data(), column->data() + column->size());
     closure_error.push_back(integrator.closureError());
     newton_iterations.push_back(iterations);
   }
 
   Trajectory finish(const Model& model, const IntegratorStatistics& statistics) const {
     const auto points = static_cast<Eigen::Index>(time.size());
-    const auto columns = [&](const std::vector<Eigen::VectorXd>& kept, Eigen::Index rows) {
-      Eigen::MatrixXd m(rows, points);
-      for (Eigen::Index k = 0; k < points; ++k) m.col(k) = kept[static_cast<std::size_t>(k)];
-      return m;
+    const auto columns = [&](const std::vector<double>& kept, Eigen::Index rows) {
+      return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(kept.data(), rows, points));
     };
     Trajectory out;
     out.time = Eigen::Map<const Eigen::VectorXd>(time.data(), points);
