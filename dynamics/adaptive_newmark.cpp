@@ -150,7 +150,8 @@ AccurateRun adaptiveToAccuracy(const Model& model, const NewmarkSettings& settin
                                const std::function<void(double)>& progress) {
   if (!(goal.tolerance.absolute > 0.0 && goal.tolerance.relative >= 0.0))
     throw std::invalid_argument("the accuracy needs a positive absolute part and a relative part that is not negative");
-  if (const std::string defect = extrapolationDefect(settings); !defect.empty()) throw std::invalid_argument(defect);
+  if (const std::string defect = extrapolationDefect(settings, "the adaptive integrator's error estimate"); !defect.empty())
+    throw std::invalid_argument(defect);
   LocalErrorControl control;
   control.tolerance = firstLocalTolerance(goal.tolerance);
   // The global error goes as the local tolerance to a power p, 2/3 in theory (kGlobalPower) until two

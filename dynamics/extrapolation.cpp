@@ -92,14 +92,14 @@ Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings
   return trajectory;
 }
 
-std::string extrapolationDefect(const NewmarkSettings& settings) {
+std::string extrapolationDefect(const NewmarkSettings& settings, const std::string& who) {
   if (settings.beta != 0.25 || settings.gamma != 0.5)
-    return "extrapolation needs the trapezoidal rule (beta = 0.25, gamma = 0.5), whose error is even in h; this "
+    return who + " needs the trapezoidal rule (beta = 0.25, gamma = 0.5), whose error is even in h; this "
            "scene has beta = " + std::to_string(settings.beta) + ", gamma = " + std::to_string(settings.gamma);
   if (settings.closure != ClosureLevel::Position)
-    return "extrapolation needs the loops closed at position level: the acceleration-level closure drifts";
+    return who + " needs the loops closed at position level: the acceleration-level closure drifts";
   if (settings.accept_by_contraction_rate)
-    return "extrapolation needs every Newton iteration converged to its tolerance (not --fast-newton): the runs' "
+    return who + " needs every Newton iteration converged to its tolerance (not --fast-newton): the runs' "
            "differences must be the discretisation's, not the iteration's";
   return {};
 }

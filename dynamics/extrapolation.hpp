@@ -145,7 +145,8 @@ EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& sett
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress = {});
 
-/// Why a setting cannot be extrapolated (empty when it can): the symmetric scheme only.
-std::string extrapolationDefect(const NewmarkSettings& settings);
+/// Why a setting cannot be extrapolated (empty when it can): the symmetric scheme only. `who` names what
+/// needs it in the message (the adaptive integrator's error estimates need the same).
+std::string extrapolationDefect(const NewmarkSettings& settings, const std::string& who = "extrapolation");
 
 }  // namespace mbsopt

@@ -241,11 +241,10 @@ class SceneBuilder {
     if (!(choice.local_tolerance > 0.0 && std::isfinite(choice.local_tolerance)))
       settings.fail("local_tolerance", "local_tolerance: must be positive and finite");
     if (choice.extrapolated() || choice.adaptive())
-      if (std::string defect = extrapolationDefect(result_.scene.settings); !defect.empty()) {
-        // "extrapolation needs …": the adaptive integrator's error estimates need the same.
-        if (choice.adaptive()) defect = "the adaptive integrator's error estimates " + defect.substr(defect.find("need"));
+      if (const std::string defect = extrapolationDefect(
+              result_.scene.settings, choice.adaptive() ? "the adaptive integrator's error estimate" : "extrapolation");
+          !defect.empty())
         settings.fail("integrator", "integrator: " + defect);
-      }
   }
 
   void readSettings() {
