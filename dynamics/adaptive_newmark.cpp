@@ -150,7 +150,7 @@ AccurateRun adaptiveToAccuracy(const Model& model, const NewmarkSettings& settin
                                const std::function<void(double)>& progress) {
   if (!(goal.tolerance.absolute > 0.0 && goal.tolerance.relative >= 0.0))
     throw std::invalid_argument("the accuracy needs a positive absolute part and a relative part that is not negative");
-  if (const std::string defect = extrapolationDefect(settings, "the adaptive integrator's error estimate"); !defect.empty())
+  if (const std::string defect = halvingDefect(settings, "the adaptive integrator's error estimate"); !defect.empty())
     throw std::invalid_argument(defect);
   LocalErrorControl control;
   control.tolerance = firstLocalTolerance(goal.tolerance);

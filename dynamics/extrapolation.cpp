@@ -93,6 +93,14 @@ Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings
 }
 
 std::string extrapolationDefect(const NewmarkSettings& settings, const std::string& who) {
+  if (std::string defect = halvingDefect(settings, who); !defect.empty()) return defect;
+  if (settings.newton_truncation_fraction > 0.0)
+    return who + " needs every step solved to the Newton tolerance (not --fast-steps): Newton's "
+           "errors, a fraction of the h^2 truncation error, would cap its higher orders";
+  return {};
+}
+
+std::string halvingDefect(const NewmarkSettings& settings, const std::string& who) {
   if (settings.beta != 0.25 || settings.gamma != 0.5)
     return who + " needs the trapezoidal rule (beta = 0.25, gamma = 0.5), whose error is even in h; this "
            "scene has beta = " + std::to_string(settings.beta) + ", gamma = " + std::to_string(settings.gamma);
@@ -159,8 +167,8 @@ double EstimatedRun::velocityError() const { return v_error.size() ? v_error.cwi
 EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& settings, Trajectory trajectory,
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress) {
-  if (const std::string defect = extrapolationDefect(settings); !defect.empty())
-    throw std::invalid_argument("the global error estimate: " + defect);
+  if (const std::string defect = halvingDefect(settings, "the global error estimate"); !defect.empty())
+    throw std::invalid_argument(defect);
   const NewmarkSettings half = halvedSteps(settings);
   const long points = trajectory.time.size();
   SampledRun fine = sampledNewmarkRun(model, half, q0, v0, 2, points - 1, progress);

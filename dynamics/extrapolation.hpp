@@ -145,8 +145,15 @@ EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& sett
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress = {});
 
-/// Why a setting cannot be extrapolated (empty when it can): the symmetric scheme only. `who` names what
-/// needs it in the message (the adaptive integrator's error estimates need the same).
+/// Why runs at h and h/2 cannot estimate a run's error (empty when they can): the symmetric scheme,
+/// whose error is even in h, every step's Newton iterate accepted on a test of its own error (not
+/// --fast-newton). Newton stopped at a fraction κ of the truncation error
+/// (newton_truncation_fraction) leaves the estimate off by about κ: allowed. `who` names what needs
+/// it in the message (the adaptive integrator's error estimates need the same).
+std::string halvingDefect(const NewmarkSettings& settings, const std::string& who);
+/// Why a setting cannot be extrapolated (empty when it can): halvingDefect's conditions, and every step
+/// solved to newton_tolerance: Newton's errors at a fraction of the h² truncation error would cap the
+/// extrapolation's higher orders.
 std::string extrapolationDefect(const NewmarkSettings& settings, const std::string& who = "extrapolation");
 
 }  // namespace mbsopt

@@ -125,6 +125,8 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
     return {"svd_threshold", "the SVD threshold must lie in (0, 1)"};
   if (!(s.closure_tolerance >= 0.0 && std::isfinite(s.closure_tolerance)))
     return {"closure_tolerance", "the closure tolerance must be finite and not negative (0: the default)"};
+  if (!(s.newton_truncation_fraction >= 0.0 && s.newton_truncation_fraction <= 1.0))
+    return {"newton_truncation_fraction", "the Newton truncation fraction must lie in [0, 1] (0: off)"};
   if (!finitePositive(s.energy_tolerance))
     return {"energy_tolerance", "the energy tolerance must be positive and finite"};
   return {};
@@ -255,7 +257,8 @@ void NewmarkIntegrator::setDriven(double t) {
 void NewmarkIntegrator::updateConstraintPartition() {
   if (model_.constraintCount() == 0) B_free_.resize(0, static_cast<Eigen::Index>(free_.size()));
   else constraintJacobian(model_, ws_, q_, free_, position_closure_, B_free_);
-  partition_.setConstraintJacobian(B_free_);
+  if (settings_.reuse_svd_rotations) partition_.updateConstraintJacobian(B_free_);
+  else partition_.setConstraintJacobian(B_free_);
   reduced_dirty_ = true;
 }
 
@@ -412,6 +415,16 @@ void NewmarkIntegrator::applyNewmarkUpdate() {
   }
 }
 
+double NewmarkIntegrator::truncationTarget() const {
+  // An error δ of q̈ₙ₊₁ moves qₙ₊₁ by βh²δ (32); the step's local truncation error in q is
+  // (β − 1/6) h² (q̈ₙ₊₁ − q̈ₙ) (Zienkiewicz and Xie), so δ ≤ κ |β − 1/6| / β ‖q̈ₙ₊₁ − q̈ₙ‖∞ keeps the
+  // iteration's error in q below κ times the discretisation's. Measured on the current iterate.
+  double change = 0.0;
+  for (int i : free_) change = std::max(change, std::abs(a_[i] - a_accepted_[i]));
+  const double beta = settings_.beta;
+  return settings_.newton_truncation_fraction * std::abs(beta - 1.0 / 6.0) / beta * change;
+}
+
 bool NewmarkIntegrator::newton(bool fresh_jacobian) {
   const double h = h_;
   const double beta_h2 = settings_.beta * h * h;
@@ -475,7 +488,8 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     // at twice the last accepted step's (plus one): a diverging iterate must not inflate its own
     // tolerance (near a singular configuration it did, and the step was accepted far from a solution).
     const double scale = std::min(largest, 2.0 * acceleration_scale_ + 1.0);
-    const double target = std::max(settings_.newton_tolerance * (1.0 + scale), roundoff_floor);
+    double target = std::max(settings_.newton_tolerance * (1.0 + scale), roundoff_floor);
+    if (settings_.newton_truncation_fraction > 0.0) target = std::max(target, truncationTarget());
     // The contraction rate, where the previous increment stands far enough above the round-off
     // floor for this one not to be noise. Every kRateCheckInterval steps no first iterate is
     // accepted on it, so that the rate is measured again wherever the increments allow.

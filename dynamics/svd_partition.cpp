@@ -8,7 +8,11 @@
 
 namespace mbsopt {
 
-void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
+void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) { partition(B, false); }
+
+void SvdPartition::updateConstraintJacobian(const Eigen::MatrixXd& B) { partition(B, true); }
+
+void SvdPartition::partition(const Eigen::MatrixXd& B, bool from_last) {
   const Eigen::Index m = B.rows(), n = B.cols();
   if (m == 0) {
     rank_ = 0;
@@ -25,7 +29,8 @@ void SvdPartition::setConstraintJacobian(const Eigen::MatrixXd& B) {
   // of the first r columns of X Σ; V₂, an orthonormal basis of their complement, from the Householder
   // QR of V₁ (its last n − r columns of Q), kept as reflectors for setIterationMatrix.
   transposed_ = B.transpose();
-  jacobi_.compute(transposed_);
+  if (from_last) jacobi_.update(transposed_);
+  else jacobi_.compute(transposed_);
   singular_values_ = jacobi_.singularValues().head(std::min(m, n));
   const double largest = singular_values_.size() > 0 ? singular_values_[0] : 0.0;  // none: no free coordinate
   rank_ = 0;

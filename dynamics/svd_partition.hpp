@@ -33,6 +33,11 @@ class SvdPartition {
 
   /// SVD of B (m × n, m may be 0), V₁ and V₂. Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
+  /// The same for a B near the last one (the next step's), its SVD started from the last one's
+  /// (OneSidedJacobiSvd::update): the same partition to round-off, in a third of the time; the
+  /// bases may differ from setConstraintJacobian(B)'s by round-off and by a rotation within equal
+  /// singular values.
+  void updateConstraintJacobian(const Eigen::MatrixXd& B);
   /// The partition of B as `other` holds it after its setConstraintJacobian(B): its factors copied,
   /// the same to the bit as setConstraintJacobian(B) here at `other`'s threshold. Forgets the
   /// factored matrix. Allocates nothing once the buffers have `other`'s sizes.
@@ -106,6 +111,8 @@ class SvdPartition {
   const Eigen::MatrixXd& constrainedDirections() const { return v1_; }
 
  private:
+  /// setConstraintJacobian (from_last false) or updateConstraintJacobian (true).
+  void partition(const Eigen::MatrixXd& B, bool from_last);
   /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat
   /// applying reflectors); from there on by the reflectors of V₁, O(n² r) instead of O(n³)
   /// (bench_dynamics: BM_ClosedChainNewmarkStep, BM_TramwaySimulation).
