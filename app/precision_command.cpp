@@ -283,7 +283,8 @@ void registerPrecisionCommand(CLI::App& app) {
   command->add_option("--variants", options->variants,
                       "Comma-separated variants (default: all): newmark (the scene's beta, gamma), damped (numerical "
                       "damping: gamma = 1/2 + alpha, beta = (gamma + 1/2)^2/4), fast-newton (accept a Newton iterate "
-                      "by contraction rate), acceleration-closure (loops closed at the acceleration level), extrapolation "
+                      "by contraction rate), fast-steps (Newton to 1e-3 of the step's truncation error, SVDs from the "
+                      "last step's: simulate --fast-steps), acceleration-closure (loops closed at the acceleration level), extrapolation "
                       "(runs at h, h/2, ..., h/K combined, K = --runs; h is its macro step; it reports its own "
                       "error estimate beside the error). With "
                       "--gradients: gradient methods (default all: " +

@@ -124,8 +124,8 @@ Quantity findQuantity(const Model& model, const std::string& name) {
 }
 
 const std::vector<std::string>& integratorVariantNames() {
-  static const std::vector<std::string> names{"newmark", "damped", "fast-newton", "acceleration-closure",
-                                              "extrapolation"};
+  static const std::vector<std::string> names{"newmark", "damped", "fast-newton", "fast-steps",
+                                              "acceleration-closure", "extrapolation"};
   return names;
 }
 
@@ -135,6 +135,8 @@ NewmarkSettings variantSettings(NewmarkSettings settings, const std::string& var
     settings.beta = 0.25 * (settings.gamma + 0.5) * (settings.gamma + 0.5);
   } else if (variant == "fast-newton") {
     settings.accept_by_contraction_rate = true;
+  } else if (variant == "fast-steps") {
+    settings = withFastSteps(settings);
   } else if (variant == "acceleration-closure") {
     settings.closure = ClosureLevel::Acceleration;
   } else if (variant == "extrapolation") {

@@ -32,11 +32,12 @@ struct ReferenceSolution {
   Eigen::MatrixXd values;  ///< times × quantities, SI units
 };
 
-/// newmark, damped, fast-newton, acceleration-closure, extrapolation.
+/// newmark, damped, fast-newton, fast-steps, acceleration-closure, extrapolation.
 const std::vector<std::string>& integratorVariantNames();
 
 /// The scene's settings changed as `variant` says: newmark keeps β and γ; damped takes γ = ½ + α,
-/// β = (γ + ½)²/4; fast-newton accepts by contraction rate; acceleration-closure closes loops at the
+/// β = (γ + ½)²/4; fast-newton accepts by contraction rate; fast-steps solves each step to a fraction of its
+/// truncation error (withFastSteps); acceleration-closure closes loops at the
 /// acceleration level. std::invalid_argument for an unknown name.
 NewmarkSettings variantSettings(NewmarkSettings settings, const std::string& variant, double alpha);
 

@@ -98,10 +98,7 @@ void run(const SimulateOptions& options) {
   for (const std::string& warning : loaded.warnings) std::cerr << warning << '\n';
   Scene& scene = loaded.scene;
   scene.settings.accept_by_contraction_rate = options.fast_newton;
-  if (options.fast_steps) {
-    scene.settings.newton_truncation_fraction = kNewtonTruncationFraction;
-    scene.settings.reuse_svd_rotations = true;
-  }
+  if (options.fast_steps) scene.settings = withFastSteps(scene.settings);
 
   const IntegrationRequest request = requestOf(options, scene);
   if (!request.accuracy && request.integrator == "extrapolation")

@@ -85,6 +85,12 @@ NewmarkSettings halvedSteps(NewmarkSettings settings) {
   return settings;
 }
 
+NewmarkSettings withFastSteps(NewmarkSettings settings) {
+  settings.newton_truncation_fraction = kNewtonTruncationFraction;
+  settings.reuse_svd_rotations = true;
+  return settings;
+}
+
 double largestStep(const NewmarkSettings& settings) {
   if (!settings.time_grid) return settings.step;
   const std::vector<double>& grid = *settings.time_grid;

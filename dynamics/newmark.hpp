@@ -117,6 +117,11 @@ struct NewmarkSettings {
   int articulated_mass_from = 24;
 };
 
+/// `settings` with each step solved only as precisely as it approximates the motion (`simulate
+/// --fast-steps`, docs/integrators.md §10): newton_truncation_fraction = kNewtonTruncationFraction and
+/// reuse_svd_rotations.
+NewmarkSettings withFastSteps(NewmarkSettings settings);
+
 /// Thrown when a step cannot be completed; says when, where and by how much.
 /// What is wrong with a set of settings: the field (named as in a scene file's `settings`:
 /// "step", "end_time", "beta", "gamma", "newton_tolerance", "max_newton_iterations",

@@ -34,7 +34,7 @@ void OneSidedJacobiSvd::update(const Eigen::MatrixXd& a) {
     return;
   }
   work_rotations_ = rotations_;
-  work_columns_.noalias() = a * rotations_;
+  work_columns_.noalias() = a.lazyProduct(rotations_);  // a few columns: no blocked product
   rotateToOrthogonal();
 }
 
@@ -49,7 +49,7 @@ void OneSidedJacobiSvd::rotateToOrthogonal() {
     frobenius_squared += squared_norms_[j];
   }
   const double negligible_squared = epsilon * epsilon * frobenius_squared;
-  const double tolerance = std::sqrt(static_cast<double>(rows)) * epsilon;
+  const double tolerance_squared = static_cast<double>(rows) * epsilon * epsilon;  // (√rows · ε)²
   sweeps_ = 0;
   bool rotated = cols > 1;
   while (rotated && sweeps_ < kMaxSweeps) {
@@ -62,7 +62,7 @@ void OneSidedJacobiSvd::rotateToOrthogonal() {
         double* column_p = work_columns_.data() + p * rows;
         double* column_q = work_columns_.data() + q * rows;
         const double gamma = dotProduct(column_p, column_q, rows);
-        if (std::abs(gamma) <= tolerance * std::sqrt(alpha) * std::sqrt(beta)) continue;
+        if (gamma * gamma <= tolerance_squared * alpha * beta) continue;  // |γ| ≤ tol √α √β, without two roots
         // The rotation that diagonalises [α γ; γ β] (Golub and Van Loan, sym.schur2): the smaller
         // root t = tan θ of t² + 2ζt − 1 = 0, ζ = (β − α)/(2γ). ζ² cannot overflow: past the tests above,
         // |ζ| < √(β/α)/(2·tolerance) ≤ 1/(2ε·tolerance) ≈ 1e31 (hypot's care cost 13% of a step).

@@ -16,12 +16,6 @@
 namespace mbsopt {
 namespace {
 
-NewmarkSettings fast(NewmarkSettings settings) {
-  settings.newton_truncation_fraction = kNewtonTruncationFraction;
-  settings.reuse_svd_rotations = true;
-  return settings;
-}
-
 /// The largest error of Andrews' squeezer's angles at 0.03 s against the published values.
 double andrewsError(const Trajectory& t) {
   const Eigen::Index last = t.time.size() - 1;
@@ -43,7 +37,7 @@ TEST(FastSteps, AndrewsSqueezerKeepsItsErrorInHalfTheNewtonIterations) {
     settings.step = h;
     settings.end_time = 0.03;
     const Trajectory exact = NewmarkIntegrator(scene.model, settings).simulate(scene.q0, scene.v0);
-    const Trajectory quick = NewmarkIntegrator(scene.model, fast(settings)).simulate(scene.q0, scene.v0);
+    const Trajectory quick = NewmarkIntegrator(scene.model, withFastSteps(settings)).simulate(scene.q0, scene.v0);
     const double e_exact = andrewsError(exact), e_fast = andrewsError(quick);
     EXPECT_GT(e_exact, 1e-5) << h;  // the discretisation's error, far above the published values' 1e-9
     EXPECT_NEAR(e_fast, e_exact, 0.02 * e_exact) << h;
@@ -74,7 +68,7 @@ TEST(FastSteps, TheFourBarKeepsItsErrorAndItsErrorEstimate) {
     request.output_step = 0.1;
     request.estimate_error = true;
     const Integration exact = integrate(scene.model, settings, scene.q0, scene.v0, request);
-    const Integration quick = integrate(scene.model, fast(settings), scene.q0, scene.v0, request);
+    const Integration quick = integrate(scene.model, withFastSteps(settings), scene.q0, scene.v0, request);
     ASSERT_EQ(quick.run.trajectory.time.size(), truth.time.size());
     const auto worst = [&](const Eigen::MatrixXd& q) { return (q - truth.q).cwiseAbs().maxCoeff(); };
     const double e_exact = worst(exact.run.trajectory.q), e_fast = worst(quick.run.trajectory.q);

@@ -362,11 +362,7 @@ struct MbsoptRun {
 MbsoptRun runMbsopt(const mbsopt::Scene& scene, const std::vector<int>& indices, int steps_per_output,
                     double output_interval, int outputs, bool fast_steps = false) {
   MbsoptRun result;
-  mbsopt::NewmarkSettings settings = scene.settings;
-  if (fast_steps) {  // `mbsopt simulate --fast-steps`
-    settings.newton_truncation_fraction = mbsopt::kNewtonTruncationFraction;
-    settings.reuse_svd_rotations = true;
-  }
+  mbsopt::NewmarkSettings settings = fast_steps ? mbsopt::withFastSteps(scene.settings) : scene.settings;
   settings.step = output_interval / steps_per_output;
   settings.end_time = output_interval * outputs;
   result.outputs.reserve(static_cast<std::size_t>(outputs));
