@@ -94,7 +94,7 @@ class PythonScene {
   /// As `mbsopt simulate` runs the scene: its own integrator at its step, or to `accuracy` (absolute,
   /// the extrapolation unless `integrator` says), rows at the multiples of `output_step` when given.
   py::dict simulate(const std::optional<std::string>& integrator, const std::optional<double>& accuracy,
-                    double output_step, bool estimate_error) const {
+                    double output_step, bool estimate_error, bool fast_steps) const {
     const Scene& s = loaded_.scene;
     IntegrationRequest request;
     request.integrator = integrator ? *integrator : accuracy ? "extrapolation" : s.integrator.name;
@@ -107,7 +107,7 @@ class PythonScene {
     {
       const py::gil_scoped_release unlocked;  // released first, so the mutex is never awaited with it
       const std::lock_guard<std::mutex> lock(mutex_);
-      integration = integrate(s.model, s.settings, s.q0, s.v0, request);
+      integration = integrate(s.model, fast_steps ? withFastSteps(s.settings) : s.settings, s.q0, s.v0, request);
     }
     const Trajectory& t = integration.run.trajectory;
     py::dict out;
@@ -272,10 +272,11 @@ PYBIND11_MODULE(mbsopt, m) {
       .def("set", &PythonScene::set, py::arg("values"),
            "Adds overrides {name: value} (model parameters, settings.*) and reloads the scene with all of them.")
       .def("simulate", &PythonScene::simulate, py::arg("integrator") = py::none(), py::arg("accuracy") = py::none(),
-           py::arg("output_step") = 0.0, py::arg("estimate_error") = false,
+           py::arg("output_step") = 0.0, py::arg("estimate_error") = false, py::arg("fast_steps") = false,
            "Simulates as `mbsopt simulate` does: the scene's integrator at its step, or to `accuracy` (absolute, "
            "in the coordinates' units; the extrapolation unless `integrator` names one), rows at the multiples "
-           "of `output_step` when given. A dict with time, coordinates, q, v, a (rows = time points), "
+           "of `output_step` when given; fast_steps=True as `--fast-steps` (each step solved to a thousandth of "
+           "its truncation error; not with the extrapolation). A dict with time, coordinates, q, v, a (rows = time points), "
            "sensor_names, sensors, newton_iterations, integrator, steps (of every Newmark run), order, and "
            "estimated_error {q, sensors} (same shapes) when there is an estimate (`accuracy`, the extrapolation, "
            "or estimate_error=True for a fixed step).")
@@ -325,12 +326,12 @@ PYBIND11_MODULE(mbsopt, m) {
   m.def(
       "simulate",
       [](const std::string& scene, const py::dict& set, const std::optional<std::string>& integrator,
-         const std::optional<double>& accuracy, double output_step, bool estimate_error) {
-        return PythonScene(scene, set).simulate(integrator, accuracy, output_step, estimate_error);
+         const std::optional<double>& accuracy, double output_step, bool estimate_error, bool fast_steps) {
+        return PythonScene(scene, set).simulate(integrator, accuracy, output_step, estimate_error, fast_steps);
       },
       py::arg("scene"), py::arg("set") = py::dict(), py::arg("integrator") = py::none(), py::arg("accuracy") = py::none(),
-      py::arg("output_step") = 0.0, py::arg("estimate_error") = false,
-      "Scene(scene, set).simulate(integrator, accuracy, output_step, estimate_error).");
+      py::arg("output_step") = 0.0, py::arg("estimate_error") = false, py::arg("fast_steps") = false,
+      "Scene(scene, set).simulate(integrator, accuracy, output_step, estimate_error, fast_steps).");
   m.def("parameters", [](const std::string& scene, const py::dict& set) { return PythonScene(scene, set).parameters(); },
         py::arg("scene"), py::arg("set") = py::dict(), "Scene(scene, set).parameters.");
   m.def(

@@ -72,6 +72,25 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         estimated = mbsopt.simulate("pendulum", set={"settings.end_time": 0.5}, estimate_error=True)
         self.assertEqual(estimated["estimated_error"]["q"].shape, estimated["q"].shape)
 
+    def test_fast_steps_are_those_of_the_command_line(self):
+        # fast_steps=True runs what `mbsopt simulate --fast-steps` runs: the same rows to the bit, in fewer
+        # Newton iterations than the default run (tests/test_fast_steps.cpp for their accuracy).
+        overrides = {"settings.step": 5e-3}
+        trajectory = mbsopt.simulate("four_bar", set=overrides, fast_steps=True)
+        default = mbsopt.simulate("four_bar", set=overrides)
+        self.assertLess(trajectory["newton_iterations"].sum(), default["newton_iterations"].sum() / 1.5)
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "four_bar.csv")
+            result = command("simulate", "four_bar", "--dt", "5e-3", "--fast-steps", "--error-estimate", "off",
+                             "--out", path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(path, newline="") as f:
+                values = numpy.array(list(csv.reader(f))[1:], dtype=float)
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]]),
+                                         values)
+        with self.assertRaisesRegex(ValueError, "not --fast-steps"):
+            mbsopt.simulate("four_bar", integrator="extrapolation", fast_steps=True)
+
     def test_parameters_and_overrides(self):
         self.assertEqual(mbsopt.parameters("tramway")["front_secondary.k"], 246000.0)
         self.assertEqual(mbsopt.parameters("tramway", set={"front_secondary.k": 1.5e5})["front_secondary.k"], 1.5e5)
