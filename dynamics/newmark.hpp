@@ -48,7 +48,7 @@ inline constexpr double kMaxTrajectoryBytes = 4.0 * 1024 * 1024 * 1024;
 /// The fraction κ of NewmarkSettings::newton_truncation_fraction that `simulate --fast-steps` and
 /// the Simbody benchmark take. Newton's errors are alike from step to step (its start is biased
 /// the same way), so they add up where the truncation errors partly cancel: on the four-bar at
-/// h = 5 ms κ = 1e-2 made the global error 17 % larger, 1e-3 0.4 % (1e-3 ms: 1 %, 0.2 %), with
+/// h = 5 ms κ = 1e-2 made the global error 17 % larger, 1e-3 0.4 % (at h = 1 ms: 1 %, 0.2 %), with
 /// 2.3 times fewer Newton iterations than at newton_tolerance (Andrews' squeezer: 2.1 times, 0.0 %).
 inline constexpr double kNewtonTruncationFraction = 1e-3;
 
@@ -85,7 +85,8 @@ struct NewmarkSettings {
   /// times the step's local truncation error |β − 1/6| h² ‖q̈ₙ₊₁ − q̈ₙ‖∞ (the estimate of
   /// Zienkiewicz and Xie): solving the step's equations more precisely than they approximate the
   /// motion buys nothing, as IDA stops Newton at a fraction of its local error test (κ: see
-  /// kNewtonTruncationFraction); Newton's iterations at coarse steps fall 2-3×. 0 (the default) solves every step to newton_tolerance: design gradients, finite differences and the
+  /// kNewtonTruncationFraction); Newton's iterations at coarse steps fall 2-3×. 0 (the default)
+  /// solves every step to newton_tolerance: design gradients, finite differences and the
   /// extrapolation need the discrete equations solved, not approximated (extrapolationDefect).
   double newton_truncation_fraction = 0.0;
   /// Start each step's SVD of B from the last step's rotations (SvdPartition::updateConstraintJacobian):

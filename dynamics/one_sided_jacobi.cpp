@@ -64,8 +64,9 @@ void OneSidedJacobiSvd::rotateToOrthogonal() {
         const double gamma = dotProduct(column_p, column_q, rows);
         if (gamma * gamma <= tolerance_squared * alpha * beta) continue;  // |γ| ≤ tol √α √β, without two roots
         // The rotation that diagonalises [α γ; γ β] (Golub and Van Loan, sym.schur2): the smaller
-        // root t = tan θ of t² + 2ζt − 1 = 0, ζ = (β − α)/(2γ). ζ² cannot overflow: past the tests above,
-        // |ζ| < √(β/α)/(2·tolerance) ≤ 1/(2ε·tolerance) ≈ 1e31 (hypot's care cost 13% of a step).
+        // root t = tan θ of t² + 2ζt − 1 = 0, ζ = (β − α)/(2γ). ζ² cannot overflow: past the tests
+        // above, |ζ| < √(max(α, β)/min(α, β))/(2·tolerance) ≤ 1/(2ε·tolerance) ≈ 1e31 (hypot's care
+        // cost 13 % of a step).
         const double zeta = (beta - alpha) / (2.0 * gamma);
         const double t = (zeta >= 0.0 ? 1.0 : -1.0) / (std::abs(zeta) + std::sqrt(1.0 + zeta * zeta));
         const double c = 1.0 / std::sqrt(1.0 + t * t), s = c * t;
