@@ -766,20 +766,16 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     // Each engine's time: the fastest of its integrators, each interpolated on its own front (on the
     // engines' joint fronts a slower run a hair more accurate than a faster one sits between it and
     // the next, and the interpolation then runs through the slower one).
-    std::optional<double> mbsopt_time, simbody_time;
-    std::string winner, mbsopt_winner;
-    for (const auto& [name, points] : series) {
-      const std::optional<double> t = timeAtError(paretoFront(points), target);
-      if (name.starts_with("mbsopt")) {
-        if (t && (!mbsopt_time || *t < *mbsopt_time)) {
-          mbsopt_time = t;
-          mbsopt_winner = name.substr(std::string("mbsopt ").size());
-        }
-      } else if (t && (!simbody_time || *t < *simbody_time)) {
-        simbody_time = t;
-        winner = name.substr(std::string("simbody ").size());
-      }
-    }
+    const auto fastest = [&](const std::string& engine) {
+      std::pair<std::optional<double>, std::string> best;  // the time and the integrator's name
+      for (const auto& [name, points] : series)
+        if (name.starts_with(engine + " "))
+          if (const std::optional<double> t = timeAtError(paretoFront(points), target); t && (!best.first || *t < *best.first))
+            best = {t, name.substr(engine.size() + 1)};
+      return best;
+    };
+    const auto [mbsopt_time, mbsopt_winner] = fastest("mbsopt");
+    const auto [simbody_time, winner] = fastest("simbody");
     const double ratio = (mbsopt_time && simbody_time) ? *simbody_time / *mbsopt_time : kNaN;
     std::string verdict = "not bracketed";
     if (std::isfinite(ratio)) verdict = ratio > 1.0 ? "mbsopt faster" : "Simbody faster";
