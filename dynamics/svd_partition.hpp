@@ -34,7 +34,7 @@ class SvdPartition {
   /// SVD of B (m × n, m may be 0), V₁ and V₂. Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
   /// The same for a B near the last one (the next step's), its SVD started from the last one's
-  /// (OneSidedJacobiSvd::update): the same partition to round-off, in a third of the time; the
+  /// (OneSidedJacobiSvd::update): the same partition to round-off, in about two thirds of the sweeps; the
   /// bases may differ from setConstraintJacobian(B)'s by round-off and by a rotation within equal
   /// singular values.
   void updateConstraintJacobian(const Eigen::MatrixXd& B);
