@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mbsopt/dynamics/extrapolation.hpp"
-
 namespace mbsopt {
 
 namespace {
@@ -17,44 +15,43 @@ double observedOrder(double coarse, double fine) {
 
 }  // namespace
 
-double DiscretisationError::largest() const {
-  return std::max(cost_error, constraint_errors.size() ? constraint_errors.cwiseAbs().maxCoeff() : 0.0);
+bool DiscretisationError::canBeActive(Eigen::Index j) const {
+  return constraint_values[j] + 2.0 * std::abs(constraint_errors[j]) >= 0.0;
 }
 
-DiscretisationError discretisationError(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
-                                        const Eigen::VectorXd& x) {
-  std::vector<double> costs;
-  std::vector<Eigen::VectorXd> constraints;
-  // Every grid ends where h's does (the first multiple of h at or after the end time; a time grid's end).
-  const auto end = [](NewmarkSettings& s) {
-    if (!s.time_grid) s.end_time = static_cast<double>(stepsToCover(s.end_time, s.step)) * s.step;
-  };
-  DesignProblem grid = problem;
-  end(grid.scene.settings);
-  for (LoadCase& c : grid.load_cases) end(c.scene.settings);
-  for (int halvings = 0; halvings < 3; ++halvings) {
-    if (halvings > 0) {
-      grid.scene.settings = halvedSteps(grid.scene.settings);
-      for (LoadCase& c : grid.load_cases) c.scene.settings = halvedSteps(c.scene.settings);
-    }
-    const DesignResponse response = evaluateDesign(grid, functionals, x);
-    costs.push_back(costFunctional(grid, response));
-    constraints.push_back(response.constraints);
-  }
+double DiscretisationError::largestActiveConstraintError() const {
+  double largest = 0.0;
+  for (Eigen::Index j = 0; j < constraint_errors.size(); ++j)
+    if (canBeActive(j)) largest = std::max(largest, std::abs(constraint_errors[j]));
+  return largest;
+}
+
+double DiscretisationError::largestConstraintError() const {
+  return constraint_errors.size() ? constraint_errors.cwiseAbs().maxCoeff() : 0.0;
+}
+
+double DiscretisationError::largest() const { return std::max(cost_error, largestActiveConstraintError()); }
+
+GridValues gridValues(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                      const Eigen::VectorXd& x) {
+  const DesignResponse response = evaluateDesign(problem, functionals, x);
+  return {costFunctional(problem, response), response.constraints};
+}
+
+DiscretisationError discretisationError(const std::array<GridValues, 3>& values) {
   DiscretisationError out;
-  out.step = largestStep(problem.scene.settings);
-  out.variable_steps = static_cast<bool>(problem.scene.settings.time_grid);
-  out.cost = costs[0];
+  out.cost = values[0].cost;
   // e_h = (ψ_h − ψ_{h/2}) / (1 − 2^{−p}), each value with the order its own differences show.
   const auto error = [](double coarse, double middle, double fine, double* order = nullptr) {
     const double p = observedOrder(coarse - middle, middle - fine);
     if (order) *order = p;
     return (coarse - middle) / (1.0 - std::pow(2.0, -p));
   };
-  out.cost_error = std::abs(error(costs[0], costs[1], costs[2], &out.order));
-  out.constraint_errors.resize(constraints[0].size());
-  for (Eigen::Index j = 0; j < constraints[0].size(); ++j)
-    out.constraint_errors[j] = error(constraints[0][j], constraints[1][j], constraints[2][j]);
+  out.cost_error = std::abs(error(values[0].cost, values[1].cost, values[2].cost, &out.order));
+  out.constraint_values = values[0].constraints;
+  out.constraint_errors.resize(values[0].constraints.size());
+  for (Eigen::Index j = 0; j < out.constraint_errors.size(); ++j)
+    out.constraint_errors[j] = error(values[0].constraints[j], values[1].constraints[j], values[2].constraints[j]);
   return out;
 }
 

@@ -32,11 +32,15 @@ nlohmann::json discretisationJson(const AccurateOptimization& accurate) {
   const auto estimate = [](const DiscretisationError& e) {
     return nlohmann::json{{"step", e.step},
                           {"variable_steps", e.variable_steps},
+                          {"break_times", e.break_times},
                           {"cost_functional", e.cost},
                           {"cost_error", e.cost_error},
                           {"order", e.order},
                           {"constraint_errors", std::vector<double>(e.constraint_errors.data(),
-                                                                     e.constraint_errors.data() + e.constraint_errors.size())}};
+                                                                     e.constraint_errors.data() + e.constraint_errors.size())},
+                          {"constraint_values", std::vector<double>(e.constraint_values.data(),
+                                                                     e.constraint_values.data() + e.constraint_values.size())},
+                          {"largest_counted", e.largest()}};
   };
   nlohmann::json out = {{"tolerance", accurate.tolerance}, {"met", accurate.met}};
   out["grid_choice"] = nlohmann::json::array();
@@ -102,9 +106,11 @@ void printIteration(const IterationRecord& r) {
 void optimize(const OptimizeOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
-  const RunChoice& c = options.choice;
+  std::string why;
+  const RunChoice c = options.accuracy > 0.0 ? accurateChoice(problem, options.choice, &why) : options.choice;
   std::printf("optimize %s with %s, %s gradients, %s formulation\n", source.path.c_str(), c.optimizer.c_str(),
               c.gradient.c_str(), c.formulation.empty() ? "the problem's" : c.formulation.c_str());
+  if (!why.empty()) std::printf("%s\n", why.c_str());
   std::optional<AccurateOptimization> accurate;
   if (options.accuracy > 0.0) {
     accurate = optimizeToAccuracy(problem, c, options.accuracy, printIteration, [](const std::string& news) {
@@ -149,11 +155,10 @@ void optimize(const OptimizeOptions& options) {
       wall += round.result.wall_time_s;
       equivalents += round.result.simulation_equivalents;
     }
-    std::printf("%s = %.8g +- %.2g %s at the optimum (discretisation error at h %s %g s, from h, h/2 and h/4: order "
-                "%.2g; constraints' up to %.2g); accuracy %g %s after %zu grid%s (%.4g simulation-equivalents, %.3g s)\n",
-                run.cost_response.c_str(), e.cost, e.cost_error, run.cost_unit.c_str(), e.variable_steps ? "<=" : "=",
-                e.step, e.order,
-                e.constraint_errors.size() ? e.constraint_errors.cwiseAbs().maxCoeff() : 0.0, accurate->tolerance,
+    std::printf("%s = %.8g +- %.2g %s at the optimum (discretisation error at %s, from h, h/2 and h/4: order "
+                "%.2g; constraints' up to %.2g, of those that can be active %.2g); accuracy %g %s after %zu grid%s (%.4g simulation-equivalents, %.3g s)\n",
+                run.cost_response.c_str(), e.cost, e.cost_error, run.cost_unit.c_str(), describeGrid(e).c_str(), e.order,
+                e.largestConstraintError(), e.largestActiveConstraintError(), accurate->tolerance,
                 accurate->met ? "met" : "NOT met", accurate->rounds.size(), accurate->rounds.size() == 1 ? "" : "s",
                 equivalents, wall);
   }
@@ -238,12 +243,16 @@ void registerOptimizeCommand(CLI::App& app) {
                       "(SI; null, as cost_functional, where the optimizer does not say which point it is)}]");
   command
       ->add_option("--accuracy", options->accuracy,
-                   "Optimize to this discretisation accuracy (the cost's functional and each transcribed constraint, "
-                   "in their own units): the time step is chosen at the start from the values on h, h/2 and h/4 and "
-                   "kept fixed while the optimizer runs (the objective stays smooth in the design); at the optimum the "
-                   "error is estimated again and, where it exceeds TOL, the step is refined and the optimizer goes "
-                   "on from the optimum (at most 4 grids). The summary gives the cost as value +- error; the JSON a "
-                   "`discretisation` record. Exit status 2 when the accuracy is not met")
+                   "Optimize to this discretisation accuracy (the cost's functional and each transcribed constraint "
+                   "that can be active, in their own units): the time step is chosen at the start from the values on "
+                   "2h, h and h/2 (h the scene's step), graded at the times a curve slider passes a jump of its "
+                   "track's curvature (one short step across each: order 2 again), and kept fixed while the "
+                   "optimizer runs (the objective stays smooth in the design); at the optimum the error is estimated "
+                   "again and, where it exceeds TOL, the grid is graded again at the optimum's break times or "
+                   "refined, and the optimizer goes on from the optimum (at most 4 grids). A problem's own "
+                   "positive_part or squared_positive_part transcription becomes grid_max unless --formulation says "
+                   "(the integrals are met only to the optimizer's feasibility tolerance). The summary gives the cost "
+                   "as value +- error; the JSON a `discretisation` record. Exit status 2 when the accuracy is not met")
       ->check(CLI::PositiveNumber);
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
