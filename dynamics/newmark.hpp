@@ -89,11 +89,11 @@ struct NewmarkSettings {
   /// solves every step to newton_tolerance: design gradients, finite differences and the
   /// extrapolation need the discrete equations solved, not approximated (extrapolationDefect).
   double newton_truncation_fraction = 0.0;
-  /// Start each step's SVD of B from the last step's rotations (SvdPartition::updateConstraintJacobian):
-  /// 1-2 fewer Jacobi sweeps, 18 % of a step on Andrews' squeezer. The partition then depends on the
-  /// steps before it, and the exact gradients, which factor B again when the run kept no step
-  /// matrices, would match those of a run that kept them to round-off instead of to the bit: off by
-  /// default, as design problems need.
+  /// Start each step's SVD of B from the last step's rotations and stop it at an orthogonality of
+  /// 1e-8 (SvdPartition::updateConstraintJacobian): 3.1 Jacobi sweeps a step instead of 6 on Andrews'
+  /// squeezer. The partition then depends on the steps before it, and the exact gradients, which factor
+  /// B again when the run kept no step matrices, would not match those of a run that kept them to the
+  /// bit: off by default, as design problems need.
   bool reuse_svd_rotations = false;
   ClosureLevel closure = ClosureLevel::Position;
   /// After every step, a run stops with an error when a closure row exceeds this: a coincidence row

@@ -21,24 +21,28 @@ void rotate(double* __restrict x, double* __restrict y, Eigen::Index n, double c
 
 }  // namespace
 
-void OneSidedJacobiSvd::compute(const Eigen::MatrixXd& a) {
+void OneSidedJacobiSvd::startFromIdentity(const Eigen::MatrixXd& a) {
   warm_starts_ = 0;
   work_columns_ = a;
   work_rotations_.setIdentity(a.cols(), a.cols());
-  rotateToOrthogonal();
 }
 
-void OneSidedJacobiSvd::update(const Eigen::MatrixXd& a) {
+void OneSidedJacobiSvd::compute(const Eigen::MatrixXd& a) {
+  startFromIdentity(a);
+  rotateToOrthogonal(0.0);
+}
+
+void OneSidedJacobiSvd::update(const Eigen::MatrixXd& a, double orthogonality) {
   if (rotations_.rows() != a.cols() || columns_.rows() != a.rows() || ++warm_starts_ >= kWarmStartsBeforeCold) {
-    compute(a);
-    return;
+    startFromIdentity(a);
+  } else {
+    work_rotations_ = rotations_;
+    work_columns_.noalias() = a.lazyProduct(rotations_);  // a few columns: no blocked product
   }
-  work_rotations_ = rotations_;
-  work_columns_.noalias() = a.lazyProduct(rotations_);  // a few columns: no blocked product
-  rotateToOrthogonal();
+  rotateToOrthogonal(orthogonality);
 }
 
-void OneSidedJacobiSvd::rotateToOrthogonal() {
+void OneSidedJacobiSvd::rotateToOrthogonal(double orthogonality) {
   const Eigen::Index rows = work_columns_.rows(), cols = work_columns_.cols();
   constexpr double epsilon = std::numeric_limits<double>::epsilon();
   squared_norms_.resize(cols);
@@ -49,7 +53,8 @@ void OneSidedJacobiSvd::rotateToOrthogonal() {
     frobenius_squared += squared_norms_[j];
   }
   const double negligible_squared = epsilon * epsilon * frobenius_squared;
-  const double tolerance_squared = static_cast<double>(rows) * epsilon * epsilon;  // (√rows · ε)²
+  const double tolerance_squared = orthogonality > 0.0 ? orthogonality * orthogonality
+                                                       : static_cast<double>(rows) * epsilon * epsilon;  // (√rows · ε)²
   sweeps_ = 0;
   bool rotated = cols > 1;
   while (rotated && sweeps_ < kMaxSweeps) {
@@ -72,10 +77,19 @@ void OneSidedJacobiSvd::rotateToOrthogonal() {
         const double c = 1.0 / std::sqrt(1.0 + t * t), s = c * t;
         rotate(column_p, column_q, rows, c, s);
         rotate(work_rotations_.data() + p * cols, work_rotations_.data() + q * cols, cols, c, s);
-        squared_norms_[p] = dotProduct(column_p, column_p, rows);
-        squared_norms_[q] = dotProduct(column_q, column_q, rows);
+        // The rotation's diagonal, α − tγ and β + tγ (sym.schur2), instead of two more dot products (as
+        // LAPACK's xGESVJ); a norm that falls below a quarter of its old value is summed afresh, where
+        // the update's round-off, ε (α + |tγ|), would no longer be small relative to it.
+        const double shift = t * gamma;
+        squared_norms_[p] = alpha - shift >= 0.25 * alpha ? alpha - shift : dotProduct(column_p, column_p, rows);
+        squared_norms_[q] = beta + shift >= 0.25 * beta ? beta + shift : dotProduct(column_q, column_q, rows);
         rotated = true;
       }
+  }
+  // Σ from the columns themselves: the updates' round-off would otherwise stay in the singular values.
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    const double* column = work_columns_.data() + j * rows;
+    squared_norms_[j] = dotProduct(column, column, rows);
   }
   // Columns in decreasing norm, equal norms in their order (std::sort: stable_sort would allocate).
   order_.resize(static_cast<std::size_t>(cols));

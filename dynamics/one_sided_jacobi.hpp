@@ -26,8 +26,12 @@ class OneSidedJacobiSvd {
   /// take about 4 instead of 6, the last one rotating nothing (Andrews' squeezer from one Newmark step
   /// to the next). Rotations on rotations lose W's orthogonality by about 3 ε per call (200 ε after
   /// 60, tests/test_one_sided_jacobi.cpp), so every kWarmStartsBeforeCold-th call, and any call whose
-  /// A has other sizes than the last, starts from I as compute() does.
-  void update(const Eigen::MatrixXd& a);
+  /// A has other sizes than the last, starts from I as compute() does. With `orthogonality` > 0 the
+  /// sweeps stop once no pair of columns is further from orthogonal than that, relative to the product
+  /// of their norms, instead of √rows · ε: W stays orthogonal and A W = X Σ exact to round-off, only
+  /// X's columns are then orthogonal to that tolerance (one sweep fewer at 1e-8, SvdPartition's
+  /// kFastOrthogonality).
+  void update(const Eigen::MatrixXd& a, double orthogonality = 0.0);
 
   /// Σ: the column norms of A W in decreasing order, one per column of A; those beyond the rank of
   /// A are round-off (and beyond min(rows, cols) there are only such).
@@ -53,7 +57,10 @@ class OneSidedJacobiSvd {
   std::vector<Eigen::Index> order_;
   int sweeps_ = 0;
   int warm_starts_ = 0;  ///< update()s since W last started from I
-  void rotateToOrthogonal();
+  /// A and W = I into the work buffers.
+  void startFromIdentity(const Eigen::MatrixXd& a);
+  /// The sweeps to `orthogonality` (0: √rows · ε).
+  void rotateToOrthogonal(double orthogonality);
 };
 
 }  // namespace mbsopt

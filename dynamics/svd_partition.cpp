@@ -29,7 +29,7 @@ void SvdPartition::partition(const Eigen::MatrixXd& B, bool from_last) {
   // of the first r columns of X Σ; V₂, an orthonormal basis of their complement, from the Householder
   // QR of V₁ (its last n − r columns of Q), kept as reflectors for setIterationMatrix.
   transposed_ = B.transpose();
-  if (from_last) jacobi_.update(transposed_);
+  if (from_last) jacobi_.update(transposed_, kFastOrthogonality);
   else jacobi_.compute(transposed_);
   singular_values_ = jacobi_.singularValues().head(std::min(m, n));
   const double largest = singular_values_.size() > 0 ? singular_values_[0] : 0.0;  // none: no free coordinate

@@ -34,9 +34,12 @@ class SvdPartition {
   /// SVD of B (m × n, m may be 0), V₁ and V₂. Call again whenever B changes.
   void setConstraintJacobian(const Eigen::MatrixXd& B);
   /// The same for a B near the last one (the next step's), its SVD started from the last one's
-  /// (OneSidedJacobiSvd::update): the same partition to round-off, in about two thirds of the sweeps; the
-  /// bases may differ from setConstraintJacobian(B)'s by round-off and by a rotation within equal
-  /// singular values.
+  /// (OneSidedJacobiSvd::update) and its sweeps stopped once the columns of V₁ are orthogonal to
+  /// kFastOrthogonality: about half the sweeps. V₂ still spans the null space of B to round-off (it
+  /// is the complement of V₁'s span, which is the range of Bᵀ whatever the sweeps did), so the
+  /// projections keep the constraints; the solves' range part, B V₁ S₁⁻¹ U₁ᵀ = I + O(kFastOrthogonality
+  /// · cond B), makes Newton converge at that rate instead of exactly. For `--fast-steps`, whose
+  /// Newton stops far above it (NewmarkSettings::reuse_svd_rotations).
   void updateConstraintJacobian(const Eigen::MatrixXd& B);
   /// The partition of B as `other` holds it after its setConstraintJacobian(B): its factors copied,
   /// the same to the bit as setConstraintJacobian(B) here at `other`'s threshold. Forgets the
@@ -113,6 +116,10 @@ class SvdPartition {
  private:
   /// setConstraintJacobian (from_last false) or updateConstraintJacobian (true).
   void partition(const Eigen::MatrixXd& B, bool from_last);
+  /// The orthogonality of updateConstraintJacobian's columns, relative to the product of their norms:
+  /// about √ε, as the rank threshold, one Jacobi sweep fewer than round-off on Andrews' squeezer (3.1
+  /// instead of 4.0 per step).
+  static constexpr double kFastOrthogonality = 1e-8;
   /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat
   /// applying reflectors); from there on by the reflectors of V₁, O(n² r) instead of O(n³)
   /// (bench_dynamics: BM_ClosedChainNewmarkStep, BM_TramwaySimulation).

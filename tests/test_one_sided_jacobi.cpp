@@ -153,5 +153,34 @@ TEST(OneSidedJacobiSvd, UpdatesANearbyMatrixFromTheLastRotationsInFewerSweeps) {
   EXPECT_EQ(warm.singularValues(), cold.singularValues());  // the same arithmetic from I
 }
 
+TEST(OneSidedJacobiSvd, UpdatesToAStatedOrthogonalityInFewerSweeps) {
+  // update(a, τ) stops when every pair of columns is orthogonal to τ relative to their norms: W stays
+  // orthogonal and A W = X to round-off as before (the rotations are exact whatever their number),
+  // the columns' products stay within τ of zero, and Σ moves only at second order in τ (the Gram
+  // matrix's off-diagonal τ σᵢσⱼ shifts its eigenvalues by τ² σᵢ²σⱼ²/(σᵢ² − σⱼ²)): 1e-12 relative.
+  constexpr double tau = 1e-8;
+  std::mt19937 generator(15);
+  const Eigen::MatrixXd a0 = randomMatrix(7, 6, generator), a1 = randomMatrix(7, 6, generator);
+  OneSidedJacobiSvd relaxed, exact;
+  int relaxed_sweeps = 0, exact_sweeps = 0;
+  for (int k = 0; k < 300; ++k) {
+    const Eigen::MatrixXd a = a0 + 1e-3 * k * a1;
+    relaxed.update(a, tau);
+    exact.update(a);
+    relaxed_sweeps += relaxed.sweeps();
+    exact_sweeps += exact.sweeps();
+    const Eigen::MatrixXd& w = relaxed.rotations();
+    const Eigen::MatrixXd& x = relaxed.orthogonalColumns();
+    const Eigen::VectorXd& sigma = relaxed.singularValues();
+    EXPECT_LT((w.transpose() * w - Eigen::MatrixXd::Identity(6, 6)).cwiseAbs().maxCoeff(), 200 * kEpsilon);
+    EXPECT_LT((a * w - x).cwiseAbs().maxCoeff(), 200 * kEpsilon * a.norm());
+    for (Eigen::Index j = 1; j < 6; ++j)
+      for (Eigen::Index i = 0; i < j; ++i)
+        EXPECT_LE(std::abs(x.col(i).dot(x.col(j))), (tau + 200 * kEpsilon) * sigma[i] * sigma[j]) << k;
+    expectSingularValuesOf(a, relaxed, 1e-12);
+  }
+  EXPECT_LT(relaxed_sweeps, 0.9 * exact_sweeps);
+}
+
 }  // namespace
 }  // namespace mbsopt
