@@ -90,8 +90,8 @@ struct NewmarkSettings {
   /// extrapolation need the discrete equations solved, not approximated (extrapolationDefect).
   double newton_truncation_fraction = 0.0;
   /// Start each step's SVD of B from the last step's rotations and stop it at an orthogonality of
-  /// 1e-8 (SvdPartition::updateConstraintJacobian): 3.1 Jacobi sweeps a step instead of 6 on Andrews'
-  /// squeezer. The partition then depends on the steps before it, and the exact gradients, which factor
+  /// 1e-8 (SvdPartition::updateConstraintJacobian): about 3 Jacobi sweeps a step instead of 6 on
+  /// Andrews' squeezer. The partition then depends on the steps before it, and the exact gradients, which factor
   /// B again when the run kept no step matrices, would not match those of a run that kept them to the
   /// bit: off by default, as design problems need.
   bool reuse_svd_rotations = false;

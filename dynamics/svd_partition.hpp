@@ -117,8 +117,8 @@ class SvdPartition {
   /// setConstraintJacobian (from_last false) or updateConstraintJacobian (true).
   void partition(const Eigen::MatrixXd& B, bool from_last);
   /// The orthogonality of updateConstraintJacobian's columns, relative to the product of their norms:
-  /// about √ε, as the rank threshold, one Jacobi sweep fewer than round-off on Andrews' squeezer (3.1
-  /// instead of 4.0 per step).
+  /// about √ε, as the rank threshold; about one Jacobi sweep fewer than to round-off (4 a step on
+  /// Andrews' squeezer).
   static constexpr double kFastOrthogonality = 1e-8;
   /// Up to this many coordinates V₂ᵀ J V₂ is formed from the explicit V₂ (a few small products beat
   /// applying reflectors); from there on by the reflectors of V₁, O(n² r) instead of O(n³)

@@ -130,13 +130,22 @@ TEST(OneSidedJacobiSvd, SolvesLeastSquaresWithMinimumNorm) {
 // cold restarts that bound its drift), and fewer sweeps than from I: the columns of A W start
 // orthogonal to O(1e-3), and the sweeps converge quadratically (cold: O(1) off-diagonal to start).
 // A matrix of other sizes starts from I.
+/// kCount matrices 7 × 6, 1e-3 of a random direction apart, as a Newmark step's constraint Jacobians.
+struct NearbyMatrices {
+  static constexpr int kCount = 300;
+  explicit NearbyMatrices(std::mt19937& generator)
+      : start(randomMatrix(7, 6, generator)), direction(randomMatrix(7, 6, generator)) {}
+  Eigen::MatrixXd operator[](int k) const { return start + 1e-3 * k * direction; }
+  Eigen::MatrixXd start, direction;
+};
+
 TEST(OneSidedJacobiSvd, UpdatesANearbyMatrixFromTheLastRotationsInFewerSweeps) {
   std::mt19937 generator(15);
-  const Eigen::MatrixXd a0 = randomMatrix(7, 6, generator), a1 = randomMatrix(7, 6, generator);
+  const NearbyMatrices matrices(generator);
   OneSidedJacobiSvd warm, cold;
   int warm_sweeps = 0, cold_sweeps = 0;
-  for (int k = 0; k < 300; ++k) {
-    const Eigen::MatrixXd a = a0 + 1e-3 * k * a1;
+  for (int k = 0; k < NearbyMatrices::kCount; ++k) {
+    const Eigen::MatrixXd a = matrices[k];
     warm.update(a);
     cold.compute(a);
     expectDecomposition(a, warm);
@@ -160,11 +169,11 @@ TEST(OneSidedJacobiSvd, UpdatesToAStatedOrthogonalityInFewerSweeps) {
   // matrix's off-diagonal τ σᵢσⱼ shifts its eigenvalues by τ² σᵢ²σⱼ²/(σᵢ² − σⱼ²)): 1e-12 relative.
   constexpr double tau = 1e-8;
   std::mt19937 generator(15);
-  const Eigen::MatrixXd a0 = randomMatrix(7, 6, generator), a1 = randomMatrix(7, 6, generator);
+  const NearbyMatrices matrices(generator);
   OneSidedJacobiSvd relaxed, exact;
   int relaxed_sweeps = 0, exact_sweeps = 0;
-  for (int k = 0; k < 300; ++k) {
-    const Eigen::MatrixXd a = a0 + 1e-3 * k * a1;
+  for (int k = 0; k < NearbyMatrices::kCount; ++k) {
+    const Eigen::MatrixXd a = matrices[k];
     relaxed.update(a, tau);
     exact.update(a);
     relaxed_sweeps += relaxed.sweeps();
