@@ -142,7 +142,6 @@ std::string describeGrid(double step, bool variable_steps, std::size_t break_tim
   return text;
 }
 
-
 std::string describe(const DiscretisationError& e) {
   char text[200];
   std::snprintf(text, sizeof text, ": cost's functional %.8g, its discretisation error %.2g (order %.2g), "

@@ -9,15 +9,19 @@ namespace mbsopt {
 
 namespace {
 
-/// The arc lengths at which the curvature of `track` jumps (one segment's end curvature differs from
-/// the next one's start).
+/// The arc lengths at which the curvature of `track` jumps: where one segment's end curvature differs
+/// from the next one's start, and at either end of the track where it is curved (beyond its ends a
+/// track runs on straight, Track::at).
 std::vector<double> curvatureJumps(const Track& track) {
   std::vector<double> jumps;
-  double s = 0.0;
   const std::vector<Track::Segment>& segments = track.segments();
-  for (std::size_t k = 0; k + 1 < segments.size(); ++k) {
+  if (segments.empty()) return jumps;
+  if (segments.front().curvature_start != 0.0) jumps.push_back(0.0);
+  double s = 0.0;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
     s += segments[k].length;
-    if (segments[k].curvature_end != segments[k + 1].curvature_start) jumps.push_back(s);
+    const double next = k + 1 < segments.size() ? segments[k + 1].curvature_start : 0.0;
+    if (segments[k].curvature_end != next) jumps.push_back(s);
   }
   return jumps;
 }
@@ -29,8 +33,10 @@ double hermiteCrossing(double s0, double ds0, double s1, double ds1, double targ
     const double x2 = x * x, x3 = x2 * x;
     return (2 * x3 - 3 * x2 + 1) * s0 + (x3 - 2 * x2 + x) * ds0 + (-2 * x3 + 3 * x2) * s1 + (x3 - x2) * ds1 - target;
   };
+  if (s0 == target) return 0.0;
+  if (s1 == target) return 1.0;
   double lo = 0.0, hi = 1.0;
-  const bool rising = at(lo) < 0.0;
+  const bool rising = s1 > s0;  // then the cubic is below the target at lo, above it at hi
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
     ((at(mid) < 0.0) == rising ? lo : hi) = mid;

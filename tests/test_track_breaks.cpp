@@ -76,6 +76,28 @@ TEST(TrackBreaks, AFreeSliderIsFoundWhereItsTrajectoryCrosses) {
   EXPECT_EQ(curvatureJumpTimes(scene.model, scene.run(0.1, 3.0)).size(), 1u);
 }
 
+TEST(TrackBreaks, ATrackThatEndsInAnArcJumpsAtItsEnd) {
+  // Beyond its end a track runs on straight: a slider driven past the end of an arc at s = 2 + 1.5
+  // feels the curvature drop to zero there.
+  Model model;
+  Track track;
+  track.straight(2.0).arc(3.0, 0.5);
+  const FrameIndex slider = model.addCurveSlider("slider", Model::ground, model.addTrack("rail", track));
+  const FrameIndex arm = model.addRevolute("arm", slider, Eigen::Vector3d::UnitZ());  // something free
+  model.addBody("bob", arm, 1.0, Eigen::Vector3d(0.0, -1.0, 0.0), 0.01 * Eigen::Matrix3d::Identity());
+  model.drive("slider", TimeFunction::polynomial({0.0, 1.0}));
+  NewmarkSettings settings;
+  settings.step = 0.1;
+  settings.end_time = 5.0;
+  const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(model.coordinateCount());
+  Eigen::VectorXd v0 = q0;
+  v0[model.coordinate("slider")] = 1.0;
+  const std::vector<double> times = curvatureJumpTimes(model, NewmarkIntegrator(model, settings).simulate(q0, v0));
+  ASSERT_EQ(times.size(), 2u);
+  EXPECT_NEAR(times[0], 2.0, 1e-12);
+  EXPECT_NEAR(times[1], 3.5, 1e-12);
+}
+
 TEST(TrackBreaks, ATrackWithClothoidsHasNoJumps) {
   Model model;
   Track track;
