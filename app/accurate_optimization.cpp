@@ -107,7 +107,7 @@ class ErrorEstimates {
     }
     DiscretisationError e = discretisationError(values);
     e.variable_steps = static_cast<bool>(s.time_grid);
-    e.step = e.variable_steps ? largestStep(onGrid(problem_, {halvings, {}}).scene.settings) : step;
+    e.step = e.variable_steps ? std::ldexp(largestStep(s), -halvings) : step;  // each halving halves every step
     e.break_times = breaks_.scene;
     return e;
   }
