@@ -65,6 +65,12 @@ struct Grid {
   BreakTimes breaks;
 };
 
+/// The largest step of `settings` refined by `halvings` (coarsened where negative: a fixed step only):
+/// each halving halves every step, a fixed one and those of a time grid alike.
+double stepAfter(const NewmarkSettings& settings, int halvings) {
+  return std::ldexp(settings.time_grid ? largestStep(settings) : settings.step, -halvings);
+}
+
 /// The problem on `grid`, every run ending at `end` (a multiple of the grid's step; NaN: where the
 /// step's runs end by themselves, the first multiple at or after the end time).
 DesignProblem onGrid(DesignProblem problem, const Grid& grid, double end = NAN) {
@@ -95,7 +101,7 @@ class ErrorEstimates {
 
   DiscretisationError at(int halvings) {
     const NewmarkSettings& s = problem_.scene.settings;
-    const double step = s.time_grid ? 0.0 : std::ldexp(s.step, -halvings);
+    const double step = stepAfter(s, halvings);
     const double end = s.time_grid ? NAN : static_cast<double>(stepsToCover(s.end_time, step)) * step;
     std::array<GridValues, 3> values;
     for (int k = 0; k < 3; ++k) {
@@ -107,7 +113,7 @@ class ErrorEstimates {
     }
     DiscretisationError e = discretisationError(values);
     e.variable_steps = static_cast<bool>(s.time_grid);
-    e.step = e.variable_steps ? std::ldexp(largestStep(s), -halvings) : step;  // each halving halves every step
+    e.step = step;
     e.break_times = breaks_.scene;
     return e;
   }
@@ -209,10 +215,8 @@ AccurateOptimization optimizeToAccuracy(const DesignProblem& problem, const RunC
   DesignProblem current = problem;
   for (int round = 0; round < kMaxAccuracyRounds; ++round) {
     const DesignProblem on_grid = onGrid(current, grid);
-    const NewmarkSettings& steps = on_grid.scene.settings;
-    say("optimizing on the grid " + describeGrid(fixed_step ? std::ldexp(problem.scene.settings.step, -grid.halvings)
-                                                            : largestStep(steps),
-                                                 !fixed_step, grid.breaks.scene.size()));
+    say("optimizing on the grid " +
+        describeGrid(stepAfter(problem.scene.settings, grid.halvings), !fixed_step, grid.breaks.scene.size()));
     out.rounds.push_back(runOptimization(on_grid, choice, on_iteration));
     const Eigen::VectorXd& x = out.rounds.back().result.x;
     out.at_optimum.push_back(ErrorEstimates(formulated, functionals, x, grid.breaks).at(grid.halvings));
@@ -227,7 +231,7 @@ AccurateOptimization optimizeToAccuracy(const DesignProblem& problem, const RunC
     // order again: the grid is graded at the optimum's break times before it is refined.
     const BreakTimes moved = grid.breaks.empty() ? BreakTimes{} : breakTimesOf(current);
     const double shift = grid.breaks.empty() ? 0.0 : breakShift(grid.breaks, moved);
-    if (shift > crossingStep(std::ldexp(problem.scene.settings.step, -grid.halvings), problem.scene.settings.end_time)) {
+    if (shift > crossingStep(stepAfter(problem.scene.settings, grid.halvings), problem.scene.settings.end_time)) {
       char text[160];
       std::snprintf(text, sizeof text, "the break times moved with the design (by up to %.2g s): the grid graded again "
                     "at the optimum's", shift);
