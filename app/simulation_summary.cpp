@@ -112,11 +112,13 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
     const ErrorTolerance warn{warn_error, warn_error};
     const double weighted = weightedErrorNorm(run.q_error, trajectory.q, warn);
     line += ", estimated global error " + format("%.2g", position) + " (" + name + " at t = " +
-            format("%.4g", trajectory.time[point]) + " s)";
+            format("%.4g", trajectory.time[point]) + " s" +
+            (run.round_off_floor ? "; round-off floor " + format("%.2g", *run.round_off_floor) + " included" : "") + ")";
     nlohmann::json estimate = {{"position", position},
                                {"position_unit", "m or rad, the coordinate's own"},
                                {"largest_at", {{"coordinate", name}, {"time", trajectory.time[point]}}},
-                               {"velocity", run.velocityError()}};
+                               {"velocity", run.velocityError()},
+                               {"round_off_floor", run.round_off_floor ? nlohmann::json(*run.round_off_floor) : nullptr}};
     if (request.accuracy) {
       const double relative = integration.control->weighted_error;
       line += ", " + format("%.2g", relative) + " of the tolerance";

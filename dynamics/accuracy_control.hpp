@@ -10,6 +10,13 @@
 //   - the attempt goes on to j + 1 while the estimates fall, up to max_runs; when they stop falling
 //     (the expansion does not hold yet at this H) or max_runs is reached, the next attempt takes the
 //     cheapest H_j (and at most that j + 1 runs), never more than 0.9 H.
+// The estimate does not see the round-off the weights amplify: once an attempt of kProbedRuns runs or
+// more is accepted on its truncation error, and Newton runs at the scene's own tolerance (a tolerance
+// of 1e-7 or less with the default 1e-10), its runs 2 … j are repeated a few ulps of step longer
+// (ExtrapolationTableau::addRoundOffProbe) and the measured floor is added to err_j. When that rejects
+// it, H_j is where err_j (H_j/H)^p plus the floor, grown as H/H_j (a run's round-off grows as its step
+// falls), meets the level aimed at; a j for which no H_j does is not tried again (fewer runs, smaller
+// weights), and when none does the run stops with AccuracyError: the tolerance is below the round-off.
 // A run that fails (Newton does not converge, a singular iteration matrix, a check after a step)
 // means H was too large for Newton: the next attempt takes H / 2, and the message of the failure is
 // kept. Newton's tolerance follows the accuracy asked for (kNewtonShareOfTolerance), as SUNDIALS ties
@@ -60,10 +67,13 @@ struct AccurateRun {
 inline constexpr double kAcceptedFraction = 0.5;
 /// Newton's tolerance in a run driven by accuracy: at least this fraction of the absolute tolerance
 /// (and never below the scene's own). Its error in q̈, a fraction of it per step, stays below the
-/// tolerance after the combination's weights (their sum is 69 for 6 runs with cut joints) and T² scale it.
+/// tolerance after the combination's weights (Σ|c_i| = 57 for the result of 6 runs with cut joints) and T² scale it.
 inline constexpr double kNewtonShareOfTolerance = 1e-3;
 /// The next attempt aims at this fraction of the accepted level.
 inline constexpr double kStepSafety = 0.7;
+/// Where a round-off floor was measured, the steps that would be accepted with each number of runs are
+/// sought up to this many times this attempt's macro step (the next attempt takes at most 0.9 times it).
+inline constexpr double kLargestStepGrowth = 4.0;
 
 /// The first attempt's macro step is the end time over this (at most the output step): coarse, so
 /// that its runs cost little, and refined from their estimates.

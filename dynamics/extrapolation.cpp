@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -32,18 +33,27 @@ Eigen::VectorXd extrapolationWeights(const std::vector<int>& exponents, int firs
   return system.fullPivLu().solve(Eigen::VectorXd::Unit(count, 0));
 }
 
-SampledRun ExtrapolationTableau::combination(int first) const {
-  if (rows() < 2) throw std::logic_error("ExtrapolationTableau: a combination needs two runs");
-  const Eigen::VectorXd c = weights(first);
-  const SampledRun& last = runs_.back();
+namespace {
+
+/// Σ c_i runs[i] (q, q̇, q̈, λ); time of the last run, `statistics` as given.
+SampledRun combined(const std::vector<SampledRun>& runs, std::size_t first, const Eigen::VectorXd& c,
+                    const IntegratorStatistics& statistics) {
+  const SampledRun& last = runs[first + static_cast<std::size_t>(c.size()) - 1];
   SampledRun sum;
   sum.time = last.time;
-  sum.statistics = statistics_;
+  sum.statistics = statistics;
   for (Eigen::MatrixXd SampledRun::*part : {&SampledRun::q, &SampledRun::v, &SampledRun::a, &SampledRun::lambda}) {
     sum.*part = Eigen::MatrixXd::Zero((last.*part).rows(), (last.*part).cols());
-    for (Eigen::Index i = 0; i < c.size(); ++i) sum.*part += c[i] * (runs_[static_cast<std::size_t>(first + i)].*part);
+    for (Eigen::Index i = 0; i < c.size(); ++i) sum.*part += c[i] * (runs[first + static_cast<std::size_t>(i)].*part);
   }
   return sum;
+}
+
+}  // namespace
+
+SampledRun ExtrapolationTableau::combination(int first) const {
+  if (rows() < 2) throw std::logic_error("ExtrapolationTableau: a combination needs two runs");
+  return combined(runs_, static_cast<std::size_t>(first), weights(first), statistics_);
 }
 
 void addStatistics(IntegratorStatistics& sum, const IntegratorStatistics& run) {
@@ -65,6 +75,44 @@ void ExtrapolationTableau::add(SampledRun run, double step) {
   steps_.push_back(step);
   addStatistics(statistics_, run.statistics);
   runs_.push_back(std::move(run));
+}
+
+void ExtrapolationTableau::addRoundOffProbe(std::vector<SampledRun> repeats) {
+  if (rows() < 2 || static_cast<int>(repeats.size()) != rows() - 1)
+    throw std::logic_error("ExtrapolationTableau: the round-off probe repeats runs 2 … rows(), made after them");
+  for (const SampledRun& run : repeats) addStatistics(statistics_, run.statistics);
+  repeats_ = std::move(repeats);
+}
+
+SampledRun ExtrapolationTableau::repeatedResult(int runs) const {
+  if (!probed() || runs < 2 || runs > probedRuns())
+    throw std::logic_error("ExtrapolationTableau: no round-off probe of " + std::to_string(runs) + " runs");
+  return combined(repeats_, 0, extrapolationWeights(exponents_, 1, runs), statistics_);
+}
+
+Eigen::MatrixXd ExtrapolationTableau::roundOffFloor(Eigen::MatrixXd SampledRun::*part, int runs) const {
+  if (runs == 0) runs = rows();
+  if (!probed()) {
+    const Eigen::MatrixXd& any = runs_.front().*part;
+    return Eigen::MatrixXd::Zero(any.rows(), any.cols());
+  }
+  // The same combination of the runs and of their repeats: independent roundings of equal size, whose
+  // difference is √2 times either's round-off.
+  const Eigen::VectorXd c = extrapolationWeights(exponents_, 1, runs);
+  const Eigen::MatrixXd difference = combined(runs_, 1, c, statistics_).*part - repeatedResult(runs).*part;
+  return runningLargest(difference, 1.0 / std::numbers::sqrt2, false);
+}
+
+double roundOffProbeStep(double step) { return step * (1.0 + kRoundOffProbeStretch); }
+
+Eigen::MatrixXd runningLargest(const Eigen::MatrixXd& difference, double amplification, bool time_along_rows) {
+  Eigen::MatrixXd out = difference.cwiseAbs();
+  if (time_along_rows) {
+    for (Eigen::Index k = 1; k < out.rows(); ++k) out.row(k) = out.row(k).cwiseMax(out.row(k - 1));
+  } else {
+    for (Eigen::Index k = 1; k < out.cols(); ++k) out.col(k) = out.col(k).cwiseMax(out.col(k - 1));
+  }
+  return amplification * out;
 }
 
 Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings, SampledRun run) {
@@ -199,7 +247,20 @@ EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& sett
     run_settings.step = H / j;
     tableau.add(sampledNewmarkRun(model, run_settings, q0, v0, j, outputs, progress), run_settings.step);
   }
+  if (runs >= kProbedRuns) tableau.addRoundOffProbe(roundOffProbe(model, settings, runs, q0, v0, outputs, progress));
   return estimatedRun(model, settings, tableau);
+}
+
+std::vector<SampledRun> roundOffProbe(const Model& model, const NewmarkSettings& macro, int runs,
+                                      const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, long outputs,
+                                      const std::function<void(double)>& progress) {
+  std::vector<SampledRun> repeats;
+  for (int i = 2; i <= runs; ++i) {
+    NewmarkSettings repeat = macro;
+    repeat.step = roundOffProbeStep(macro.step / i);
+    repeats.push_back(sampledNewmarkRun(model, repeat, q0, v0, i, outputs, progress));
+  }
+  return repeats;
 }
 
 EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, const ExtrapolationTableau& tableau) {
@@ -211,6 +272,19 @@ EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, c
   result.q_error = result.trajectory.q - check.q;  // result − exact ≈ T_{j,j−1} − T_{j,j}
   result.v_error = result.trajectory.v - check.v;
   result.sensor_error = result.trajectory.sensors - check.sensors;
+  if (tableau.probed()) {
+    // The floor added to each estimate's magnitude (its sign stays the truncation part's).
+    const auto add = [](Eigen::MatrixXd& estimate, const Eigen::MatrixXd& floor) {
+      const Eigen::ArrayXXd magnitude = estimate.array().abs() + floor.array();
+      estimate = (estimate.array() < 0.0).select(-magnitude, magnitude).matrix();
+    };
+    const Eigen::MatrixXd q_floor = tableau.roundOffFloor(&SampledRun::q);
+    add(result.q_error, q_floor);
+    add(result.v_error, tableau.roundOffFloor(&SampledRun::v));
+    const Eigen::MatrixXd repeated = sampledTrajectory(model, settings, tableau.repeatedResult(tableau.rows())).sensors;
+    add(result.sensor_error, runningLargest(result.trajectory.sensors - repeated, 1.0 / std::numbers::sqrt2, true));
+    result.round_off_floor = q_floor.size() ? q_floor.maxCoeff() : 0.0;
+  }
   return result;
 }
 

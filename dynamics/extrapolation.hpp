@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "mbsopt/dynamics/model.hpp"
@@ -57,6 +59,10 @@ struct EstimatedRun {
   Eigen::MatrixXd q_error, v_error, sensor_error;
   std::vector<double> steps;  ///< the step of every Newmark run made, in order
   int order = 2;              ///< of the result in h (2: plain Newmark)
+  /// The largest round-off floor of a coordinate included in q_error, when it was measured (an
+  /// extrapolation of kProbedRuns runs or more; ExtrapolationTableau): q_error, v_error and
+  /// sensor_error are then the truncation estimate with the floor added to its magnitude.
+  std::optional<double> round_off_floor;
 
   double positionError() const;  ///< largest estimated |error| of a coordinate (its unit: m or rad)
   double velocityError() const;  ///< largest estimated |error| of a rate
@@ -79,9 +85,9 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
 /// elimination of h² falls as h³ (docs/integrators.md).
 std::vector<int> errorExponents(const Model& model, const NewmarkSettings& settings);
 
-/// The most runs an extrapolation combines: the weights grow with them (their sum is 69 for 6 runs with
-/// cut joints, ~5e4 for 12) and multiply the runs' round-off, whose floor on closed loops is ~5e-9
-/// (docs/integrators.md §7).
+/// The most runs an extrapolation combines: the weights grow with them (with cut joints Σ|c_i| is 57 for
+/// the result of 6 runs, 518 for 8, 5e4 for 12) and multiply the runs' round-off (measured and added to
+/// the estimate: ExtrapolationTableau; docs/integrators.md §5).
 inline constexpr int kMaxExtrapolationRuns = 8;
 
 /// The weights of runs first + 1 … runs (1-based; run i at H/i) in the combination that keeps a
@@ -89,10 +95,30 @@ inline constexpr int kMaxExtrapolationRuns = 8;
 /// Σ c_i = 1, Σ c_i (1/i)^{p_m} = 0. What the tableau, and the design functionals' extrapolation, combine.
 Eigen::VectorXd extrapolationWeights(const std::vector<int>& exponents, int first, int runs);
 
+/// How much longer the round-off probe's steps are than the runs it repeats (relative): a few ulps,
+/// enough for every step to round differently, far too little to move the truncation error (by 2·16ε
+/// of it) or the time points (by 16ε·t).
+inline constexpr double kRoundOffProbeStretch = 16.0 * std::numeric_limits<double>::epsilon();
+/// Combinations of this many runs or more measure their round-off (ExtrapolationTableau::addRoundOffProbe).
+/// With fewer, the estimate sees enough of it: T_{3,2}'s weights amplify the runs' round-off 2.0 times
+/// (root sum of squares), the estimate T_{3,3} − T_{3,2} weighs it with 0.70; a result of two runs is the
+/// run at H/2 itself (docs/integrators.md §5).
+inline constexpr int kProbedRuns = 4;
+
 /// The runs at H/1, H/2, H/3, … of one macro step H, and their combinations: the j runs so far give
 /// T_{j,j−1}, the combination of runs 2 … j that cancels the first j − 2 terms of the expansion
 /// (of order p_{j−1}), and T_{j,j}, that of all j runs (of order p_j), whose difference from it is its
 /// error estimate.
+///
+/// That estimate sees the truncation error, not the round-off the weights amplify: each run carries
+/// its own round-off, independent between runs (their steps differ), and the result's is about
+/// ‖(c_i r_i)‖₂, c = weights(1) (‖c‖₂ = 33 for six runs with cut joints, where the estimate's weights,
+/// T_{j,j} − T_{j,j−1}, have 6.5). The probe repeats the runs the result combines (2 … P) at steps
+/// kRoundOffProbeStretch longer, which round differently at every step: the same combination of the
+/// repeats differs from the result by √2 times its round-off, and roundOffFloor() is that difference's
+/// largest magnitude up to each time point over √2. One run repeated does not do: on a mechanism
+/// passing singular configurations a run's round-off is set by a few passages and varies tenfold
+/// between roundings (docs/integrators.md §5).
 class ExtrapolationTableau {
  public:
   explicit ExtrapolationTableau(std::vector<int> exponents) : exponents_(std::move(exponents)) {}
@@ -112,14 +138,35 @@ class ExtrapolationTableau {
   /// extrapolationWeights(exponents, first, rows()).
   Eigen::VectorXd weights(int first) const { return extrapolationWeights(exponents_, first, rows()); }
 
+  /// Adds the round-off probe: runs 2 … rows() repeated (roundOffProbe; their statistics count).
+  /// std::logic_error unless there are rows() − 1 of them.
+  void addRoundOffProbe(std::vector<SampledRun> repeats);
+  bool probed() const { return !repeats_.empty(); }
+  /// The runs the probe repeated (its P); 0 without a probe.
+  int probedRuns() const { return probed() ? static_cast<int>(repeats_.size()) + 1 : 0; }
+  /// T_{runs,runs−1} of the repeats (2 ≤ runs ≤ probedRuns(); std::logic_error otherwise).
+  SampledRun repeatedResult(int runs) const;
+  /// The round-off floor of the result of `runs` runs (default rows(); at most probedRuns()) in `part`
+  /// (&SampledRun::q or &SampledRun::v): the largest |T_{runs,runs−1} − the same of the repeats| of each
+  /// entry up to each time point, over √2. Zero without a probe.
+  Eigen::MatrixXd roundOffFloor(Eigen::MatrixXd SampledRun::*part, int runs = 0) const;
+
  private:
   /// The runs from `first` (0-based) on, combined by weights(first).
   SampledRun combination(int first) const;
   std::vector<int> exponents_;
   std::vector<SampledRun> runs_;
+  std::vector<SampledRun> repeats_;  ///< runs 2 … P repeated by the round-off probe
   std::vector<double> steps_;
   IntegratorStatistics statistics_;
 };
+
+/// The round-off probe's step for a run at `step`: step (1 + kRoundOffProbeStretch).
+double roundOffProbeStep(double step);
+
+/// amplification × max_{s ≤ t} |difference(s)| entry by entry, time along columns (`time_along_rows`
+/// false: q, v) or along rows (true: sensors).
+Eigen::MatrixXd runningLargest(const Eigen::MatrixXd& difference, double amplification, bool time_along_rows);
 
 /// The trajectory of a sampled (and perhaps combined) state: q and q̇ moved back onto b(q) = 0 and
 /// ḃ = 0 (assemble(); for a combination of runs the correction is far below their error), the
@@ -127,7 +174,8 @@ class ExtrapolationTableau {
 Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings, SampledRun run);
 
 /// The tableau's result T_{j,j−1} with its estimated errors T_{j,j} − T_{j,j−1} (q, q̇ and sensors, each
-/// combination's q and q̇ moved back onto the closure first).
+/// combination's q and q̇ moved back onto the closure first), and with a probe the round-off floor added
+/// to their magnitudes (the sensors' from those of the result and of its repeat).
 EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, const ExtrapolationTableau& tableau);
 
 /// The number of macro steps of H that cover [0, end_time]: the last at end_time or just after it, as
@@ -137,13 +185,20 @@ long stepsToCover(double end_time, double step);
 /// `runs` (2 … kMaxExtrapolationRuns) Newmark runs at H/1, H/2, …, H/runs (H = settings.step) from
 /// (q0, v0), combined at the multiples of H (up to the first at or after settings.end_time) into
 /// T_{runs,runs−1}, of order p_{runs−1} (2(runs − 1) without cut joints, runs with them), with its
-/// error estimate T_{runs,runs−1} − T_{runs,runs}. The combined q and q̇ are moved
+/// error estimate T_{runs,runs−1} − T_{runs,runs}, and from kProbedRuns runs on its round-off floor
+/// (runs 2 … runs once more: roundOffProbe) added to the estimate's magnitude. The combined q and q̇ are moved
 /// back onto the closure and its derivative (assemble(); the error that removes is the estimate's
 /// order squared), then the sensors are evaluated there. std::invalid_argument unless β = 1/4,
 /// γ = 1/2 and the loops are closed at position level; SimulationError from a run.
 EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& settings, int runs,
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress = {});
+
+/// The round-off probe of the first `runs` runs of the macro step H = macro.step (ExtrapolationTableau):
+/// runs 2 … `runs` again, run i at roundOffProbeStep(H/i), kept at every i-th step, `outputs` of them.
+std::vector<SampledRun> roundOffProbe(const Model& model, const NewmarkSettings& macro, int runs,
+                                      const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, long outputs,
+                                      const std::function<void(double)>& progress = {});
 
 /// Why runs at h and h/2 cannot estimate a run's error (empty when they can): the symmetric scheme,
 /// whose error is even in h, every step's Newton iterate accepted on a test of its own error (not

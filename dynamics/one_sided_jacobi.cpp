@@ -60,6 +60,7 @@ void OneSidedJacobiSvd::rotateToOrthogonal(double orthogonality) {
   while (rotated && sweeps_ < kMaxSweeps) {
     rotated = false;
     ++sweeps_;
+    double largest = 0.0;  // the largest γ²/(αβ) this sweep rotated away
     for (Eigen::Index p = 0; p + 1 < cols; ++p)
       for (Eigen::Index q = p + 1; q < cols; ++q) {
         const double alpha = squared_norms_[p], beta = squared_norms_[q];
@@ -68,6 +69,7 @@ void OneSidedJacobiSvd::rotateToOrthogonal(double orthogonality) {
         double* column_q = work_columns_.data() + q * rows;
         const double gamma = dotProduct(column_p, column_q, rows);
         if (gamma * gamma <= tolerance_squared * alpha * beta) continue;  // |γ| ≤ tol √α √β, without two roots
+        largest = std::max(largest, gamma * gamma / (alpha * beta));
         // The rotation that diagonalises [α γ; γ β] (Golub and Van Loan, sym.schur2): the smaller
         // root t = tan θ of t² + 2ζt − 1 = 0, ζ = (β − α)/(2γ). ζ² cannot overflow: past the tests
         // above, |ζ| < √(max(α, β)/min(α, β))/(2·tolerance) ≤ 1/(2ε·tolerance) ≈ 1e31 (hypot's care
@@ -85,6 +87,7 @@ void OneSidedJacobiSvd::rotateToOrthogonal(double orthogonality) {
         squared_norms_[q] = beta + shift >= 0.25 * beta ? beta + shift : dotProduct(column_q, column_q, rows);
         rotated = true;
       }
+    if (rotated && orthogonality > 0.0 && confirmedByConvergence(largest, orthogonality, negligible_squared)) break;
   }
   // Σ from the columns themselves: the updates' round-off would otherwise stay in the singular values.
   for (Eigen::Index j = 0; j < cols; ++j) {
@@ -106,6 +109,25 @@ void OneSidedJacobiSvd::rotateToOrthogonal(double orthogonality) {
     rotations_.col(j) = work_rotations_.col(from);
     sigma_[j] = std::sqrt(squared_norms_[from]);
   }
+}
+
+bool OneSidedJacobiSvd::confirmedByConvergence(double largest, double orthogonality, double negligible_squared) const {
+  // Cyclic Jacobi converges quadratically once the columns' products are below the gaps between their
+  // squared norms (Wilkinson 1962): a rotation of columns p and r turns them by about μ_pr/g_pr (μ: a
+  // product relative to the norms, g: the relative gap |α − β|/√(αβ)) and so puts back μ_pr μ_rq/g_pr
+  // into a pair p, q rotated before. A sweep that rotated away at most μ leaves about μ²/g, g the
+  // smallest gap, summed over a few pairs; with kConvergenceSafety times that below the orthogonality
+  // asked for, the sweep that would only confirm it is not made.
+  if (largest > orthogonality) return false;  // μ² ≤ τ: well inside the quadratic regime
+  double gap = std::numeric_limits<double>::infinity();
+  const Eigen::Index cols = squared_norms_.size();
+  for (Eigen::Index p = 0; p + 1 < cols; ++p)
+    for (Eigen::Index q = p + 1; q < cols; ++q) {
+      const double alpha = squared_norms_[p], beta = squared_norms_[q];
+      if (alpha > negligible_squared && beta > negligible_squared)
+        gap = std::min(gap, std::abs(alpha - beta) / std::sqrt(alpha * beta));
+    }
+  return kConvergenceSafety * largest <= gap * orthogonality;
 }
 
 void OneSidedJacobiSvd::solveLeastSquares(const Eigen::VectorXd& b, double relative_threshold, Eigen::VectorXd& x,

@@ -30,7 +30,8 @@ class OneSidedJacobiSvd {
   /// sweeps stop once no pair of columns is further from orthogonal than that, relative to the product
   /// of their norms, instead of √rows · ε: W stays orthogonal and A W = X Σ exact to round-off, only
   /// X's columns are then orthogonal to that tolerance (one sweep fewer at 1e-8, SvdPartition's
-  /// kFastOrthogonality).
+  /// kFastOrthogonality), and the last sweep, which would only confirm it, is skipped where the
+  /// quadratic convergence of the sweeps already guarantees it (confirmedByConvergence).
   void update(const Eigen::MatrixXd& a, double orthogonality = 0.0);
 
   /// Σ: the column norms of A W in decreasing order, one per column of A; those beyond the rank of
@@ -49,6 +50,10 @@ class OneSidedJacobiSvd {
   int sweeps() const { return sweeps_; }
 
   static constexpr int kMaxSweeps = 30;
+  /// How far below the orthogonality asked for the convergence bound must put the next sweep's
+  /// largest product before that sweep is skipped: the bound holds up to a factor of the order of
+  /// the number of columns.
+  static constexpr double kConvergenceSafety = 10.0;
   static constexpr int kWarmStartsBeforeCold = 16;
 
  private:
@@ -61,6 +66,9 @@ class OneSidedJacobiSvd {
   void startFromIdentity(const Eigen::MatrixXd& a);
   /// The sweeps to `orthogonality` (0: √rows · ε).
   void rotateToOrthogonal(double orthogonality);
+  /// After a sweep whose largest rotated γ²/(αβ) was `largest`: whether the next is known to find every
+  /// pair within `orthogonality` without being made: kConvergenceSafety · μ²/g ≤ τ (see the .cpp).
+  bool confirmedByConvergence(double largest, double orthogonality, double negligible_squared) const;
 };
 
 }  // namespace mbsopt

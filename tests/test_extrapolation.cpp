@@ -13,6 +13,8 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <fstream>
+#include <iostream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -137,6 +139,49 @@ TEST(Extrapolation, RefusesASchemeWhoseErrorIsNotEvenInH) {
   scene = oscillator(0.1);
   scene.settings.accept_by_contraction_rate = true;
   EXPECT_THROW(estimateGlobalError(scene.model, scene.settings, Trajectory{}, scene.q0, scene.v0), std::invalid_argument);
+}
+
+/// The six runs of macro step H on `scene` (steps H/j, each stretched by `stretch`), with the
+/// round-off probe when `probe`.
+ExtrapolationTableau sixRuns(const Scene& scene, double H, double stretch, bool probe) {
+  NewmarkSettings macro = scene.settings;
+  macro.step = H * (1.0 + stretch);
+  const long outputs = stepsToCover(macro.end_time, H);
+  ExtrapolationTableau tableau(errorExponents(scene.model, macro));
+  for (int j = 1; j <= 6; ++j) {
+    NewmarkSettings run = macro;
+    run.step = macro.step / j;
+    tableau.add(sampledNewmarkRun(scene.model, run, scene.q0, scene.v0, j, outputs), run.step);
+  }
+  if (probe) tableau.addRoundOffProbe(roundOffProbe(scene.model, macro, 6, scene.q0, scene.v0, outputs));
+  return tableau;
+}
+
+TEST(RoundOffFloor, IsTheDifferenceOfTwoRoundingsOfTheSameCombination) {
+  // The same six runs of the four-bar with steps a few ulps longer (48ε: not the probe's 16ε) have the
+  // same truncation error to 1e-13 of it but round differently at every step: their result differs
+  // from the first by the combination's round-off alone, √2 times its floor if the floor is a
+  // faithful measure of it (the probe is a third rounding). Both sides are largest values over 400
+  // time points and 4 coordinates of sums of many rounding errors; the factor of 10 either way.
+  const Scene scene = sceneFile("problems/scenes/four_bar.yaml");
+  const ExtrapolationTableau a = sixRuns(scene, 0.01, 0.0, true);
+  const ExtrapolationTableau b = sixRuns(scene, 0.01, 48.0 * std::numeric_limits<double>::epsilon(), false);
+  const double difference = (a.result().q - b.result().q).cwiseAbs().maxCoeff();
+  const Eigen::MatrixXd floors = a.roundOffFloor(&SampledRun::q);
+  const double floor = floors.maxCoeff();
+  EXPECT_GT(difference, 1e-13) << "the two roundings must differ beyond the last digits for the check to mean something";
+  EXPECT_LT(difference, 10.0 * std::numbers::sqrt2 * floor);
+  EXPECT_GT(difference, 0.1 * std::numbers::sqrt2 * floor);
+  EXPECT_EQ(a.probedRuns(), 6);
+  // It never falls: the largest difference up to each time.
+  EXPECT_TRUE(((floors.rightCols(floors.cols() - 1) - floors.leftCols(floors.cols() - 1)).array() >= 0.0).all());
+  // A fixed-step extrapolation of four runs or more includes it in its estimate, and says how large it is.
+  NewmarkSettings macro = scene.settings;
+  macro.step = 0.01;
+  const EstimatedRun run = extrapolatedNewmark(scene.model, macro, 6, scene.q0, scene.v0);
+  ASSERT_TRUE(run.round_off_floor.has_value());
+  EXPECT_GE(run.positionError(), *run.round_off_floor);
+  EXPECT_FALSE(extrapolatedNewmark(scene.model, macro, kProbedRuns - 1, scene.q0, scene.v0).round_off_floor.has_value());
 }
 
 TEST(AccuracyControl, OscillatorMeetsEveryToleranceAndSaysHowWell) {
