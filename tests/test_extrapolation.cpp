@@ -13,7 +13,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <fstream>
-#include <iostream>
 #include <limits>
 #include <numbers>
 #include <sstream>
