@@ -206,7 +206,11 @@ void registerSimulateCommand(CLI::App& app) {
                        "number of runs) are chosen until the estimated global error e of every coordinate q meets "
                        "|e| <= TOL + R |q| at every output time, in the coordinate's unit (rad or m; R: "
                        "--relative-accuracy, default 0: an angle that winds up over many turns would otherwise be "
-                       "allowed a larger error with every turn); the estimate is printed")
+                       "allowed a larger error with every turn); the estimate is printed. Where Newton runs at the "
+                       "scene's tolerance (TOL <= 1e-7 by default), an extrapolation of 4 runs or more is rounded a "
+                       "second time (its runs repeated at steps a few ulps longer) and the round-off floor this "
+                       "measures is included in the estimate: about twice the work, and below the floor the run "
+                       "says so instead of claiming an accuracy it cannot have")
           ->check(CLI::PositiveNumber);
   command
       ->add_option("--relative-accuracy", options->relative_accuracy,
