@@ -126,6 +126,9 @@ class PythonScene {
       py::dict estimate;
       estimate["q"] = array(Eigen::MatrixXd(integration.run.q_error.transpose()));
       estimate["sensors"] = array(integration.run.sensor_error);
+      // The largest round-off floor included in q, where it was measured (docs/integrators.md §5).
+      estimate["round_off_floor"] =
+          integration.run.round_off_floor ? py::object(py::float_(*integration.run.round_off_floor)) : py::object(py::none());
       out["estimated_error"] = estimate;
     }
     return out;
@@ -278,7 +281,7 @@ PYBIND11_MODULE(mbsopt, m) {
            "of `output_step` when given; fast_steps=True as `--fast-steps` (each step solved to a thousandth of "
            "its truncation error; not with the extrapolation). A dict with time, coordinates, q, v, a (rows = time points), "
            "sensor_names, sensors, newton_iterations, integrator, steps (of every Newmark run), order, and "
-           "estimated_error {q, sensors} (same shapes) when there is an estimate (`accuracy`, the extrapolation, "
+           "estimated_error {q, sensors (same shapes), round_off_floor (None unless measured)} when there is an estimate (`accuracy`, the extrapolation, "
            "or estimate_error=True for a fixed step).")
       .def_property_readonly("parameters", &PythonScene::parameters, "Every model parameter by its dotted name (SI).")
       .def_property_readonly("coordinates", &PythonScene::coordinates, "The columns of q, v and a.")

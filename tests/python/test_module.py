@@ -59,6 +59,12 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         numpy.testing.assert_allclose(trajectory["time"], numpy.arange(41) * 0.1, rtol=0, atol=1e-12)
         self.assertLessEqual(numpy.abs(trajectory["estimated_error"]["q"]).max(), 0.5e-6)
         self.assertEqual(trajectory["estimated_error"]["sensors"].shape, trajectory["sensors"].shape)
+        # Newton stops at 1e-9 there, above the scene's 1e-10: no round-off floor is measured. At 1e-8 it is,
+        # and it is part of the estimate.
+        self.assertIsNone(trajectory["estimated_error"]["round_off_floor"])
+        tight = mbsopt.Scene("four_bar").simulate(accuracy=1e-8, output_step=0.1)
+        self.assertGreater(tight["estimated_error"]["round_off_floor"], 0.0)
+        self.assertLessEqual(tight["estimated_error"]["round_off_floor"], numpy.abs(tight["estimated_error"]["q"]).max())
         with tempfile.TemporaryDirectory() as directory:
             path = os.path.join(directory, "four_bar.csv")
             result = command("simulate", "four_bar", "--accuracy", "1e-6", "--output-step", "0.1", "--out", path)
