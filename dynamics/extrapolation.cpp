@@ -49,6 +49,19 @@ SampledRun combined(const std::vector<SampledRun>& runs, std::size_t first, cons
   return sum;
 }
 
+/// The round-off floor from the difference of two roundings: max_{s ≤ t} |difference(s)| / √2 entry by
+/// entry (√2: the difference holds both roundings), time along columns (`time_along_rows` false: q, v)
+/// or along rows (true: sensors).
+Eigen::MatrixXd floorOfTwoRoundings(const Eigen::MatrixXd& difference, bool time_along_rows) {
+  Eigen::MatrixXd out = difference.cwiseAbs();
+  if (time_along_rows) {
+    for (Eigen::Index k = 1; k < out.rows(); ++k) out.row(k) = out.row(k).cwiseMax(out.row(k - 1));
+  } else {
+    for (Eigen::Index k = 1; k < out.cols(); ++k) out.col(k) = out.col(k).cwiseMax(out.col(k - 1));
+  }
+  return out / std::numbers::sqrt2;
+}
+
 }  // namespace
 
 SampledRun ExtrapolationTableau::combination(int first) const {
@@ -96,23 +109,9 @@ Eigen::MatrixXd ExtrapolationTableau::roundOffFloor(Eigen::MatrixXd SampledRun::
     const Eigen::MatrixXd& any = runs_.front().*part;
     return Eigen::MatrixXd::Zero(any.rows(), any.cols());
   }
-  // The same combination of the runs and of their repeats: independent roundings of equal size, whose
-  // difference is √2 times either's round-off.
+  // The same combination of the runs and of their repeats: independent roundings of equal size.
   const Eigen::VectorXd c = extrapolationWeights(exponents_, 1, runs);
-  const Eigen::MatrixXd difference = combined(runs_, 1, c, statistics_).*part - repeatedResult(runs).*part;
-  return runningLargest(difference, 1.0 / std::numbers::sqrt2, false);
-}
-
-double roundOffProbeStep(double step) { return step * (1.0 + kRoundOffProbeStretch); }
-
-Eigen::MatrixXd runningLargest(const Eigen::MatrixXd& difference, double amplification, bool time_along_rows) {
-  Eigen::MatrixXd out = difference.cwiseAbs();
-  if (time_along_rows) {
-    for (Eigen::Index k = 1; k < out.rows(); ++k) out.row(k) = out.row(k).cwiseMax(out.row(k - 1));
-  } else {
-    for (Eigen::Index k = 1; k < out.cols(); ++k) out.col(k) = out.col(k).cwiseMax(out.col(k - 1));
-  }
-  return amplification * out;
+  return floorOfTwoRoundings(combined(runs_, 1, c, statistics_).*part - repeatedResult(runs).*part, false);
 }
 
 Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings, SampledRun run) {
@@ -257,7 +256,7 @@ std::vector<SampledRun> roundOffProbe(const Model& model, const NewmarkSettings&
   std::vector<SampledRun> repeats;
   for (int i = 2; i <= runs; ++i) {
     NewmarkSettings repeat = macro;
-    repeat.step = roundOffProbeStep(macro.step / i);
+    repeat.step = macro.step / i * (1.0 + kRoundOffProbeStretch);
     repeats.push_back(sampledNewmarkRun(model, repeat, q0, v0, i, outputs, progress));
   }
   return repeats;
@@ -282,7 +281,7 @@ EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, c
     add(result.q_error, q_floor);
     add(result.v_error, tableau.roundOffFloor(&SampledRun::v));
     const Eigen::MatrixXd repeated = sampledTrajectory(model, settings, tableau.repeatedResult(tableau.rows())).sensors;
-    add(result.sensor_error, runningLargest(result.trajectory.sensors - repeated, 1.0 / std::numbers::sqrt2, true));
+    add(result.sensor_error, floorOfTwoRoundings(result.trajectory.sensors - repeated, true));
     result.round_off_floor = q_floor.size() ? q_floor.maxCoeff() : 0.0;
   }
   return result;

@@ -161,12 +161,6 @@ class ExtrapolationTableau {
   IntegratorStatistics statistics_;
 };
 
-/// The round-off probe's step for a run at `step`: step (1 + kRoundOffProbeStretch).
-double roundOffProbeStep(double step);
-
-/// amplification × max_{s ≤ t} |difference(s)| entry by entry, time along columns (`time_along_rows`
-/// false: q, v) or along rows (true: sensors).
-Eigen::MatrixXd runningLargest(const Eigen::MatrixXd& difference, double amplification, bool time_along_rows);
 
 /// The trajectory of a sampled (and perhaps combined) state: q and q̇ moved back onto b(q) = 0 and
 /// ḃ = 0 (assemble(); for a combination of runs the correction is far below their error), the
@@ -195,7 +189,7 @@ EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& sett
                                  const std::function<void(double)>& progress = {});
 
 /// The round-off probe of the first `runs` runs of the macro step H = macro.step (ExtrapolationTableau):
-/// runs 2 … `runs` again, run i at roundOffProbeStep(H/i), kept at every i-th step, `outputs` of them.
+/// runs 2 … `runs` again, run i at (H/i)(1 + kRoundOffProbeStretch), kept at every i-th step, `outputs` of them.
 std::vector<SampledRun> roundOffProbe(const Model& model, const NewmarkSettings& macro, int runs,
                                       const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, long outputs,
                                       const std::function<void(double)>& progress = {});
