@@ -66,21 +66,28 @@ struct Grid {
 };
 
 /// The largest step of `settings` refined by `halvings` (coarsened where negative: a fixed step only):
-/// each halving halves every step, a fixed one and those of a time grid alike.
+/// each halving halves every step, a fixed one (the scene's uniformStep, which ends at the end time) and
+/// those of a time grid alike.
 double stepAfter(const NewmarkSettings& settings, int halvings) {
-  return std::ldexp(settings.time_grid ? largestStep(settings) : settings.step, -halvings);
+  return std::ldexp(settings.time_grid ? largestStep(settings) : uniformStep(settings), -halvings);
 }
 
-/// The problem on `grid`, every run ending at `end` (a multiple of the grid's step; NaN: where the
-/// step's runs end by themselves, the first multiple at or after the end time).
-DesignProblem onGrid(DesignProblem problem, const Grid& grid, double end = NAN) {
+/// Whether the grid `halvings` from the scene's ends at the end time with a step exactly 2^−halvings
+/// times the scene's: always when refined; coarsened, when the scene's steps pair up that often.
+bool nestedGrid(const NewmarkSettings& settings, int halvings) {
+  if (halvings >= 0) return true;
+  if (settings.time_grid) return false;
+  return stepsToCover(settings.end_time, settings.step) % (1L << -halvings) == 0;
+}
+
+/// The problem on `grid` (nestedGrid: every run ends at the end time).
+DesignProblem onGrid(DesignProblem problem, const Grid& grid) {
   const auto place = [&](NewmarkSettings& s, const std::vector<double>& breaks) {
     if (s.time_grid) {
       for (int k = 0; k < grid.halvings; ++k) s = halvedSteps(s);
       return;
     }
-    s.step = std::ldexp(s.step, -grid.halvings);
-    if (!std::isnan(end)) s.end_time = end;
+    s.step = stepAfter(s, grid.halvings);
     if (!breaks.empty()) s.time_grid = gradedTimeGrid(s.step, s.end_time, breaks);
   };
   place(problem.scene.settings, grid.breaks.scene);
@@ -90,7 +97,7 @@ DesignProblem onGrid(DesignProblem problem, const Grid& grid, double end = NAN) 
 }
 
 /// The discretisation errors at one scaled point x of the problem on the grids of a procedure: each
-/// grid's values with those of the grid refined once and twice, all ending where the coarsest does.
+/// grid's values with those of the grid refined once and twice, all ending at the end time.
 /// Values already computed are kept, so that the grid search at the start, which doubles h, pays for one
 /// new grid per estimate, not three.
 class ErrorEstimates {
@@ -102,13 +109,11 @@ class ErrorEstimates {
   DiscretisationError at(int halvings) {
     const NewmarkSettings& s = problem_.scene.settings;
     const double step = stepAfter(s, halvings);
-    const double end = s.time_grid ? NAN : static_cast<double>(stepsToCover(s.end_time, step)) * step;
     std::array<GridValues, 3> values;
     for (int k = 0; k < 3; ++k) {
-      const auto key = std::make_pair(halvings + k, std::isnan(end) ? 0.0 : end);
-      auto found = values_.find(key);
+      auto found = values_.find(halvings + k);
       if (found == values_.end())
-        found = values_.emplace(key, gridValues(onGrid(problem_, {halvings + k, breaks_}, end), functionals_, x_)).first;
+        found = values_.emplace(halvings + k, gridValues(onGrid(problem_, {halvings + k, breaks_}), functionals_, x_)).first;
       values[static_cast<std::size_t>(k)] = found->second;
     }
     DiscretisationError e = discretisationError(values);
@@ -123,7 +128,7 @@ class ErrorEstimates {
   const std::vector<ConstraintFunctional>& functionals_;
   Eigen::VectorXd x_;
   BreakTimes breaks_;
-  std::map<std::pair<int, double>, GridValues> values_;
+  std::map<int, GridValues> values_;  ///< by halvings
 };
 
 /// The problem starting at the scaled point x: the design variables' values in its scene, b_{k+1}'s
@@ -192,11 +197,13 @@ AccurateOptimization optimizeToAccuracy(const DesignProblem& problem, const RunC
   const std::vector<ConstraintFunctional> functionals = transcribe(formulated);
   // The first grid: from twice the scene's step (its estimate takes the runs at 2h, h and h/2), halve
   // it until the estimate at the start is within the margin, or double it while the next coarser grid
-  // would still be (a variable step sequence, the steps an adaptive run chose at
-  // settings.local_tolerance, starts as it is and is only refined). A fixed step is graded at the
-  // times the accelerations jump at the start (gradedTimeGrid).
-  const bool fixed_step = !problem.scene.settings.time_grid;
-  Grid grid{fixed_step ? -1 : 0, breakTimesOf(formulated)};
+  // would still be, as long as the doubled steps still end at the end time (nestedGrid; a variable
+  // step sequence, the steps an adaptive run chose at settings.local_tolerance, starts as it is and is
+  // only refined). A fixed step is graded at the times the accelerations jump at the start
+  // (gradedTimeGrid).
+  const NewmarkSettings& scene = problem.scene.settings;
+  const bool fixed_step = !scene.time_grid;
+  Grid grid{nestedGrid(scene, -1) ? -1 : 0, breakTimesOf(formulated)};
   ErrorEstimates at_start(formulated, functionals, initialPoint(formulated), grid.breaks);
   bool refined = false;
   for (int change = 0; change < kMaxGridChanges; ++change) {
@@ -206,7 +213,8 @@ AccurateOptimization optimizeToAccuracy(const DesignProblem& problem, const RunC
     if (e.largest() > kGridMargin * tolerance) {
       grid.halvings += halvingsFor(e.largest(), e.order, tolerance);
       refined = true;
-    } else if (fixed_step && !refined && e.largest() * std::pow(2.0, e.order) <= kGridMargin * tolerance) {
+    } else if (nestedGrid(scene, grid.halvings - 1) && !refined &&
+               e.largest() * std::pow(2.0, e.order) <= kGridMargin * tolerance) {
       --grid.halvings;
     } else {
       break;

@@ -233,9 +233,13 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.start = designInSi(nlp.problem(), nlp.start());
   if (run.result.x.size() == 0) run.result.x = nlp.start();  // nothing was evaluated (its error follows below)
   run.design = designInSi(nlp.problem(), run.result.x);
-  for (std::size_t k = 0; k < run.result.history.size(); ++k)
-    if (run.result.history[k].x.size() == run.result.x.size() && run.result.history[k].x == run.result.x)
-      run.reported_iteration = run.result.history[k].iteration;
+  const auto recordOf = [&](const Eigen::VectorXd& x) {
+    int found = -1;
+    for (const IterationRecord& h : run.result.history)
+      if (h.x.size() == x.size() && h.x == x) found = h.iteration;
+    return found;
+  };
+  run.reported_iteration = recordOf(run.result.x);
   for (const IterationRecord& h : run.result.history)
     run.iterate_designs.push_back(h.x.size() > 0 ? designInSi(nlp.problem(), h.x) : std::vector<double>{});
   // The points the run knows are not simulated again; copies, as a new simulation may push one out.
@@ -247,6 +251,10 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.simulations_ahead_used = nlp.simulationsAheadUsed();
   run.responses = responses(nlp, final);
   run.verdicts = constraintVerdicts(nlp.problem(), final);
+  if (run.result.first_order) {
+    run.bound_worth = boundWorth(nlp.problem(), nlp.functionals(), final, run.result.first_order->multipliers);
+    run.tolerance_worth = toleranceWorth(run.bound_worth);
+  }
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
   run.cost_response = costKey(nlp.problem());
   run.cost_sensor = nlp.problem().design.cost.sensor;
@@ -255,17 +263,25 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const Sensor& sensor = model.sensors()[static_cast<std::size_t>(cost_sensor)];
   run.cost_unit = measureUnit(model, sensor, nlp.problem().design.cost.of);
   for (const IterationRecord& h : run.result.history) run.iterate_costs.push_back(inUnits(sensor, h.reported_cost));
-  // An algorithm's own convergence test knows only the transcription: its "converged" stands only
-  // where every constraint is met in its own units.
-  if (run.result.status == OptimizerStatus::Converged && !feasible(run)) {
-    const auto unmet = std::find_if(run.verdicts.begin(), run.verdicts.end(), [](const ConstraintVerdict& v) { return !v.met(); });
-    run.result.status = OptimizerStatus::Failed;
-    std::ostringstream why;
-    why << "; its own test passed, but " << unmet->name << " = " << std::setprecision(8) << unmet->value << ' '
-        << unmet->unit << " is " << shortNumber(unmet->excess) << " beyond its " << (unmet->equality ? "target " : "bound ")
-        << shortNumber(unmet->bound) << ", more than its tolerance " << shortNumber(unmet->tolerance)
-        << " (the formulation's transcription is not the constraint)";
-    run.result.message += why.str();
+  if (run.result.cheapest_x.size() > 0 && run.result.cheapest_x != run.result.x) {
+    run.cheapest_cost = inUnits(sensor, run.result.cheapest_cost);
+    run.cheapest_iteration = recordOf(run.result.cheapest_x);
+  }
+  // An algorithm's own convergence test knows only the transcription: where it passed at a point that
+  // breaks a constraint in its own units, the run failed (EvaluationCache::conclude), and says which.
+  const Eigen::VectorXd& final_point = run.result.final_point;
+  if (run.result.status == OptimizerStatus::Failed && final_point.size() == run.result.x.size() &&
+      final_point != run.result.x) {
+    const std::vector<ConstraintVerdict> at_final = constraintVerdicts(nlp.problem(), nlp.simulation(final_point));
+    const auto unmet = std::find_if(at_final.begin(), at_final.end(), [](const ConstraintVerdict& v) { return !v.met(); });
+    if (unmet != at_final.end()) {
+      std::ostringstream why;
+      why << ": there " << unmet->name << " = " << std::setprecision(8) << unmet->value << ' ' << unmet->unit << " is "
+          << shortNumber(unmet->excess) << " beyond its " << (unmet->equality ? "target " : "bound ")
+          << shortNumber(unmet->bound) << ", more than its tolerance " << shortNumber(unmet->tolerance)
+          << " (the formulation's transcription is not the constraint)";
+      run.result.message += why.str();
+    }
   }
   // The cost's history in the load case where the final design's cost is largest (the only one without cases).
   std::size_t worst = 0;
@@ -300,6 +316,32 @@ void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& 
     }
     choice.gradient_cost = measured[method];
   }
+}
+
+const char* const kReportedPointRule =
+    "converged: the optimizer's final point, where it converged there and the point meets every constraint within its "
+    "tolerance in the problem's own units; otherwise cheapest_feasible: the point of least cost (the cost's own "
+    "functional, not b_{k+1}) among those it evaluated that meet them, the latest of equals; least_infeasible where none "
+    "does";
+
+nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::string& cost_unit) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const BoundWorth& w : worth) {
+    const char* kind = w.kind == BoundWorth::Kind::Constraint ? "constraint"
+                       : w.kind == BoundWorth::Kind::LowerBound ? "lower_bound"
+                                                                : "upper_bound";
+    out.push_back({{"name", w.name},
+                   {"kind", kind},
+                   {"bound", w.bound},
+                   {"unit", w.unit.empty() ? "SI" : w.unit},
+                   {"equality", w.equality},
+                   {"d_cost_d_bound", w.derivative},
+                   {"relaxing_lowers_cost_by", w.relaxingLowersCostBy()},
+                   {"relaxed_by", w.equality ? "neither" : w.raising_relaxes ? "raising" : "lowering"},
+                   {"cost_unit_per_unit", cost_unit + " per " + (w.unit.empty() ? "SI unit" : w.unit)},
+                   {"tolerance", w.tolerance}});
+  }
+  return out;
 }
 
 nlohmann::json verdictsJson(const std::vector<ConstraintVerdict>& verdicts) {
@@ -366,7 +408,13 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
                                {"final", run.responses[run.cost_response]}}},
           {"reported_iterate", {{"iteration", run.reported_iteration < 0 ? nlohmann::json(nullptr)
                                                                          : nlohmann::json(run.reported_iteration)},
-                                {"rule", "the best point evaluated: feasible first, then the lowest b_{k+1}"}}},
+                                {"point", toString(r.reported)},
+                                {"rule", kReportedPointRule},
+                                {"cheapest_feasible_cost", finiteOrNull(run.cheapest_cost)},
+                                {"cheapest_feasible_iteration", run.cheapest_iteration < 0 ? nlohmann::json(nullptr)
+                                                                                           : nlohmann::json(run.cheapest_iteration)}}},
+          {"bound_worth", boundWorthJson(run.bound_worth, run.cost_unit)},
+          {"tolerance_worth", finiteOrNull(run.tolerance_worth)},
           {"max_violation", r.max_violation},
           {"iterations", r.iterations},
           {"simulations", r.value_evaluations},

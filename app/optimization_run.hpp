@@ -14,7 +14,8 @@
 
 #include "app/gnuplot.hpp"
 #include "mbsopt/optimizers/optimizer.hpp"
-#include "app/constraint_verdicts.hpp"
+#include "mbsopt/problems/bound_worth.hpp"
+#include "mbsopt/sensitivity/constraint_verdicts.hpp"
 #include "mbsopt/sensitivity/design_problem.hpp"
 #include "mbsopt/sensitivity/thread_budget.hpp"
 
@@ -55,9 +56,19 @@ struct OptimizationRun {
   std::vector<DesignVariable> variables;  ///< the design variables: parameter names, bounds and scales (SI)
   ArtificialVariable artificial;         ///< b_{k+1}'s start, bounds and scale
   std::vector<double> start;  ///< the design variables at the start in SI units, without b_{k+1}
-  /// The history's record of the reported point (result.x: the best found, feasible first, then
-  /// lowest cost), or −1 where no record holds it.
+  /// The history's record of the reported point (result.x, OptimizerResult::reported says which), or
+  /// −1 where no record holds it.
   int reported_iteration = -1;
+  /// Where the reported point is the converged one: the cheapest feasible point evaluated, its own cost
+  /// (cost_response's unit) and its record (−1: none holds it), when it is another point; NaN and −1
+  /// otherwise.
+  double cheapest_cost = std::numeric_limits<double>::quiet_NaN();
+  int cheapest_iteration = -1;
+  /// Where the optimizer's multipliers are known at the reported point (a converged run): what
+  /// relaxing each active bound is worth (bound_worth.hpp), and what the constraints' tolerances are
+  /// worth together (toleranceWorth; NaN without multipliers).
+  std::vector<BoundWorth> bound_worth;
+  double tolerance_worth = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> design;  ///< the final design variables in SI units, without b_{k+1}
   /// The design (SI, without b_{k+1}) at each record of result.history; empty where the optimizer
   /// did not say which point an iteration was.
@@ -139,8 +150,15 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
 /// at once, whose timings would disturb one another, count their gradients alike.
 void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& choices);
 
+/// Which point a run reports, in words (reported_iterate.rule of the JSON record, the commands' --help).
+extern const char* const kReportedPointRule;
+
 /// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
+/// What relaxing each active bound is worth, as JSON: [{name, kind (constraint, lower_bound,
+/// upper_bound), bound, unit, equality, d_cost_d_bound, relaxing_lowers_cost_by, relaxed_by,
+/// cost_unit_per_unit, tolerance}].
+nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::string& cost_unit);
 /// The verdicts as JSON: [{name, unit, value, bound | equals, excess, tolerance, met}].
 nlohmann::json verdictsJson(const std::vector<ConstraintVerdict>& verdicts);
 

@@ -97,6 +97,59 @@ void printVerdicts(const std::vector<ConstraintVerdict>& verdicts) {
   }));
 }
 
+/// Which point the summary reports, and why (OptimizerResult::reported).
+void printReportedPoint(const OptimizationRun& run) {
+  const std::string iteration = run.reported_iteration >= 0 ? ", iteration " + std::to_string(run.reported_iteration) : "";
+  switch (run.result.reported) {
+    case ReportedPoint::Converged:
+      std::printf("reported: the converged point%s, where the optimizer's own test passed and every constraint holds "
+                  "within its tolerance\n", iteration.c_str());
+      if (!std::isnan(run.cheapest_cost)) {
+        const double below = run.responses[run.cost_response].get<double>() - run.cheapest_cost;
+        std::printf("  the cheapest feasible point evaluated (%s) has %s %.3g %s lower",
+                    run.cheapest_iteration >= 0 ? ("iteration " + std::to_string(run.cheapest_iteration)).c_str()
+                                                : "a trial point",
+                    run.cost_response.c_str(), below, run.cost_unit.c_str());
+        if (!std::isnan(run.tolerance_worth))
+          std::printf(", %s the %.3g %s the constraints' tolerances are worth here", below <= run.tolerance_worth ? "within" : "MORE than",
+                      run.tolerance_worth, run.cost_unit.c_str());
+        std::printf("\n");
+      }
+      return;
+    case ReportedPoint::CheapestFeasible:
+      std::printf("reported: the cheapest feasible point evaluated%s (least %s among the points that meet every "
+                  "constraint within its tolerance; the run did not converge)\n",
+                  iteration.c_str(), run.cost_response.c_str());
+      return;
+    case ReportedPoint::LeastInfeasible:
+      std::printf("reported: the least infeasible point evaluated%s (no point evaluated meets every constraint)\n",
+                  iteration.c_str());
+      return;
+  }
+}
+
+/// What relaxing each active bound is worth at the reported point (a converged run's multipliers).
+void printBoundWorth(const OptimizationRun& run) {
+  if (!run.result.first_order) return;
+  if (run.bound_worth.empty()) {
+    std::printf("no constraint or bound is active at the optimum: relaxing one is worth nothing\n");
+    return;
+  }
+  std::printf("what relaxing each active bound is worth at the optimum (from the optimizer's multipliers, the paper's "
+              "(7)-(8)):\n");
+  for (const BoundWorth& w : run.bound_worth) {
+    const std::string unit = w.unit.empty() ? "SI unit" : w.unit;
+    const char* relation = w.equality ? "=" : w.raising_relaxes ? "<=" : ">=";
+    if (w.equality)
+      std::printf("  %s %s %.8g %s: raising it by one %s changes %s by %.4g %s\n", w.name.c_str(), relation, w.bound,
+                  w.unit.c_str(), unit.c_str(), run.cost_response.c_str(), w.derivative, run.cost_unit.c_str());
+    else
+      std::printf("  %s %s %.8g %s: %s it by one %s lowers %s by %.4g %s\n", w.name.c_str(), relation, w.bound,
+                  w.unit.c_str(), w.raising_relaxes ? "raising" : "lowering", unit.c_str(), run.cost_response.c_str(),
+                  w.relaxingLowersCostBy(), run.cost_unit.c_str());
+  }
+}
+
 void printIteration(const IterationRecord& r) {
   std::printf("%5d  %14.8e  %11.3e  %10.3e  %6ld  %6ld\n", r.iteration, r.cost, r.max_violation, r.step,
               r.value_evaluations, r.gradient_evaluations);
@@ -133,9 +186,7 @@ void optimize(const OptimizeOptions& options) {
               r.cost, r.max_violation, r.iterations, r.value_evaluations, r.gradient_evaluations,
               r.simulation_equivalents, run.gradient_cost, run.gradient_cost_source.c_str(), run.thread_time_simulations,
               r.wall_time_s);
-  if (run.reported_iteration >= 0)
-    std::printf("reported: the best point evaluated (feasible first, then the lowest b_{k+1}), iteration %d\n",
-                run.reported_iteration);
+  printReportedPoint(run);
   if (run.simulations_ahead > 0)
     std::printf("%ld of the simulations ran ahead on a spare core, while another point was evaluated (%ld more ran "
                 "ahead for a point not asked for after all)\n",
@@ -163,6 +214,7 @@ void optimize(const OptimizeOptions& options) {
                 equivalents, wall);
   }
   printVerdicts(run.verdicts);
+  printBoundWorth(run);
   nlohmann::json record = toJson(run, source.path);
   if (accurate) record["discretisation"] = discretisationJson(*accurate);
   if (!options.json.empty())

@@ -129,8 +129,9 @@ void integratorStudy(const PrecisionOptions& options, const SceneSource& source,
   for (const std::string& warning : loaded.warnings) std::cerr << warning << '\n';
   const Scene& scene = loaded.scene;
   const double h = scene.settings.step, end_time = scene.settings.end_time;
-  const std::vector<double> steps = ladder(options.steps.empty() ? std::vector{8 * h, 4 * h, 2 * h, h, h / 2}
-                                                                  : options.steps);
+  // Each step as the runs take it: the largest at most it that ends at the end time (uniformStep).
+  std::vector<double> steps = ladder(options.steps.empty() ? std::vector{8 * h, 4 * h, 2 * h, h, h / 2} : options.steps);
+  for (double& step : steps) step = uniformStep(step, end_time);
   const std::vector<std::string> variants = options.variants.empty() ? integratorVariantNames() : options.variants;
   for (const std::string& variant : variants) variantSettings(scene.settings, variant, options.alpha);  // names known?
   const int repeat = options.repeat.value_or(kIntegratorRepeat);
@@ -147,7 +148,7 @@ void integratorStudy(const PrecisionOptions& options, const SceneSource& source,
     }
     reference_json = {{"kind", "file"}, {"file", reference.file}};
   } else {
-    const double step = options.reference_step.value_or(steps.back() / 16);
+    const double step = uniformStep(options.reference_step.value_or(steps.back() / 16), end_time);
     // Beside the extrapolation, a plain run at h/16 is no reference (the four-bar's at 1e-4 s is 6e-7
     // off, the extrapolation's error at 1e-3 s is 1e-8): it is then an extrapolation of 3 runs itself.
     const bool extrapolated = std::find(variants.begin(), variants.end(), "extrapolation") != variants.end() &&

@@ -16,11 +16,6 @@ namespace mbsopt {
 
 namespace {
 
-/// Steps of a run, as NewmarkIntegrator::simulate counts them: the grid covers [0, end_time].
-long stepCount(double step, double end_time) {
-  return std::max(1L, static_cast<long>(std::ceil(end_time / step - 1e-9)));
-}
-
 /// The index k of t = k·h on the grid of step h (within round-off), or −1.
 long gridIndex(double t, double step) {
   const double ratio = t / step;
@@ -63,7 +58,7 @@ SampledTrajectory integrateSampled(const Scene& scene, const NewmarkSettings& se
     }
   };
   keep(0);
-  const long steps = stepCount(settings.step, settings.end_time);
+  const long steps = stepsToCover(settings.end_time, settings.step);
   for (long k = 1; k <= steps; ++k) {
     integrator.step();
     keep(k);
@@ -170,7 +165,7 @@ void requireOnGrids(const Eigen::VectorXd& times, const std::vector<double>& ste
         throw std::invalid_argument("the reference time t = " + formatNumber(t) + " s is not on the grid of the step " +
                                     formatNumber(h) + " s (t/h = " + formatNumber(t / h) +
                                     "): give reference rows at multiples of every swept step");
-      if (k > stepCount(h, end_time))
+      if (k > stepsToCover(end_time, h))
         throw std::invalid_argument("the reference time t = " + formatNumber(t) +
                                     " s lies after the end of the runs (" + formatNumber(end_time) + " s)");
     }

@@ -53,7 +53,7 @@ IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene)
       options.local_tolerance > 0.0 ? options.local_tolerance : scene.integrator.local_tolerance, 0.0};
   request.output_step = options.output_step;
   request.runs = options.runs > 0 ? options.runs : scene.integrator.extrapolation_runs;
-  const double steps = std::ceil(settings.end_time / settings.step - 1e-9);
+  const double steps = static_cast<double>(stepsToCover(settings.end_time, settings.step));
   // auto: not for a scheme whose error is not even in h (damped β, γ; --fast-newton), where "on" is refused;
   // an adaptive run's steps are not known before it, so auto estimates it.
   request.estimate_error =
@@ -164,10 +164,12 @@ void registerSimulateCommand(CLI::App& app) {
       "line 'file:line:column: error: what' on a bad scene or a run that fails");
   addSceneArgument(*command, options->scene, true);
   command->add_option("--dt", options->step,
-                      "Time step h [s]; the same as --set settings.step=H (default: the scene's settings.step)");
+                      "Time step h [s], at most the end time; the same as --set settings.step=H. The run takes "
+                      "N = ceil(T/h) equal steps of T/N, so that it ends at T exactly (T/N = h where T/h is whole; "
+                      "the summary prints the step taken) (default: the scene's settings.step)");
   command->add_option("--t-end", options->end_time,
-                      "End time T [s]; the same as --set settings.end_time=T. The run takes ceil(T/h) steps, so it "
-                      "ends at T or just after (default: the scene's settings.end_time)");
+                      "End time T [s]; the same as --set settings.end_time=T. Every run ends at T exactly (see --dt) "
+                      "(default: the scene's settings.end_time)");
   command->add_flag("--fast-newton", options->fast_newton,
                     "Accept a first Newton iterate when the contraction rate measured on recent steps says it is "
                     "converged (about 30% faster; results then differ at 1e-8 relative, too noisy for finite-"
@@ -226,9 +228,10 @@ void registerSimulateCommand(CLI::App& app) {
       ->excludes(accuracy);
   command
       ->add_option("--output-step", options->output_step,
-                   "Results (CSV rows, peaks, the estimate) at the multiples of DT [s], whatever steps the "
-                   "integrator takes (an adaptive run's steps end there); with a fixed Newmark step DT must be a whole "
-                   "number of steps (default: every step, or every macro step of an extrapolation)")
+                   "Results (CSV rows, peaks, the estimate) at equal intervals of at most DT [s], M = ceil(T/DT) of "
+                   "them so that the last is at T, whatever steps the integrator takes (an adaptive run's steps end "
+                   "there; a fixed step or macro step is shortened to a whole number per interval) (default: every "
+                   "step, or every macro step of an extrapolation)")
       ->check(CLI::PositiveNumber);
   command
       ->add_option("--runs", options->runs,

@@ -20,7 +20,7 @@ std::string stepsText(const Integration& integration, const IntegrationRequest& 
   if (request.integrator == "newmark" && !request.accuracy) {
     // With the estimate, a run at h and one at h/2 (twice as many steps).
     const long own = integration.estimated ? steps / 3 : steps;
-    std::string text = std::to_string(own) + " steps of " + format("%g", run.steps.front()) + " s";
+    std::string text = std::to_string(own) + " steps of " + format("%.6g", run.steps.front()) + " s";
     if (integration.estimated) text += " (and " + std::to_string(steps - own) + " of h/2 for the error estimate)";
     return text;
   }

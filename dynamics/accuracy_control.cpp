@@ -23,10 +23,7 @@ void requireGoal(const AccuracyGoal& goal) {
 }
 
 /// H, or the largest step at most H that divides the output step into whole steps.
-double onOutputGrid(double H, double output_step) {
-  if (!(output_step > 0.0)) return H;
-  return output_step / std::ceil(output_step / H - 1e-9);
-}
+double onOutputGrid(double H, double output_step) { return output_step > 0.0 ? uniformStep(H, output_step) : H; }
 
 /// The round-off floor of the result of `runs` runs, weighted as its estimate (zero without a probe).
 double weightedFloor(const ExtrapolationTableau& tableau, int runs, const ErrorTolerance& tolerance) {
@@ -56,9 +53,10 @@ double fittingStepFraction(double truncation, double floor, int order, double ta
 
 std::vector<double> outputTimes(double output_step, double end_time) {
   std::vector<double> times;
-  if (output_step > 0.0)
-    for (long m = 1; static_cast<double>(m) * output_step < end_time * (1.0 - 1e-12); ++m)
-      times.push_back(static_cast<double>(m) * output_step);
+  if (!(output_step > 0.0)) return times;
+  const long outputs = stepsToCover(end_time, output_step);
+  const double interval = end_time / static_cast<double>(outputs);
+  for (long m = 1; m < outputs; ++m) times.push_back(static_cast<double>(m) * interval);
   return times;
 }
 
@@ -77,8 +75,9 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
   const std::vector<int> exponents = errorExponents(model, settings);
   // The smallest macro step worth an attempt: its finest run would take kMaxNewmarkSteps.
   const double min_step = settings.end_time * goal.max_runs / kMaxNewmarkSteps;
+  const double output_step = goal.output_step > 0.0 ? uniformStep(goal.output_step, settings.end_time) : 0.0;
   double H = settings.end_time / kFirstMacroSteps;  // coarse: cheap, and refined from its estimate
-  if (goal.output_step > 0.0) H = std::min(H, goal.output_step);
+  if (output_step > 0.0) H = std::min(H, output_step);
   if (goal.first_macro_step > 0.0) H = goal.first_macro_step;
   int max_runs = goal.max_runs;
   int floor_cap = goal.max_runs;  // the most runs whose round-off floor leaves room for the truncation error
@@ -86,7 +85,7 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
   AccurateRun out;
   IntegratorStatistics every_attempt;
   for (int attempt = 0; attempt < goal.max_attempts && H >= min_step; ++attempt) {
-    H = onOutputGrid(H, goal.output_step);
+    H = uniformStep(onOutputGrid(H, output_step), settings.end_time);  // the last macro step ends at T
     NewmarkSettings macro = settings;
     macro.step = H;
     macro.newton_tolerance = std::max(settings.newton_tolerance, kNewtonShareOfTolerance * goal.tolerance.absolute);

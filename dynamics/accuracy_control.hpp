@@ -36,8 +36,8 @@ namespace mbsopt {
 
 struct AccuracyGoal {
   ErrorTolerance tolerance;
-  /// The result's time points are the multiples of this [s] (H then divides it); 0: the multiples
-  /// of the macro step the run chooses.
+  /// The result's time points are the multiples of uniformStep(output_step, end_time) [s] (H then
+  /// divides it); 0: the multiples of the macro step the run chooses.
   double output_step = 0.0;
   /// Runs per attempt at most: 2 gives a plain Newmark run at H/2 (order 2) with its estimate; more
   /// give extrapolated results of higher order.
@@ -81,7 +81,8 @@ inline constexpr double kFirstMacroSteps = 64.0;
 
 /// A number with three significant digits, as the controllers' messages print it.
 std::string threeDigits(double value);
-/// The multiples of `output_step` before `end_time` (the run's end is a time point anyway).
+/// The multiples of uniformStep(output_step, end_time) before `end_time` (the run's end is a time
+/// point anyway); none for an output step of 0.
 std::vector<double> outputTimes(double output_step, double end_time);
 /// No attempt reached the goal: says what the best one reached.
 class AccuracyError : public std::runtime_error {

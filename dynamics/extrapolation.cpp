@@ -80,10 +80,6 @@ void addStatistics(IntegratorStatistics& sum, const IntegratorStatistics& run) {
   sum.max_relative_residual = std::max(sum.max_relative_residual, run.max_relative_residual);
 }
 
-long stepsToCover(double end_time, double step) {
-  return std::max(1L, static_cast<long>(std::ceil(end_time / step - 1e-9)));
-}
-
 void ExtrapolationTableau::add(SampledRun run, double step) {
   steps_.push_back(step);
   addStatistics(statistics_, run.statistics);
@@ -226,7 +222,7 @@ EstimatedRun estimateGlobalError(const Model& model, const NewmarkSettings& sett
   run.v_error = (4.0 / 3.0) * (trajectory.v - fine.v);
   run.sensor_error = (4.0 / 3.0) * (trajectory.sensors - sampledTrajectory(model, settings, std::move(fine)).sensors);
   run.trajectory = std::move(trajectory);
-  run.steps = {settings.step, half.step};
+  run.steps = {uniformStep(settings), half.step};
   run.order = 2;
   return run;
 }
@@ -238,7 +234,7 @@ EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& sett
     throw std::invalid_argument("extrapolation takes 2 to " + std::to_string(kMaxExtrapolationRuns) + " runs, not " +
                                 std::to_string(runs));
   if (const std::string defect = extrapolationDefect(settings); !defect.empty()) throw std::invalid_argument(defect);
-  const double H = settings.step;
+  const double H = uniformStep(settings);
   const long outputs = stepsToCover(settings.end_time, H);
   ExtrapolationTableau tableau(errorExponents(model, settings));
   for (int j = 1; j <= runs; ++j) {
@@ -256,7 +252,8 @@ std::vector<SampledRun> roundOffProbe(const Model& model, const NewmarkSettings&
   std::vector<SampledRun> repeats;
   for (int i = 2; i <= runs; ++i) {
     NewmarkSettings repeat = macro;
-    repeat.step = macro.step / i * (1.0 + kRoundOffProbeStretch);
+    repeat.step = uniformStep(macro) / i * (1.0 + kRoundOffProbeStretch);
+    repeat.end_time = macro.end_time * (1.0 + kRoundOffProbeStretch);
     repeats.push_back(sampledNewmarkRun(model, repeat, q0, v0, i, outputs, progress));
   }
   return repeats;

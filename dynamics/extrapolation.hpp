@@ -172,12 +172,8 @@ Trajectory sampledTrajectory(const Model& model, const NewmarkSettings& settings
 /// to their magnitudes (the sensors' from those of the result and of its repeat).
 EstimatedRun estimatedRun(const Model& model, const NewmarkSettings& settings, const ExtrapolationTableau& tableau);
 
-/// The number of macro steps of H that cover [0, end_time]: the last at end_time or just after it, as
-/// NewmarkIntegrator::simulate ends.
-long stepsToCover(double end_time, double step);
-
-/// `runs` (2 … kMaxExtrapolationRuns) Newmark runs at H/1, H/2, …, H/runs (H = settings.step) from
-/// (q0, v0), combined at the multiples of H (up to the first at or after settings.end_time) into
+/// `runs` (2 … kMaxExtrapolationRuns) Newmark runs at H/1, H/2, …, H/runs (H = uniformStep(settings),
+/// the macro step that ends at settings.end_time) from (q0, v0), combined at the multiples of H into
 /// T_{runs,runs−1}, of order p_{runs−1} (2(runs − 1) without cut joints, runs with them), with its
 /// error estimate T_{runs,runs−1} − T_{runs,runs}, and from kProbedRuns runs on its round-off floor
 /// (runs 2 … runs once more: roundOffProbe) added to the estimate's magnitude. The combined q and q̇ are moved
@@ -188,8 +184,9 @@ EstimatedRun extrapolatedNewmark(const Model& model, const NewmarkSettings& sett
                                  const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                                  const std::function<void(double)>& progress = {});
 
-/// The round-off probe of the first `runs` runs of the macro step H = macro.step (ExtrapolationTableau):
-/// runs 2 … `runs` again, run i at (H/i)(1 + kRoundOffProbeStretch), kept at every i-th step, `outputs` of them.
+/// The round-off probe of the first `runs` runs of the macro step H = uniformStep(macro) (ExtrapolationTableau):
+/// runs 2 … `runs` again, run i at (H/i)(1 + kRoundOffProbeStretch) to an end time stretched alike (the
+/// same number of steps, a few ulps longer each), kept at every i-th step, `outputs` of them.
 std::vector<SampledRun> roundOffProbe(const Model& model, const NewmarkSettings& macro, int runs,
                                       const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, long outputs,
                                       const std::function<void(double)>& progress = {});

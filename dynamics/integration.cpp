@@ -84,15 +84,23 @@ Integration adaptiveIntegration(const Model& model, const NewmarkSettings& setti
 
 }  // namespace
 
-Integration integrate(const Model& model, const NewmarkSettings& settings, const Eigen::VectorXd& q0,
-                      const Eigen::VectorXd& v0, const IntegrationRequest& request,
+Integration integrate(const Model& model, const NewmarkSettings& scene_settings, const Eigen::VectorXd& q0,
+                      const Eigen::VectorXd& v0, const IntegrationRequest& scene_request,
                       const std::function<void(double)>& progress) {
-  const IntegratorInfo& info = integratorInfo(request.integrator);
-  if (!(request.output_step >= 0.0 && std::isfinite(request.output_step)))
+  const IntegratorInfo& info = integratorInfo(scene_request.integrator);
+  if (!(scene_request.output_step >= 0.0 && std::isfinite(scene_request.output_step)))
     throw std::invalid_argument("the output step must be positive and finite");
-  if (request.output_step > settings.end_time)
-    throw std::invalid_argument("the output step " + std::to_string(request.output_step) + " s is longer than the run (" +
-                                std::to_string(settings.end_time) + " s)");
+  if (scene_request.output_step > scene_settings.end_time * (1.0 + 1e-12))
+    throw std::invalid_argument("the output step " + std::to_string(scene_request.output_step) +
+                                " s is longer than the run (" + std::to_string(scene_settings.end_time) + " s)");
+  // The run ends at T: the output interval divides [0, T] into whole intervals, the step divides the
+  // output interval (each at most as long as asked).
+  IntegrationRequest request = scene_request;
+  NewmarkSettings settings = scene_settings;
+  if (request.output_step > 0.0) {
+    request.output_step = uniformStep(request.output_step, settings.end_time);
+    settings.step = uniformStep(settings.step, request.output_step);
+  }
   Integration out;
   if (request.accuracy) {
     AccuracyGoal goal;
@@ -110,23 +118,21 @@ Integration integrate(const Model& model, const NewmarkSettings& settings, const
     out.control->run = {};
     return out;
   }
+  const long stride = request.output_step > 0.0 ? stepsPerOutput(request.output_step, settings.step) : 1;
   if (info.name == "extrapolation") {
-    NewmarkSettings macro = settings;
-    if (request.output_step > 0.0) macro.step = request.output_step / std::ceil(request.output_step / settings.step - 1e-9);
-    out.run = extrapolatedNewmark(model, macro, request.runs, q0, v0, progress);
-    if (request.output_step > 0.0) keepEvery(out.run, stepsPerOutput(request.output_step, macro.step));
+    out.run = extrapolatedNewmark(model, settings, request.runs, q0, v0, progress);
+    keepEvery(out.run, stride);
     out.estimated = true;
     return out;
   }
   if (info.name == "adaptive") return adaptiveIntegration(model, settings, q0, v0, request, progress);
-  const long stride = request.output_step > 0.0 ? stepsPerOutput(request.output_step, settings.step) : 1;
   Trajectory trajectory = NewmarkIntegrator(model, settings).simulate(q0, v0, progress);
   if (request.estimate_error) {
     out.run = estimateGlobalError(model, settings, std::move(trajectory), q0, v0, progress);
     out.estimated = true;
   } else {
     out.run.trajectory = std::move(trajectory);
-    out.run.steps = {settings.step};
+    out.run.steps = {uniformStep(settings)};
   }
   keepEvery(out.run, stride);
   return out;

@@ -35,10 +35,10 @@ struct IntegrationRequest {
   /// Steps (and runs) chosen to meet this (simulateToAccuracy); without it the scene's step is used:
   /// Newmark's step h, or the extrapolation's macro step H with `runs` runs.
   std::optional<ErrorTolerance> accuracy;
-  /// The result's time points are the multiples of this [s]; 0: every step (Newmark) or every macro
-  /// step (extrapolation, or a run driven by accuracy). With a fixed Newmark step it must be a whole
-  /// number of steps; at most the end time. The last output time is the last of its multiples that
-  /// the run reaches.
+  /// The result's time points are the multiples of uniformStep(output_step, end_time) [s], the last
+  /// at the end time; 0: every step (Newmark) or every macro step (extrapolation, or a run driven by
+  /// accuracy). At most the end time. A fixed step is then uniformStep(step, that output interval):
+  /// at most the scene's, a whole number of them in each interval.
   double output_step = 0.0;
   int runs = 4;  ///< extrapolation at a fixed macro step: runs at H/1 … H/runs
   /// The adaptive integrator without `accuracy`: what each step's local error may be.

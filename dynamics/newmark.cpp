@@ -70,8 +70,14 @@ SimulationError::SimulationError(const std::string& what, double t, long s, doub
       residual_norm(norm),
       element(std::move(where)) {}
 
+long stepsToCover(double end_time, double step) {
+  return std::max(1L, static_cast<long>(std::ceil(end_time / step * (1.0 - 1e-12))));
+}
+
+double uniformStep(double step, double end_time) { return end_time / static_cast<double>(stepsToCover(end_time, step)); }
+
 NewmarkSettings halvedSteps(NewmarkSettings settings) {
-  settings.step *= 0.5;
+  settings.step = 0.5 * uniformStep(settings);
   if (settings.time_grid) {
     const std::vector<double>& grid = *settings.time_grid;
     auto halved = std::make_shared<std::vector<double>>(2 * grid.size() - 1);
@@ -114,8 +120,14 @@ SettingsDefect settingsDefect(const NewmarkSettings& s) {
     for (std::size_t k = 1; k < grid.size(); ++k)
       if (!(grid[k] > grid[k - 1]) || !std::isfinite(grid[k]))
         return {"time_grid", "the time grid must increase strictly and stay finite"};
-    if (!(grid.back() >= s.end_time * (1.0 - 1e-12))) return {"time_grid", "the time grid ends before the end time"};
+    if (!(std::abs(grid.back() - s.end_time) <= 1e-12 * s.end_time))
+      return {"time_grid", "the time grid ends at " + std::to_string(grid.back()) + " s, not at the end time"};
     if (!(static_cast<double>(grid.size()) <= kMaxNewmarkSteps)) return {"time_grid", "the time grid has too many steps"};
+  } else if (s.step > s.end_time * (1.0 + 1e-12)) {
+    std::ostringstream text;
+    text << "the time step " << s.step << " s is longer than the run (end_time " << s.end_time
+         << " s): a run ends at its end time, and a step longer than it would end after it";
+    return {"step", text.str()};
   } else if (!(s.end_time / s.step <= kMaxNewmarkSteps)) {
     std::ostringstream text;
     text << "end time / step = " << s.end_time / s.step << " steps, more than the " << kMaxNewmarkSteps
@@ -153,7 +165,7 @@ StepMatrixLayout stepMatrixLayout(const Model& model) {
 
 double trajectoryBytes(const Model& model, const NewmarkSettings& settings, bool step_matrices) {
   const double points = settings.time_grid ? static_cast<double>(settings.time_grid->size())
-                                           : std::ceil(settings.end_time / settings.step) + 1.0;
+                                           : static_cast<double>(stepsToCover(settings.end_time, settings.step)) + 1.0;
   return points * bytesPerTimePoint(model, settings, step_matrices);
 }
 
@@ -178,6 +190,7 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
                  closesLoopsAtPositionLevel() ? kClosedPredictorWindow : kOpenPredictorWindow) {
   if (const SettingsDefect defect = settingsDefect(settings_); !defect.field.empty())
     throw std::invalid_argument("Newmark: " + defect.message);
+  settings_.step = uniformStep(settings_);  // the run ends at end_time
   const Eigen::Index n = model.coordinateCount();
   q_ = v_ = a_ = Eigen::VectorXd::Zero(n);
   r_free_.resize(static_cast<Eigen::Index>(free_.size()));
@@ -559,8 +572,9 @@ void NewmarkIntegrator::step() {
     if (next >= static_cast<long>(settings_.time_grid->size()))
       throw std::logic_error("Newmark: a step past the end of the time grid");
     advance((*settings_.time_grid)[static_cast<std::size_t>(next)], std::nullopt);
-  } else {  // t from the step count (no round-off drift of the time grid), h exactly the step
-    advance(t0_ + static_cast<double>(next) * settings_.step, settings_.step);
+  } else {  // t from the step count (no round-off drift of the time grid), h exactly the step, the last at T
+    const bool last = t0_ == 0.0 && next == stepsToCover(settings_.end_time, settings_.step);
+    advance(last ? settings_.end_time : t0_ + static_cast<double>(next) * settings_.step, settings_.step);
   }
 }
 
@@ -691,14 +705,13 @@ Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::V
 
 void NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, Trajectory& out,
                                  const std::function<void(long)>& stored) {
-  // Enough steps to cover [0, end_time]: the last time point is end_time, or the first grid point
-  // after it when end_time is not a whole number of steps.
+  // Equal steps that end at end_time (settings_.step is the uniform step, see the constructor).
   if (const double bytes = trajectoryBytes(model_, settings_, keep_step_matrices_); !(bytes <= kMaxTrajectoryBytes))
     throw std::length_error("the trajectory would take " + std::to_string(bytes / (1 << 30)) +
                             " GiB, more than the limit of 4 GiB (kMaxTrajectoryBytes)");
   const long steps = settings_.time_grid
                          ? static_cast<long>(settings_.time_grid->size()) - 1
-                         : std::max(1L, static_cast<long>(std::ceil(settings_.end_time / settings_.step - 1e-9)));
+                         : stepsToCover(settings_.end_time, settings_.step);
   initialize(q0, v0, 0.0);
   const Eigen::Index n = model_.coordinateCount();
   out.time.resize(steps + 1);

@@ -53,10 +53,13 @@ inline constexpr double kMaxTrajectoryBytes = 4.0 * 1024 * 1024 * 1024;
 inline constexpr double kNewtonTruncationFraction = 1e-3;
 
 struct NewmarkSettings {
-  double step = 1e-3;      ///< h [s], fixed (unless time_grid is set)
-  double end_time = 1.0;   ///< [s]
-  /// When set, the run's time points instead of the multiples of `step`: t₀ = 0, then strictly
-  /// increasing, the last at or after end_time (where the run ends). A variable step sequence, as an
+  /// h [s], fixed (unless time_grid is set): the longest step a run takes. A run of T = end_time
+  /// takes N = ⌈T/h⌉ equal steps of T/N (uniformStep), so that its last time point is T and every
+  /// functional over the run is one over [0, T]; T/N = h where T/h is whole.
+  double step = 1e-3;
+  double end_time = 1.0;   ///< T [s]
+  /// When set, the run's time points instead of the multiples of the step: t₀ = 0, then strictly
+  /// increasing, the last at end_time (where the run ends). A variable step sequence, as an
   /// adaptive run chose it (adaptive_newmark.hpp), replayed exactly: its exact gradients are those of
   /// this sequence. Shared, so that copies of the settings do not copy it.
   std::shared_ptr<const std::vector<double>> time_grid;
@@ -117,6 +120,15 @@ struct NewmarkSettings {
   /// that moves almost no inertia of its own, articulated_body.hpp).
   int articulated_mass_from = 24;
 };
+
+/// The number of equal steps of at most `step` that cover [0, end_time]: ⌈end_time/step⌉, at least
+/// one (a ratio within 1e-12 of a whole number counts as that number: the times' round-off).
+long stepsToCover(double end_time, double step);
+/// The largest step of at most `step` that divides [0, end_time] into whole steps:
+/// end_time / stepsToCover(end_time, step). Idempotent.
+double uniformStep(double step, double end_time);
+/// The step of a run on the settings' uniform grid: uniformStep(settings.step, settings.end_time).
+inline double uniformStep(const NewmarkSettings& settings) { return uniformStep(settings.step, settings.end_time); }
 
 /// `settings` with each step solved only as precisely as it approximates the motion (`simulate
 /// --fast-steps`, docs/integrators.md §10): newton_truncation_fraction = kNewtonTruncationFraction and
@@ -220,7 +232,7 @@ class NewmarkIntegrator {
   /// q0 must already satisfy the closure equations, with weld cuts in their intended orientation
   /// (see assemble()); otherwise std::invalid_argument.
   void initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, double t0 = 0.0);
-  /// Advances one step: to the next multiple of settings.step, or to the next point of settings.time_grid.
+  /// Advances one step: to the next multiple of uniformStep(settings), or to the next point of settings.time_grid.
   void step();
   /// Advances one step to t_next > time() (its size t_next − time()); SimulationError when it fails.
   void advanceTo(double t_next);
@@ -235,8 +247,8 @@ class NewmarkIntegrator {
   void acceptStep();
   /// Returns to the state before the attempted step (or before a SimulationError thrown inside it).
   void rejectStep();
-  /// initialize + ⌈end_time/step⌉ steps (the grid covers [0, end_time]), or the steps of
-  /// settings.time_grid, storing every step.
+  /// initialize + stepsToCover(end_time, step) steps of uniformStep(settings), the last ending at
+  /// end_time, or the steps of settings.time_grid, storing every step.
   /// `progress(t)` is called after each step.
   Trajectory simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,
                       const std::function<void(double)>& progress = {});
@@ -263,6 +275,7 @@ class NewmarkIntegrator {
   double closureError() const { return closure_error_; }
   int lastNewtonIterations() const { return last_iterations_; }
   const IntegratorStatistics& statistics() const { return stats_; }
+  /// The settings as the run takes them: `step` is uniformStep of those given.
   const NewmarkSettings& settings() const { return settings_; }
   /// q̈ at time(), the start of the step being attempted (after rejectStep(), the accepted one's).
   const Eigen::VectorXd& acceptedAcceleration() const { return a_accepted_; }

@@ -85,7 +85,8 @@ double crossingStep(double step, double end_time) { return std::min(step * step 
 std::shared_ptr<const std::vector<double>> gradedTimeGrid(double step, double end_time,
                                                          const std::vector<double>& breaks) {
   const long steps = stepsToCover(end_time, step);
-  const double end = static_cast<double>(steps) * step;
+  step = uniformStep(step, end_time);
+  const double end = end_time;
   const double eta = crossingStep(step, end_time);
   // Around each break, points at distances η/2, η, 2η, ... below `step` on both sides; the uniform
   // points within half a step beyond the farthest are left out (the step joining the two is then

@@ -28,9 +28,9 @@ std::vector<double> curvatureJumpTimes(const Model& model, const Trajectory& tra
 /// of order η Δq̈ in q̇, then falls as h² like the rest of the run's.
 double crossingStep(double step, double end_time);
 
-/// A time grid (NewmarkSettings::time_grid) of steps `step` up to the first multiple of it at or after
-/// `end_time`, except around each time in `breaks` (0 < t < that end): there one step of length
-/// crossingStep() centred on the break, and steps that double away from it up to `step`.
+/// A time grid (NewmarkSettings::time_grid) of steps uniformStep(step, end_time) up to `end_time`,
+/// except around each time in `breaks` (0 < t < end_time): there one step of length crossingStep() of
+/// that step centred on the break, and steps that double away from it up to that step.
 std::shared_ptr<const std::vector<double>> gradedTimeGrid(double step, double end_time,
                                                          const std::vector<double>& breaks);
 

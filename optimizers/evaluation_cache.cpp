@@ -20,13 +20,18 @@ std::string shortNumber(double value) {
 }
 }  // namespace
 
+double boundViolation(const NlpProblem& problem, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd lower = problem.lowerBounds(), upper = problem.upperBounds();
+  double violation = 0.0;
+  for (Eigen::Index j = 0; j < x.size(); ++j) violation = std::max({violation, lower[j] - x[j], x[j] - upper[j]});
+  return violation;
+}
+
 double maxViolation(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& values) {
   const Eigen::Index inequalities = problem.inequalityCount();
-  double violation = 0.0;
+  double violation = boundViolation(problem, x);
   for (Eigen::Index i = 0; i < values.constraints.size(); ++i)
     violation = std::max(violation, i < inequalities ? values.constraints[i] : std::abs(values.constraints[i]));
-  const Eigen::VectorXd lower = problem.lowerBounds(), upper = problem.upperBounds();
-  for (Eigen::Index j = 0; j < x.size(); ++j) violation = std::max({violation, lower[j] - x[j], x[j] - upper[j]});
   return violation;
 }
 
@@ -40,12 +45,16 @@ const NlpEvaluation& EvaluationCache::at(const Eigen::VectorXd& x, bool gradient
   const double cost = (values_known ? 0.0 : 1.0) + (gradients ? problem_.gradientCost() : 0.0);
   refuseBeyondBudget(cost);
   if (hit != entries_.end()) entries_.erase(hit);
-  Entry entry{x, {}, gradients, 0.0};
+  Entry entry{x, {}, gradients};
   problem_.evaluate(x, gradients, entry.values);
   if (!values_known) ++value_evaluations_;
   if (gradients) ++gradient_evaluations_;
   simulation_equivalents_ += cost;
+  const double tolerance = options_.feasibility_tolerance;
   entry.violation = maxViolation(problem_, x, entry.values);
+  const double own = entry.values.excess_over_tolerance;
+  entry.infeasibility = std::max(std::isnan(own) ? entry.violation / tolerance : own, boundViolation(problem_, x) / tolerance);
+  entry.cost = std::isnan(entry.values.reported_cost) ? entry.values.cost : entry.values.reported_cost;
   consider(entry);
   entries_.push_front(std::move(entry));
   if (entries_.size() > kCachedPoints) entries_.pop_back();
@@ -73,10 +82,9 @@ void EvaluationCache::anticipate(const Eigen::VectorXd& x) {
 }
 
 void EvaluationCache::consider(const Entry& entry) {
-  const double tolerance = options_.feasibility_tolerance;
-  const bool feasible = entry.violation <= tolerance, best_feasible = has_best_ && best_.violation <= tolerance;
-  const bool better = !has_best_ || (feasible && (!best_feasible || entry.values.cost < best_.values.cost)) ||
-                      (!feasible && !best_feasible && entry.violation < best_.violation) ||
+  // The cheapest feasible point, the latest of equals; before any is feasible, the least infeasible.
+  const bool better = !has_best_ || (entry.feasible() && (!best_.feasible() || entry.cost <= best_.cost)) ||
+                      (!entry.feasible() && !best_.feasible() && entry.infeasibility < best_.infeasibility) ||
                       (entry.x == best_.x && entry.has_gradients);  // the best point, now with gradients
   if (better) {
     best_ = entry;
@@ -89,7 +97,9 @@ void EvaluationCache::recordIteration(const Eigen::VectorXd& x, OptimizerResult&
   const NlpEvaluation& values = at(x, false);
   const double step = previous_iterate_.size() == x.size() ? (x - previous_iterate_).cwiseAbs().maxCoeff() : 0.0;
   previous_iterate_ = x;
-  record(values.cost, maxViolation(problem_, x, values), step, x, values.reported_cost, result);
+  const double violation = maxViolation(problem_, x, values);
+  if (violation <= options_.feasibility_tolerance) last_feasible_iterate_ = x;
+  record(values.cost, violation, step, x, values.reported_cost, result);
 }
 
 void EvaluationCache::recordIteration(double cost, double max_violation, double step, OptimizerResult& result) {
@@ -110,36 +120,81 @@ void EvaluationCache::record(double cost, double max_violation, double step, con
   if (options_.on_iteration) options_.on_iteration(record);
 }
 
-void EvaluationCache::finish(OptimizerResult& result) const {
-  result.value_evaluations = value_evaluations_;
-  result.gradient_evaluations = gradient_evaluations_;
-  result.simulation_equivalents = simulation_equivalents_;
-  result.iterations = static_cast<int>(result.history.size());
-  if (!has_best_) return;
-  result.x = best_.x;
-  result.cost = best_.values.cost;
-  result.max_violation = best_.violation;
+EvaluationCache::Entry EvaluationCache::entryAt(const Eigen::VectorXd& x) {
+  if (has_best_ && best_.x == x) return best_;
+  const auto hit = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.x == x; });
+  if (hit != entries_.end()) return *hit;
+  reviewing_ = true;
+  at(x, false);
+  reviewing_ = false;
+  return entries_.front();
 }
 
-void EvaluationCache::review(OptimizerResult& result) {
-  if (result.status == OptimizerStatus::Unsupported) return;
-  if (!budget_spent_.empty()) {
+FirstOrderCheck EvaluationCache::firstOrderAt(const Eigen::VectorXd& x) {
+  const double active = std::max(100.0 * options_.feasibility_tolerance, 1e-6);
+  reviewing_ = true;  // the verdict's gradient is not the run's: no budget refuses it
+  const NlpEvaluation values = at(x, true);
+  reviewing_ = false;
+  return firstOrderCheck(problem_, x, values, active);
+}
+
+void EvaluationCache::report(const Entry& entry, ReportedPoint kind, OptimizerResult& result) {
+  result.x = entry.x;
+  result.cost = entry.values.cost;
+  result.reported_cost = entry.cost;
+  result.max_violation = entry.violation;
+  result.excess_over_tolerance = entry.values.excess_over_tolerance;
+  result.reported = kind;
+}
+
+void EvaluationCache::conclude(OptimizerResult& result, const Eigen::VectorXd& final_point) {
+  const auto count = [&] {
+    result.value_evaluations = value_evaluations_;
+    result.gradient_evaluations = gradient_evaluations_;
+    result.simulation_equivalents = simulation_equivalents_;
+  };
+  count();
+  result.iterations = static_cast<int>(result.history.size());
+  if (!budget_spent_.empty() && result.status != OptimizerStatus::Unsupported) {
     result.status = OptimizerStatus::MaxIterations;
     if (result.message.find(budget_spent_) == std::string::npos) result.message += "; stopped: " + budget_spent_;
   }
-  if (result.status == OptimizerStatus::Failed) return;
-  if (result.max_violation > options_.feasibility_tolerance) {
-    result.status = OptimizerStatus::Failed;
-    result.message += "; no point it evaluated is feasible (max violation " + std::to_string(result.max_violation) + ")";
+  if (!has_best_) return;
+  const Entry cheapest = best_;
+  report(cheapest, cheapest.feasible() ? ReportedPoint::CheapestFeasible : ReportedPoint::LeastInfeasible, result);
+  if (cheapest.feasible()) {
+    result.cheapest_x = cheapest.x;
+    result.cheapest_cost = cheapest.cost;
+  }
+  result.final_point = final_point;
+  if (result.status == OptimizerStatus::Converged && final_point.size() == cheapest.x.size()) {
+    const Entry final = entryAt(final_point);
+    if (final.feasible()) {
+      report(final, ReportedPoint::Converged, result);
+    } else {
+      result.status = OptimizerStatus::Failed;
+      result.message += "; its own test passed at a point beyond the problem's tolerances (" +
+                        shortNumber(final.infeasibility) + " times the largest allowed excess)";
+    }
+  }
+  if (result.status == OptimizerStatus::Unsupported || result.status == OptimizerStatus::Failed) {
+    count();
     return;
   }
-  if (result.status != OptimizerStatus::Converged) return;
-  const double active = std::max(100.0 * options_.feasibility_tolerance, 1e-6);
-  reviewing_ = true;  // the verdict's gradient is not the run's: no budget refuses it
-  const double residual = firstOrderResidual(problem_, result.x, at(result.x, true), active);
-  result.value_evaluations = value_evaluations_;
-  result.gradient_evaluations = gradient_evaluations_;
-  result.simulation_equivalents = simulation_equivalents_;
+  if (result.reported == ReportedPoint::LeastInfeasible) {
+    result.status = OptimizerStatus::Failed;
+    result.message += "; no point it evaluated is feasible (the closest is " + shortNumber(best_.infeasibility) +
+                      " times the largest allowed excess)";
+    count();
+    return;
+  }
+  if (result.status != OptimizerStatus::Converged) {
+    count();
+    return;
+  }
+  if (!result.first_order) result.first_order = firstOrderAt(result.x);
+  count();
+  const double residual = result.first_order->residual;
   if (residual <= kFirstOrderTolerance) return;
   result.status = OptimizerStatus::Failed;
   result.message += "; but the point is not first-order optimal (KKT residual " + std::to_string(residual) +

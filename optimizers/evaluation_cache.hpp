@@ -19,7 +19,7 @@ namespace mbsopt {
 inline constexpr double kFirstOrderTolerance = 1e-2;
 
 /// What EvaluationCache::at throws instead of an evaluation beyond the run's Budget; each adapter
-/// stops its algorithm on it as on any failed evaluation, and review() then names the limit.
+/// stops its algorithm on it as on any failed evaluation, and conclude() then names the limit.
 struct BudgetSpent : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -48,16 +48,21 @@ class EvaluationCache {
   /// iterate is taken to be the newest cached point with that cost (to round-off), if there is one.
   void recordIteration(double cost, double max_violation, double step, OptimizerResult& result);
 
-  /// Fills the result's point, cost, violation and counts: the best point evaluated (feasible
-  /// within the options' tolerance with the lowest cost, else the least violation).
-  void finish(OptimizerResult& result) const;
+  /// Ends a run whose algorithm has set result.status and result.message: fills the counts and the
+  /// reported point (ReportedPoint: the algorithm's final point `final_point` where it converged
+  /// there and that point is feasible, else the cheapest feasible point, else the least infeasible),
+  /// then checks the verdict. A run the budget stopped has status
+  /// MaxIterations, its message naming the limit (whatever the algorithm made of the refusal). A run
+  /// whose every point is infeasible, or that converged at an infeasible point, is a failure that says
+  /// so; a "converged" point that fails the first-order conditions (residual above
+  /// kFirstOrderTolerance, first_order_check.hpp) is a failure that says the algorithm could not move
+  /// from it. May cost a gradient evaluation at the final and at the reported point, outside the
+  /// budget. `final_point` empty: the algorithm did not say (the cheapest feasible point is reported).
+  void conclude(OptimizerResult& result, const Eigen::VectorXd& final_point);
 
-  /// After finish(): the algorithm's verdict, checked. A run the budget stopped has status
-  /// MaxIterations, its message naming the limit (whatever the algorithm made of the refusal). An infeasible best point is a failure that
-  /// says so; a "converged" point that fails the first-order conditions (residual above
-  /// kFirstOrderTolerance, first_order_check.hpp) is a failure that says the algorithm could not
-  /// move from it. May cost one gradient evaluation at the best point.
-  void review(OptimizerResult& result);
+  /// The last iterate recorded (recordIteration) whose transcription held within the feasibility
+  /// tolerance; empty before the first.
+  const Eigen::VectorXd& lastFeasibleIterate() const { return last_feasible_iterate_; }
 
   long valueEvaluations() const { return value_evaluations_; }
   long gradientEvaluations() const { return gradient_evaluations_; }
@@ -67,9 +72,20 @@ class EvaluationCache {
     Eigen::VectorXd x;
     NlpEvaluation values;
     bool has_gradients = false;
-    double violation = 0.0;
+    double violation = 0.0;  ///< maxViolation
+    /// ≤ 1: feasible as the problem judges it (its own excess over tolerance, or the transcription's
+    /// violation over the feasibility tolerance where it has none; and the bounds, so measured).
+    double infeasibility = 0.0;
+    double cost = 0.0;  ///< the problem's own cost (reported_cost, or f)
+    bool feasible() const { return infeasibility <= 1.0; }
   };
   void consider(const Entry& entry);
+  /// The entry at x: the cached one, or x evaluated now (outside the budget).
+  Entry entryAt(const Eigen::VectorXd& x);
+  /// The first-order check at x with its gradients (evaluated outside the budget when not cached).
+  FirstOrderCheck firstOrderAt(const Eigen::VectorXd& x);
+  /// Fills the result's point and values from an entry.
+  static void report(const Entry& entry, ReportedPoint kind, OptimizerResult& result);
   /// Throws BudgetSpent when an evaluation costing `cost` simulation-equivalents would exceed the budget.
   void refuseBeyondBudget(double cost);
   void record(double cost, double max_violation, double step, const Eigen::VectorXd& x, double reported_cost,
@@ -82,10 +98,10 @@ class EvaluationCache {
   long value_evaluations_ = 0, gradient_evaluations_ = 0;
   double simulation_equivalents_ = 0.0;
   std::string budget_spent_;
-  bool reviewing_ = false;  ///< review() evaluates: outside the budget
+  bool reviewing_ = false;  ///< conclude() evaluates: outside the budget
   bool has_best_ = false;
   Entry best_;
-  Eigen::VectorXd previous_iterate_;
+  Eigen::VectorXd previous_iterate_, last_feasible_iterate_;
 };
 
 

@@ -24,6 +24,7 @@ class ProblemAsTnlp : public Ipopt::TNLP {
   ProblemAsTnlp(EvaluationCache& cache, OptimizerResult& result) : cache_(cache), result_(result) {}
 
   std::string error;           ///< the last evaluation's failure, if any
+  Eigen::VectorXd final_point;  ///< Ipopt's final iterate (finalize_solution); empty before
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& index_style) override {
     n = static_cast<Index>(problem().variableCount());
@@ -76,10 +77,13 @@ class ProblemAsTnlp : public Ipopt::TNLP {
     });
   }
 
-  /// The best point is the cache's (EvaluationCache::finish), the verdict OptimizeTNLP's return.
-  void finalize_solution(Ipopt::SolverReturn, Index, const Number*, const Number*, const Number*, Index,
+  /// The final iterate, whose point the cache reports where Ipopt converged (EvaluationCache::conclude);
+  /// the verdict is OptimizeTNLP's return.
+  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*, const Number*, Index,
                          const Number*, const Number*, Number, const Ipopt::IpoptData*,
-                         Ipopt::IpoptCalculatedQuantities*) override {}
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    final_point = Eigen::Map<const Eigen::VectorXd>(x, n);
+  }
 
   bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number obj_value, Number inf_pr, Number, Number,
                              Number d_norm, Number, Number, Number, Index, const Ipopt::IpoptData*,
@@ -136,7 +140,7 @@ std::string returnStatusName(Ipopt::ApplicationReturnStatus code) {
   return "return status " + std::to_string(static_cast<int>(code));
 }
 
-/// Ipopt's return (EvaluationCache::review checks it).
+/// Ipopt's return (EvaluationCache::conclude checks it).
 void judge(Ipopt::ApplicationReturnStatus code, const ProblemAsTnlp& tnlp, OptimizerResult& result) {
   switch (code) {
     case Ipopt::Solve_Succeeded:
@@ -204,9 +208,8 @@ OptimizerResult minimizeWithIpopt(NlpProblem& problem, const OptimizerOptions& o
   setOptions(options.settings, *app);
   if (app->Initialize() != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt: initialisation failed");
   const Ipopt::ApplicationReturnStatus code = app->OptimizeTNLP(tnlp);
-  cache.finish(result);
   judge(code, *tnlp, result);
-  cache.review(result);
+  cache.conclude(result, tnlp->final_point);
   return result;
 }
 

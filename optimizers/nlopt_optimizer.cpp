@@ -67,7 +67,7 @@ void equalities(unsigned m, double* values, unsigned n, const double* x, double*
 
 std::vector<double> toStd(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
-/// The status from NLopt's own return code (EvaluationCache::review checks it).
+/// The status from NLopt's own return code (EvaluationCache::conclude checks it).
 void judge(nlopt::result code, const std::string& words, OptimizerResult& result) {
   result.message = "NLopt: " + words;
   if (code == nlopt::MAXEVAL_REACHED || code == nlopt::MAXTIME_REACHED) {
@@ -154,9 +154,13 @@ OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& proble
     code = opt.last_optimize_result();
     words = e.what();
   }
-  cache.finish(result);
   judge(code, words, result);
-  cache.review(result);
+  // NLopt returns the point of least f among those within its constraint tolerance, which for a
+  // design problem's epigraph b_{k+1} prefers a b that undercuts its cost by as much as the tolerance
+  // allows: the point it stopped at is its last evaluation within that tolerance (MMA's and CCSAQ's
+  // last inner iterates may lie just outside it); NLopt's own where none was.
+  const Eigen::VectorXd& last = cache.lastFeasibleIterate();
+  cache.conclude(result, last.size() > 0 ? last : point(n, x.data()));
   return result;
 }
 

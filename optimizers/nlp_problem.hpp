@@ -20,6 +20,12 @@ struct NlpEvaluation {
   /// The quantity the problem reports as its cost, where that is not f itself (a design problem: its
   /// cost sensor's functional, which the artificial variable f = b_{k+1} bounds); NaN: f.
   double reported_cost = std::numeric_limits<double>::quiet_NaN();
+  /// How far the problem's own constraints lie beyond their bounds in their own units, where the
+  /// problem judges them apart from the transcription g, h the optimizers see (a design problem: each
+  /// constraint's value against its bound, whatever the formulation): the largest excess over its
+  /// tolerance (≤ 1: every one met); NaN: the problem has no judgement of its own, and the
+  /// transcription's violation decides (OptimizerOptions::feasibility_tolerance).
+  double excess_over_tolerance = std::numeric_limits<double>::quiet_NaN();
 };
 
 class NlpProblem {
@@ -58,5 +64,7 @@ class NlpProblem {
 
 /// max(0, max g, max |h|, bound violations): how far x is from feasible.
 double maxViolation(const NlpProblem& problem, const Eigen::VectorXd& x, const NlpEvaluation& values);
+/// max(0, bound violations) of x alone.
+double boundViolation(const NlpProblem& problem, const Eigen::VectorXd& x);
 
 }  // namespace mbsopt

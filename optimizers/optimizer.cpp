@@ -23,6 +23,18 @@ std::string toString(OptimizerStatus status) {
   return "failed";
 }
 
+std::string toString(ReportedPoint point) {
+  switch (point) {
+    case ReportedPoint::Converged:
+      return "converged";
+    case ReportedPoint::CheapestFeasible:
+      return "cheapest_feasible";
+    case ReportedPoint::LeastInfeasible:
+      return "least_infeasible";
+  }
+  return "cheapest_feasible";
+}
+
 const std::vector<std::string>& optimizerNames() {
   static const std::vector<std::string> names{"sdcc", "slsqp", "mma", "ccsaq", "ipopt"};
   return names;

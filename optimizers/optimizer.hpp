@@ -6,9 +6,11 @@
 #include <Eigen/Core>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mbsopt/optimizers/first_order_check.hpp"
 #include "mbsopt/optimizers/nlp_problem.hpp"
 #include "mbsopt/optimizers/optimizer_settings.hpp"
 
@@ -22,6 +24,21 @@ enum class OptimizerStatus {
 };
 
 std::string toString(OptimizerStatus status);
+
+/// Which evaluated point a result reports (EvaluationCache::conclude). Feasible means within the
+/// problem's own tolerances (NlpEvaluation::excess_over_tolerance ≤ 1, the bounds held), cheapest the
+/// least of the problem's own cost (NlpEvaluation::reported_cost).
+enum class ReportedPoint {
+  /// The algorithm's final point, where it converged, feasible. An earlier point may be cheaper by
+  /// what the tolerances allow (OptimizerResult::cheapest_cost says).
+  Converged,
+  /// The cheapest feasible point evaluated (the latest of equals): the run did not converge.
+  CheapestFeasible,
+  /// No point evaluated is feasible: the closest one.
+  LeastInfeasible
+};
+
+std::string toString(ReportedPoint point);
 
 struct IterationRecord {
   int iteration = 0;
@@ -64,9 +81,23 @@ struct OptimizerResult {
   std::string optimizer;
   OptimizerStatus status = OptimizerStatus::Failed;
   std::string message;  ///< the algorithm's own words, and ours where we overrule it
-  Eigen::VectorXd x;    ///< the best point found (feasible first, then lowest cost)
-  double cost = 0.0;
-  double max_violation = 0.0;
+  Eigen::VectorXd x;    ///< the reported point (`reported` says which)
+  double cost = 0.0;    ///< f at x
+  /// The problem's own cost at x (NlpEvaluation::reported_cost; f where the problem has none).
+  double reported_cost = 0.0;
+  double max_violation = 0.0;  ///< of the transcription at x (maxViolation)
+  /// NlpEvaluation::excess_over_tolerance at x (NaN where the problem has none).
+  double excess_over_tolerance = std::numeric_limits<double>::quiet_NaN();
+  ReportedPoint reported = ReportedPoint::CheapestFeasible;
+  /// The algorithm's final point, as it says (empty where it does not).
+  Eigen::VectorXd final_point;
+  /// The cheapest feasible point evaluated and its own cost (empty and NaN where none is feasible):
+  /// x itself unless the reported point is the converged one.
+  Eigen::VectorXd cheapest_x;
+  double cheapest_cost = std::numeric_limits<double>::quiet_NaN();
+  /// The first-order conditions at x where they were checked (a converged run): the residual and the
+  /// multipliers, what relaxing each constraint and bound is worth in f.
+  std::optional<FirstOrderCheck> first_order;
   int iterations = 0;
   long value_evaluations = 0;
   long gradient_evaluations = 0;

@@ -265,8 +265,7 @@ class SdccRun {
   }
 
   void finish() {
-    cache_.finish(result_);
-    cache_.review(result_);
+    cache_.conclude(result_, x_);
   }
 
  private:

@@ -140,7 +140,7 @@ void checkDesignAgainstScene(const MapReader& design, const DesignDescription& d
   if (windows == 1) return;
   const MapReader t(design.context(), design.node()["transcription"], "design.transcription");
   const NewmarkSettings& s = scene.settings;
-  const auto steps = std::max(1L, static_cast<long>(std::ceil(s.end_time / s.step - 1e-9)));  // as the integrator takes them
+  const long steps = stepsToCover(s.end_time, s.step);  // as the integrator takes them
   if (2 * windows > steps + 1)
     t.fail("windows", std::to_string(windows) + " windows of the run's " + std::to_string(steps + 1) +
                           " time points leave some window fewer than two");

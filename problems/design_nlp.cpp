@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "mbsopt/sensitivity/constraint_verdicts.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 
@@ -138,6 +139,7 @@ void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation
   out.cost = response.cost;
   out.constraints = response.constraints;
   out.reported_cost = costFunctional(problem_, response);
+  out.excess_over_tolerance = excessOverTolerance(constraintVerdicts(problem_, response));
 }
 
 double DesignNlp::gradientCost() const {

@@ -215,7 +215,7 @@ class SceneBuilder {
     const double bytes = trajectoryBytes(model(), s);
     if (bytes <= kMaxTrajectoryBytes) return;
     const YamlNode& settings = root_.node()["settings"];
-    const std::string what = "a run of " + formatNumber(std::ceil(s.end_time / s.step)) + " steps of this model stores " +
+    const std::string what = "a run of " + formatNumber(static_cast<double>(stepsToCover(s.end_time, s.step))) + " steps of this model stores " +
                              formatNumber(std::round(bytes / (1 << 20))) +
                              " MiB of trajectory, more than the limit of 4 GiB: shorten end_time or enlarge step";
     if (settings["end_time"].isDefined()) context_.fail(settings["end_time"], "settings: end_time: " + what);

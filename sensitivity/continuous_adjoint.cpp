@@ -92,7 +92,7 @@ DesignGradient continuousAdjointGradient(const DesignProblem& problem,
                                 "(a time grid): use the discrete adjoint or the direct method, exact for any steps");
   TrajectoryDerivatives d(problem, functionals, x, simulated);
   const bool moves_loops = designMovesLoopClosure(problem);
-  const double h = d.settings().step, half = 0.5 * h, threshold = d.settings().svd_threshold;
+  const double h = uniformStep(d.settings()), half = 0.5 * h, threshold = d.settings().svd_threshold;
   const Eigen::Index N = d.timePoints() - 1, rows = d.functionalCount(), nf = d.freeCount();
   // The trapezoidal rule's weights on the uniform grid: h/2 at both ends, h inside.
   const auto weight = [&](Eigen::Index k) { return k == 0 || k == N ? half : h; };

@@ -170,6 +170,23 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
   return column;
 }
 
+Eigen::MatrixXd boundJacobian(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                              const DesignResponse& response) {
+  if (!response.runs.empty())
+    return combineRuns(problem, response, 1, [&](const DesignProblem& run, const DesignResponse& r) {
+      return boundJacobian(run, functionals, r);
+    });
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(functionals.size()),
+                                                   static_cast<Eigen::Index>(problem.design.constraints.size()));
+  for (std::size_t j = 0; j < functionals.size(); ++j) {  // φ_k = sign·y_k − offset: ∂φ_k/∂B = −∂offset/∂B
+    const ConstraintFunctional& f = functionals[j];
+    if (f.constraint < 0) continue;
+    jacobian(static_cast<Eigen::Index>(j), f.constraint) =
+        -f.offset_per_bound * response.functionals[j].gradient.sum() - f.level_per_bound;
+  }
+  return jacobian;
+}
+
 DesignGradient finiteDifferenceGradient(const DesignProblem& problem,
                                         const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
                                         double relative_step, bool central, const DesignResponse* simulated, int jobs) {

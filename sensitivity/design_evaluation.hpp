@@ -80,6 +80,14 @@ struct DesignGradient {
 Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                  const DesignResponse& response);
 
+/// ∂/∂B of every constraint with respect to each of the problem's constraint bounds B (a row per
+/// functional, a column per DesignDescription::constraints entry, in its own SI units): exact, as
+/// artificialColumn, since B enters only through the functional's offset and level
+/// (ConstraintFunctional::offset_per_bound, level_per_bound). A bound shared by every load case moves
+/// each case's functionals.
+Eigen::MatrixXd boundJacobian(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                              const DesignResponse& response);
+
 /// Forward (one simulation per variable) or central (two) differences in the design variables with
 /// step relative_step · max(|x_i|, 1); the artificial column is exact. `simulated`: the simulation
 /// at x when the caller has it. The simulations run on `jobs` threads (parallel_runs.hpp); the

@@ -82,8 +82,7 @@ int extrapolationRuns(const DesignProblem& problem) {
 DesignProblem extrapolationRunProblem(const DesignProblem& problem, int j) {
   DesignProblem run{problem.scene, problem.design, {}};
   NewmarkSettings& s = run.scene.settings;
-  s.end_time = static_cast<double>(stepsToCover(s.end_time, s.step)) * s.step;  // every run ends there
-  s.step /= j;
+  s.step = uniformStep(s) / j;  // j steps in each macro step, the last ending at the end time
   run.scene.integrator = {};
   return run;
 }
@@ -119,7 +118,9 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
   const Transcription& t = problem.design.transcription;
   if (t.windows < 1) throw std::invalid_argument("design: the windows must be at least one");
   const double duration = problem.scene.settings.end_time;
-  const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial, bool equality) {
+  const auto add = [&](const std::string& sensor, ResponseMeasure of, double bound, bool artificial, bool equality,
+                       int constraint) {
+    const std::size_t first = functionals.size();
     const int index = sensorIndex(model, sensor);
     const Sensor& read = model.sensors()[static_cast<std::size_t>(index)];
     for (const std::string& defect : {designSensorDefect(read), reactionDeterminacyDefect(problem.scene, read)})
@@ -152,11 +153,21 @@ std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
         }
       }
     }
+    for (std::size_t j = first; j < functionals.size(); ++j) {  // how each moves with the bound
+      ConstraintFunctional& f = functionals[j];
+      f.constraint = constraint;
+      if (constraint < 0) continue;
+      if (of == ResponseMeasure::Rms) f.level_per_bound = 1.0;
+      else if (of == ResponseMeasure::Integral) f.offset_per_bound = 1.0 / duration;
+      else f.offset_per_bound = of == ResponseMeasure::Min ? -1.0 : 1.0;
+    }
   };
-  add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true, false);  // (17)-(19): ±y − b_{k+1} ≤ 0
+  add(problem.design.cost.sensor, problem.design.cost.of, 0.0, true, false, -1);  // (17)-(19): ±y − b_{k+1} ≤ 0
   for (const bool equalities : {false, true})  // NlpProblem's order: the inequalities first
-    for (const ResponseConstraint& c : problem.design.constraints)
-      if (c.equality == equalities) add(c.sensor, c.of, c.bound, false, c.equality);
+    for (std::size_t i = 0; i < problem.design.constraints.size(); ++i) {
+      const ResponseConstraint& c = problem.design.constraints[i];
+      if (c.equality == equalities) add(c.sensor, c.of, c.bound, false, c.equality, static_cast<int>(i));
+    }
   // Several constraints may read one sensor the same way (two bounds on its maximum, or a maximum
   // beside the cost's): a repeated name gets its rank, "travel_above_2".
   std::map<std::string, int> seen;

@@ -104,8 +104,8 @@ DesignProblem loadCaseProblem(const DesignProblem& problem, std::size_t c);
 /// Newmark runs whose values the problem combines: the scene's settings.extrapolation_runs when its
 /// integrator is the extrapolation, else 1 (dynamics/extrapolation.hpp).
 int extrapolationRuns(const DesignProblem& problem);
-/// Run j (1-based) of an extrapolated problem as a problem of its own: the scene's step h over j, one
-/// Newmark run, ending at the first multiple of h at or after the end time (as every run does).
+/// Run j (1-based) of an extrapolated problem as a problem of its own: the scene's macro step
+/// uniformStep(settings) over j, one Newmark run, ending at the end time (as every run does).
 DesignProblem extrapolationRunProblem(const DesignProblem& problem, int j);
 
 /// How a transcribed constraint uses the artificial variable b_{k+1}.
@@ -129,6 +129,10 @@ struct ConstraintFunctional {
   double level = 0.0;     ///< subtracted from the measure's value (an RMS constraint's bound)
   int window = 0, windows = 1;  ///< the measure reads window `window` of `windows` (windowPoints)
   int load_case = 0;            ///< the load case whose simulation it measures (DesignProblem::load_cases)
+  /// The entry of DesignDescription::constraints it transcribes (−1: the cost's epigraph), and how its
+  /// offset and level move with that constraint's bound B: ∂offset/∂B and ∂level/∂B (boundJacobian).
+  int constraint = -1;
+  double offset_per_bound = 0.0, level_per_bound = 0.0;
 };
 
 /// The functionals of load case c, in their order, and where each stands in `functionals`.

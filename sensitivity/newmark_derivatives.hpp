@@ -92,11 +92,11 @@ class TrajectoryDerivatives {
   Eigen::Index variableCount() const { return static_cast<Eigen::Index>(parameters_.size()); }
   Eigen::Index functionalCount() const { return static_cast<Eigen::Index>(functionals_.size()); }
   const NewmarkSettings& settings() const { return problem_.scene.settings; }
-  /// The step from time point k − 1 to k (k ≥ 1): the settings' step, or the difference of their time
-  /// grid's points (a variable step sequence, replayed as simulated).
+  /// The step from time point k − 1 to k (k ≥ 1): the settings' uniform step (the integrator's), or
+  /// the difference of their time grid's points (a variable step sequence, replayed as simulated).
   double stepSize(Eigen::Index k) const {
     const NewmarkSettings& s = settings();
-    if (!s.time_grid) return s.step;
+    if (!s.time_grid) return uniformStep(s);
     return (*s.time_grid)[static_cast<std::size_t>(k)] - (*s.time_grid)[static_cast<std::size_t>(k - 1)];
   }
 

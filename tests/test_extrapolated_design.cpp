@@ -53,14 +53,20 @@ TEST(ExtrapolatedDesign, ValuesAreTheLagrangeCombinationOfTheRuns) {
   EXPECT_EQ(caseTrajectory(combined, 0).time.size(), 2251);  // the finest run's: 1.5 s in steps of h/3
 }
 
-TEST(ExtrapolatedDesign, EveryRunEndsWhereTheCoarsestDoes) {
-  // T = 1.5 s on h = 7 ms is not a whole number of steps: the coarsest run ends at 215 h = 1.505 s, and
-  // so must every other one, or integrals over time would cover different intervals and not combine.
+TEST(ExtrapolatedDesign, EveryRunEndsAtTheEndTime) {
+  // T = 1.5 s on h = 7 ms is not a whole number of steps: the macro step is 1.5 s / 215 (the largest
+  // at most 7 ms that divides T), run j takes 215 j steps of it over j, and every run ends at T, or
+  // integrals over time would cover different intervals and not combine.
   const DesignProblem problem =
       openChain({ParameterOverride::ofWord("settings.integrator", "extrapolation"), {"settings.extrapolation_runs", 3.0},
                  {"settings.step", 7e-3}});
   const DesignResponse combined = evaluateDesign(problem, transcribe(problem), initialPoint(problem));
-  for (const DesignResponse& run : combined.runs) EXPECT_NEAR(run.trajectory.time[run.trajectory.time.size() - 1], 1.505, 1e-12);
+  ASSERT_EQ(combined.runs.size(), 3u);
+  for (std::size_t j = 0; j < combined.runs.size(); ++j) {
+    const Eigen::VectorXd& time = combined.runs[j].trajectory.time;
+    EXPECT_EQ(time.size(), 215 * static_cast<Eigen::Index>(j + 1) + 1);
+    EXPECT_EQ(time[time.size() - 1], 1.5);
+  }
 }
 
 TEST(ExtrapolatedDesign, AdjointEqualsDirectRunByRun) {

@@ -140,11 +140,12 @@ TEST(Extrapolation, RefusesASchemeWhoseErrorIsNotEvenInH) {
   EXPECT_THROW(estimateGlobalError(scene.model, scene.settings, Trajectory{}, scene.q0, scene.v0), std::invalid_argument);
 }
 
-/// The six runs of macro step H on `scene` (steps H/j, each stretched by `stretch`), with the
-/// round-off probe when `probe`.
+/// The six runs of macro step H on `scene` (steps H/j, each stretched by `stretch`, to an end time
+/// stretched alike: the same steps, a few ulps longer), with the round-off probe when `probe`.
 ExtrapolationTableau sixRuns(const Scene& scene, double H, double stretch, bool probe) {
   NewmarkSettings macro = scene.settings;
   macro.step = H * (1.0 + stretch);
+  macro.end_time *= 1.0 + stretch;
   const long outputs = stepsToCover(macro.end_time, H);
   ExtrapolationTableau tableau(errorExponents(scene.model, macro));
   for (int j = 1; j <= 6; ++j) {
@@ -258,7 +259,7 @@ TEST(Integration, RegistryNamesEveryIntegratorOnce) {
   }
 }
 
-TEST(Integration, AFixedNewmarkStepKeepsEveryNthPointAndRefusesAnOutputStepOffItsGrid) {
+TEST(Integration, AFixedNewmarkStepKeepsEveryNthPointAndEndsAtTheEndTime) {
   const Scene scene = oscillator(1.0);
   IntegrationRequest request;
   request.output_step = 0.01;  // 10 steps of the scene's 1 ms
@@ -267,8 +268,19 @@ TEST(Integration, AFixedNewmarkStepKeepsEveryNthPointAndRefusesAnOutputStepOffIt
   ASSERT_EQ(kept.run.trajectory.time.size(), 101);
   const Trajectory every = NewmarkIntegrator(scene.model, scene.settings).simulate(scene.q0, scene.v0);
   for (Eigen::Index k = 0; k < 101; ++k) EXPECT_EQ(kept.run.trajectory.q(0, k), every.q(0, 10 * k));
+  // 1 s is not a whole number of 10.5 ms: 96 equal intervals of 1/96 s (the most at most 10.5 ms), each
+  // of 11 equal steps (the fewest at most 1 ms), the last output at 1 s.
   request.output_step = 0.0105;
-  EXPECT_THROW(integrate(scene.model, scene.settings, scene.q0, scene.v0, request), std::invalid_argument);
+  const Integration shortened = integrate(scene.model, scene.settings, scene.q0, scene.v0, request);
+  const Eigen::VectorXd& time = shortened.run.trajectory.time;
+  ASSERT_EQ(time.size(), 97);
+  EXPECT_EQ(time[96], 1.0);
+  EXPECT_NEAR(time[1], 1.0 / 96.0, 1e-15);
+  NewmarkSettings fine = scene.settings;
+  fine.step = 1.0 / (96.0 * 11.0);
+  const Trajectory steps = NewmarkIntegrator(scene.model, fine).simulate(scene.q0, scene.v0);
+  ASSERT_EQ(steps.time.size(), 96 * 11 + 1);
+  for (Eigen::Index k = 0; k < 97; ++k) EXPECT_EQ(shortened.run.trajectory.q(0, k), steps.q(0, 11 * k));
 }
 
 }  // namespace

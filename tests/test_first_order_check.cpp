@@ -57,7 +57,7 @@ class SlowlyFallingMaximum : public NlpProblem {
 double residualAt(NlpProblem& problem, const Eigen::VectorXd& x, double active_tolerance) {
   NlpEvaluation at;
   problem.evaluate(x, true, at);
-  return firstOrderResidual(problem, x, at, active_tolerance);
+  return firstOrderCheck(problem, x, at, active_tolerance).residual;
 }
 
 TEST(FirstOrderCheck, VanishesAtThePublishedOptimumOfHockSchittkowski71) {
@@ -65,6 +65,23 @@ TEST(FirstOrderCheck, VanishesAtThePublishedOptimumOfHockSchittkowski71) {
   // The optimum is published to 8 digits, so its constraints hold to ~1e-6 and the multipliers
   // balance the gradients to about as much.
   EXPECT_LE(residualAt(problem, test::HockSchittkowski71::optimum(), 1e-4), 1e-5);
+}
+
+TEST(FirstOrderCheck, HasThePublishedMultipliersOfHockSchittkowski71) {
+  // Ipopt's documented solution of hs071 (its Lagrangian f + λ·g with g₁ = x₁x₂x₃x₄ ≥ 25, g₂ = Σxᵢ² = 40):
+  // λ = (−0.5522937, 0.1614686), z_L = (1.087871, ~0, ~0, ~0), z_U ≈ 0. Here g₁ is written 25 − Πx ≤ 0,
+  // which turns λ₁'s sign. The published optimum has 8 digits, which leaves the multipliers good to
+  // about 1e-6 relative.
+  test::HockSchittkowski71 problem;
+  const Eigen::VectorXd x = test::HockSchittkowski71::optimum();
+  NlpEvaluation at;
+  problem.evaluate(x, true, at);
+  const FirstOrderCheck check = firstOrderCheck(problem, x, at, 1e-4);
+  EXPECT_NEAR(check.multipliers.constraints[0], 0.5522937, 1e-5 * 0.5522937);
+  EXPECT_NEAR(check.multipliers.constraints[1], 0.1614686, 1e-5 * 0.1614686);
+  EXPECT_NEAR(check.multipliers.lower[0], 1.087871, 1e-5 * 1.087871);
+  EXPECT_EQ(check.multipliers.lower.tail(3).cwiseAbs().maxCoeff(), 0.0);  // inactive bounds
+  EXPECT_EQ(check.multipliers.upper.cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(FirstOrderCheck, DoesNotDependOnTheUnitsOfTheVariables) {

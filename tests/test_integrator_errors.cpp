@@ -137,9 +137,14 @@ TEST(IntegratorErrors, InvalidSettingsAndStatesAreRejected) {
   NewmarkSettings no_iterations = settings(1e-3, 1.0);
   no_iterations.max_newton_iterations = 0;
   EXPECT_THROW(NewmarkIntegrator(model, no_iterations), std::invalid_argument);
-  NewmarkIntegrator ragged(model, settings(0.3, 1.0));  // 1 s is not a whole number of 0.3 s steps
+  // 1 s is not a whole number of 0.3 s steps: four equal steps of 0.25 s, the last ending at 1 s.
+  NewmarkIntegrator ragged(model, settings(0.3, 1.0));
+  EXPECT_EQ(ragged.settings().step, 0.25);
   const Trajectory covering = ragged.simulate(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1));
-  EXPECT_NEAR(covering.time[covering.time.size() - 1], 1.2, 1e-12);  // the grid covers [0, 1 s]
+  ASSERT_EQ(covering.time.size(), 5);
+  EXPECT_EQ(covering.time[4], 1.0);
+  EXPECT_EQ(covering.time[1], 0.25);
+  EXPECT_THROW(NewmarkIntegrator(model, settings(1.5, 1.0)), std::invalid_argument);  // a step longer than the run
   NewmarkIntegrator integrator(model, settings(1e-3, 1.0));
   EXPECT_THROW(integrator.initialize(Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)), std::invalid_argument);
   Eigen::VectorXd nan(1);

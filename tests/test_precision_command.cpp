@@ -153,7 +153,8 @@ TEST_F(PrecisionCommand, GradientStudyOnASmallDesignProblem) {
 TEST(SimulateEvery, WritesEveryNthTimePointAndTheLast) {
   const std::filesystem::path csv =
       std::filesystem::temp_directory_path() / ("mbsopt_every_" + std::to_string(::getpid()) + ".csv");
-  // 11 steps of 1 ms (the grid covers 0.0105 s): time points 0..11, every 5th is 0, 5, 10, then 11.
+  // 11 equal steps of 0.0105/11 s (the fewest of at most 1 ms, ending at 0.0105 s): time points 0..11,
+  // every 5th is 0, 5, 10, then the last, 11.
   const std::string command = std::string(MBSOPT_EXECUTABLE) +
                               " simulate pendulum --set settings.end_time=0.0105 --every 5 --out " + csv.string() +
                               " > /dev/null";
@@ -166,9 +167,9 @@ TEST(SimulateEvery, WritesEveryNthTimePointAndTheLast) {
   while (std::getline(in, line)) times.push_back(std::stod(line.substr(0, line.find(','))));
   ASSERT_EQ(times.size(), 4u);
   EXPECT_DOUBLE_EQ(times[0], 0.0);
-  EXPECT_DOUBLE_EQ(times[1], 0.005);
-  EXPECT_DOUBLE_EQ(times[2], 0.010);
-  EXPECT_DOUBLE_EQ(times[3], 0.011);
+  EXPECT_DOUBLE_EQ(times[1], 5 * 0.0105 / 11);
+  EXPECT_DOUBLE_EQ(times[2], 10 * 0.0105 / 11);
+  EXPECT_DOUBLE_EQ(times[3], 0.0105);
   std::filesystem::remove(csv);
 }
 

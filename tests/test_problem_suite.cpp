@@ -49,6 +49,9 @@ const std::map<std::string, std::vector<std::string>> kReachedBy = {
     {"spring_preload", {"sdcc", "slsqp", "mma", "ccsaq", "ipopt"}},
     {"spring_return", {"sdcc", "slsqp", "ipopt"}},  // an equality: MMA and CCSAQ cannot take it
     {"train_couplers", {"sdcc", "slsqp", "ipopt"}},  // nineteen equalities
+    // MMA runs to its evaluation limit about the optimum; CCSAQ stops on its step (xtol_rel) with c
+    // 1.6e-3 above it, its cost 6e-7 above (README).
+    {"tuned_mass_damper", {"sdcc", "slsqp", "ipopt"}},
     // MMA, CCSAQ and Ipopt converge too, 2.5e-8 … 1.3e-7 above the vertex (their tolerance on x
     // times the cost's slopes there), outside the reference's 1e-9 (README).
     {"wrist_pin_balance", {"sdcc", "slsqp"}},
@@ -135,7 +138,7 @@ TEST(ProblemSuite, TheQuickReferencesAreWhatTheirScriptsPrint) {
   const fs::path directory = scratch();
   for (const std::string name :
        {"clothoid_transition", "press_slider_crank", "rest_to_rest", "spring_floor", "spring_preload", "spring_return", "train_couplers",
-        "wrist_pin_balance"}) {
+        "tuned_mass_damper", "wrist_pin_balance"}) {
     const nlohmann::json reference = referenceOf(kSuite / (name + ".yaml"));
     const fs::path printed = directory / (name + ".json");
     const std::string command = "python3 -B " + (fs::path(MBSOPT_SOURCE_DIR) / "scripts" / "reference" / (name + ".py")).string() +

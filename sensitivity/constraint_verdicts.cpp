@@ -1,10 +1,8 @@
-#include "app/constraint_verdicts.hpp"
+#include "mbsopt/sensitivity/constraint_verdicts.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
-#include "mbsopt/dynamics/overloaded.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/time_functional.hpp"
 
@@ -12,9 +10,6 @@ namespace mbsopt {
 
 namespace {
 
-/// The default tolerance: a relative 1e-4 of the bound (1e-3° on a 10° limit), at least 1e-6 in SI
-/// units (the optimizers' feasibility tolerance on a transcribed value).
-constexpr double kRelativeTolerance = 1e-4, kAbsoluteTolerance = 1e-6;
 
 const char* measureName(ResponseMeasure of) {
   switch (of) {
@@ -41,37 +36,17 @@ double functionalValue(ResponseMeasure of, const Eigen::VectorXd& time, const Ei
   return 0.0;
 }
 
-/// m, m/s, m/s² (or rad, …) for a sensed position, velocity, acceleration.
-std::string derivativeUnit(Derivative d, bool angular) {
-  const std::string base = angular ? "rad" : "m";
-  return d == Derivative::Position ? base : d == Derivative::Velocity ? base + "/s" : base + "/s²";
-}
-
 }  // namespace
 
 std::string measureUnit(const Model& model, const Sensor& sensor, ResponseMeasure of) {
   return sensorUnit(model, sensor) + (of == ResponseMeasure::Integral ? "·s" : "");
 }
 
-bool isAngle(const Sensor& sensor) { return std::holds_alternative<RelativeAngleSensor>(sensor.kind); }
-
-double inUnits(const Sensor& sensor, double value) { return isAngle(sensor) ? value * 180.0 / std::numbers::pi : value; }
-
-std::string sensorUnit(const Model& model, const Sensor& sensor) {
-  return std::visit(
-      Overloaded{[](const PointSensor& s) -> std::string { return derivativeUnit(s.quantity, false); },
-                 [&](const JointSensor& s) -> std::string {
-                   const KinematicElement& joint =
-                       model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(s.coordinate)].element)];
-                   return derivativeUnit(s.quantity, std::holds_alternative<RevoluteJoint>(joint.kind));
-                 },
-                 [](const RelativeAngleSensor&) -> std::string { return "deg"; },
-                 [](const EnergySensor&) -> std::string { return "J"; },
-                 [](const CutReactionSensor& s) -> std::string {
-                   return s.quantity == ReactionQuantity::Force ? "N" : "N·m";
-                 }},
-      sensor.kind);
+double constraintTolerance(const ResponseConstraint& constraint) {
+  return constraint.tolerance.value_or(std::max(kRelativeTolerance * std::abs(constraint.bound), kAbsoluteTolerance));
 }
+
+std::string constraintName(const ResponseConstraint& constraint) { return constraint.sensor + "_" + measureName(constraint.of); }
 
 std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, const DesignResponse& response) {
   if (!response.runs.empty()) {  // the verdicts of the combination the optimizer saw, not of one run
@@ -102,7 +77,7 @@ std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, 
       const Sensor& sensor = model.sensors()[static_cast<std::size_t>(index)];
       const double unit = inUnits(sensor, 1.0);  // SI → the reported unit
       ConstraintVerdict v;
-      v.name = c.sensor + "_" + measureName(c.of) + (problem.load_cases.empty() ? "" : "_" + problem.load_cases[k].name);
+      v.name = constraintName(c) + (problem.load_cases.empty() ? "" : "_" + problem.load_cases[k].name);
       v.unit = measureUnit(model, sensor, c.of);
       const double value = functionalValue(c.of, trajectory.time, trajectory.sensors.col(index));
       const double excess = c.equality ? std::abs(value - c.bound)
@@ -112,11 +87,17 @@ std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, 
       v.bound = c.bound * unit;
       v.equality = c.equality;
       v.excess = excess * unit;
-      v.tolerance = unit * c.tolerance.value_or(std::max(kRelativeTolerance * std::abs(c.bound), kAbsoluteTolerance));
+      v.tolerance = unit * constraintTolerance(c);
       out.push_back(v);
     }
   }
   return out;
+}
+
+double excessOverTolerance(const std::vector<ConstraintVerdict>& verdicts) {
+  double worst = 0.0;
+  for (const ConstraintVerdict& v : verdicts) worst = std::max(worst, v.excess / v.tolerance);
+  return worst;
 }
 
 }  // namespace mbsopt

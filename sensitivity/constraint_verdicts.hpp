@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mbsopt/dynamics/sensor_units.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {
@@ -24,18 +25,24 @@ struct ConstraintVerdict {
   bool met() const { return excess <= tolerance; }
 };
 
+/// The default tolerance of a constraint in the reports: a relative 1e-4 of the bound (1e-3° on a 10°
+/// limit), at least 1e-6 in SI units (the optimizers' feasibility tolerance on a transcribed value).
+inline constexpr double kRelativeTolerance = 1e-4, kAbsoluteTolerance = 1e-6;
+/// How far a constraint's value may lie beyond its bound in the reports [SI]: its own `tolerance:`, or
+/// the default.
+double constraintTolerance(const ResponseConstraint& constraint);
+
+/// SENSOR_OF: the name of a constraint in the reports (yaw_front_max_abs), before any load case's suffix.
+std::string constraintName(const ResponseConstraint& constraint);
+
 /// The verdict of every constraint of the problem, in every load case, on the response's trajectories.
 std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, const DesignResponse& response);
 
-/// The unit of a sensor's value as the verdicts and reports give it ("m", "rad/s", "deg", "N", …).
-std::string sensorUnit(const Model& model, const Sensor& sensor);
+/// The largest excess over its tolerance among the verdicts (≤ 1: every one met; 0 without any):
+/// NlpEvaluation::excess_over_tolerance of a design problem.
+double excessOverTolerance(const std::vector<ConstraintVerdict>& verdicts);
 
 /// The unit of a measure of a sensor as the reports give it: sensorUnit, times s for an integral.
 std::string measureUnit(const Model& model, const Sensor& sensor, ResponseMeasure of);
-
-/// Whether the reports give the sensor in degrees (a relative angle).
-bool isAngle(const Sensor& sensor);
-/// A sensor's SI value in the reports' unit: degrees for an angle, its own otherwise.
-double inUnits(const Sensor& sensor, double value);
 
 }  // namespace mbsopt

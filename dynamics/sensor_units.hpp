@@ -1,0 +1,27 @@
+// The units in which mbsopt reports a sensor: SI, except a relative angle, reported in degrees
+// (problems/scenes/README.md, "Sensors"). One table for every output that names a unit: the CSV
+// header, the JSON records, the tables and the plot axes.
+#pragma once
+
+#include <string>
+
+#include "mbsopt/dynamics/model.hpp"
+
+namespace mbsopt {
+
+/// The unit of a sensor's reported value: "m", "m/s", "m/s²", "rad", "rad/s", "rad/s²" for points and
+/// joints, "deg" for a relative angle, "J" for an energy, "N" or "N·m" for a cut reaction.
+std::string sensorUnit(const Model& model, const Sensor& sensor);
+
+/// The SI unit of a sensor's value as the trajectories hold it (sensorUnit, but "rad" for a relative angle).
+std::string sensorSiUnit(const Model& model, const Sensor& sensor);
+
+/// Whether the reports give the sensor in degrees (a relative angle).
+bool isAngle(const Sensor& sensor);
+/// Whether the sensor's value is an angle in radians in SI (a relative angle, or a revolute joint's
+/// position): what a bound written in degrees may constrain.
+bool measuresAngle(const Model& model, const Sensor& sensor);
+/// A sensor's SI value in the reports' unit: degrees for a relative angle, its own otherwise.
+double inUnits(const Sensor& sensor, double value);
+
+}  // namespace mbsopt
