@@ -20,7 +20,7 @@ namespace {
 
 struct GradcheckOptions {
   SceneArgument problem;
-  DesignPointArgument point;
+  DesignPointRequest point;
   double fd_step = 1e-6;
   std::string json;
 };
@@ -50,9 +50,11 @@ std::vector<double> toVector(const Eigen::VectorXd& v) { return {v.data(), v.dat
 
 void gradcheck(const GradcheckOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
-  const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
+  const std::vector<ParameterOverride> overrides = parseOverrides(source, options.problem.sets);
+  const DesignProblem problem = loadDesignProblem(source, overrides);
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
-  const Eigen::VectorXd x = designPoint(source, problem, options.point);
+  const Eigen::VectorXd x = checkedDesignPoint(source, overrides, problem, options.point);
+  const std::vector<std::string> outside = outsideBounds(problem, x);
 
   const auto start = std::chrono::steady_clock::now();
   const DesignResponse response = evaluateDesign(problem, functionals, x);
@@ -76,6 +78,7 @@ void gradcheck(const GradcheckOptions& options) {
   // Text report.
   std::printf("gradcheck %s: %zu design variables + b_{k+1}, %zu constraints; one simulation %.3g s\n",
               source.path.c_str(), problem.design.variables.size(), functionals.size(), simulation);
+  for (const std::string& value : outside) std::printf("OUTSIDE THE DESIGN'S BOUNDS (--outside-bounds): %s\n", value.c_str());
   // The gradients' columns: ∂/∂x_i, x_i = value_i / scale_i (the units the optimizers see).
   nlohmann::json json_variables = nlohmann::json::array();
   std::printf("columns, d/dx with x = value/scale:");
@@ -135,6 +138,7 @@ void gradcheck(const GradcheckOptions& options) {
     const nlohmann::json document = {{"problem", source.path},
                                      {"variables", json_variables},
                                      {"design_point", toVector(x)},
+                                     {"outside_bounds", outside},
                                      {"functionals", json_functionals},
                                      {"timings_s", timings}};
     writeAtomically(options.json, [&](std::ostream& out) { out << document.dump(2) << '\n'; });
@@ -158,7 +162,7 @@ void registerGradcheckCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   command->add_option("--json", options->json,
                       "Write the results as JSON: variables[{name, scale}] (the gradients' columns, d/dx with x = "
-                      "value/scale, b_{k+1} last), design_point (x), functionals[{name, value, gradients{method: [..]}, "
+                      "value/scale, b_{k+1} last), design_point (x), outside_bounds (the values outside the design's bounds, --outside-bounds), functionals[{name, value, gradients{method: [..]}, "
                       "fd_sweep[{relative_step, gradient}]}], timings_s{simulation, method: seconds}");
   command->callback([options] { gradcheck(*options); });
 }

@@ -330,8 +330,13 @@ nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::s
     const char* kind = w.kind == BoundWorth::Kind::Constraint ? "constraint"
                        : w.kind == BoundWorth::Kind::LowerBound ? "lower_bound"
                                                                 : "upper_bound";
+    const std::string dotted = w.kind == BoundWorth::Kind::Constraint
+                                   ? "design.constraints." + std::to_string(w.index) + (w.equality ? ".equals" : ".bound")
+                                   : "design.variables." + std::to_string(w.index) +
+                                         (w.kind == BoundWorth::Kind::LowerBound ? ".lower" : ".upper");
     out.push_back({{"name", w.name},
                    {"kind", kind},
+                   {"parameter", dotted},
                    {"bound", w.bound},
                    {"unit", w.unit.empty() ? "SI" : w.unit},
                    {"equality", w.equality},
@@ -414,6 +419,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
                                 {"cheapest_feasible_iteration", run.cheapest_iteration < 0 ? nlohmann::json(nullptr)
                                                                                            : nlohmann::json(run.cheapest_iteration)}}},
           {"bound_worth", boundWorthJson(run.bound_worth, run.cost_unit)},
+          {"kkt_residual", r.first_order ? nlohmann::json(r.first_order->residual) : nlohmann::json(nullptr)},
           {"tolerance_worth", finiteOrNull(run.tolerance_worth)},
           {"max_violation", r.max_violation},
           {"iterations", r.iterations},

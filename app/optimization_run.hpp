@@ -156,7 +156,7 @@ extern const char* const kReportedPointRule;
 /// The run as the documented JSON record (problem, optimizer, gradient, formulation, status, …).
 nlohmann::json toJson(const OptimizationRun& run, const std::string& problem);
 /// What relaxing each active bound is worth, as JSON: [{name, kind (constraint, lower_bound,
-/// upper_bound), bound, unit, equality, d_cost_d_bound, relaxing_lowers_cost_by, relaxed_by,
+/// upper_bound), parameter (the bound's dotted name for --set, in SI units), bound, unit, equality, d_cost_d_bound, relaxing_lowers_cost_by, relaxed_by,
 /// cost_unit_per_unit, tolerance}].
 nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::string& cost_unit);
 /// The verdicts as JSON: [{name, unit, value, bound | equals, excess, tolerance, met}].

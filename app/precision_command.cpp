@@ -34,7 +34,7 @@ struct PrecisionOptions {
   double alpha = 0.05;
   int runs = 4;  ///< the extrapolation variant's runs per macro step
   double fd_step = 1e-6;
-  DesignPointArgument point;  ///< --design, --artificial (with --gradients)
+  DesignPointRequest point;  ///< --design, --artificial, --outside-bounds (with --gradients)
   std::optional<int> repeat;
   std::optional<double> target_error;
   std::string out;
@@ -209,7 +209,7 @@ void gradientStudy(const PrecisionOptions& options, const SceneSource& source,
                    const std::vector<ParameterOverride>& overrides) {
   const DesignProblem problem = loadDesignProblem(source, overrides);
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
-  const Eigen::VectorXd x = designPoint(source, problem, options.point);
+  const Eigen::VectorXd x = checkedDesignPoint(source, overrides, problem, options.point);
   const std::vector<double> steps = ladder(options.steps.empty() ? kGradientSteps : options.steps);
   const std::vector<std::string> methods = options.variants.empty() ? gradientMethodNames() : options.variants;
   for (const std::string& method : methods) requireGradientMethod(method);
@@ -334,9 +334,7 @@ void registerPrecisionCommand(CLI::App& app) {
                       "With --gradients: the relative step of the finite-difference methods")
       ->check(CLI::PositiveNumber)
       ->needs(gradients);
-  const auto [design, artificial] = addDesignPointOptions(*command, options->point, "With --gradients: ");
-  design->needs(gradients);
-  artificial->needs(gradients);
+  for (CLI::Option* point : addDesignPointOptions(*command, options->point, "With --gradients: ")) point->needs(gradients);
   gradients->excludes(reference)->excludes(quantities)->excludes(alpha)->excludes(runs);
   command->callback([options, command] {
     options->command_line = commandLine(*command);

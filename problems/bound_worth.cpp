@@ -28,6 +28,7 @@ std::vector<BoundWorth> boundWorth(const DesignProblem& problem, const std::vect
     BoundWorth w;
     w.kind = BoundWorth::Kind::Constraint;
     w.name = constraintName(c);
+    w.index = static_cast<int>(i);
     w.unit = measureUnit(model, sensor, c.of);
     w.bound = c.bound * unit;
     w.equality = c.equality;
@@ -48,6 +49,7 @@ std::vector<BoundWorth> boundWorth(const DesignProblem& problem, const std::vect
       w.kind = kind;
       w.raising_relaxes = !lower;
       w.name = v.parameter;
+      w.index = static_cast<int>(j);
       w.bound = lower ? v.lower : v.upper;
       w.derivative = (lower ? mu : -mu) / v.scale * cost_unit;
       out.push_back(w);

@@ -22,6 +22,9 @@ struct BoundWorth {
   /// The constraint's report name (yaw_front_max_abs; one bound for every load case), or the design
   /// variable's parameter (front_secondary.k).
   std::string name;
+  /// Its place in DesignDescription::constraints or ::variables: the dotted name
+  /// design.constraints.INDEX.bound, or design.variables.INDEX.lower / .upper, moves it.
+  int index = 0;
   std::string unit;  ///< the bound's: the constraint's reported unit (deg for an angle), "" for a parameter's SI unit
   double bound = 0.0;  ///< in `unit`
   bool equality = false;

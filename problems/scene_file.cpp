@@ -667,11 +667,38 @@ void freezeAdaptiveSteps(const SceneSource& source, Scene& scene) {
   }
 }
 
+/// Each design variable's bounds are values the scene itself accepts for its parameter (a stiffness's
+/// lower bound is not negative): the scene loaded with each bound as its value, an error at the bound
+/// where the scene refuses that value. (A loop that cannot be assembled at a bound is not such an
+/// error: the design simply cannot go there, which its evaluation says.)
+void checkVariableBounds(const SceneSource& source, const std::vector<ParameterOverride>& overrides,
+                         const DesignDescription& design) {
+  for (std::size_t i = 0; i < design.variables.size(); ++i) {
+    const DesignVariable& v = design.variables[i];
+    for (const char* side : {"lower", "upper"}) {
+      std::vector<ParameterOverride> at_bound = overrides;
+      at_bound.emplace_back(v.parameter, side[0] == 'l' ? v.lower : v.upper);
+      at_bound.back().origin = "design.variables." + std::to_string(i) + "." + side;
+      try {
+        loadScene(source, at_bound);
+      } catch (const SceneError& e) {
+        if (e.reason().find("(value from " + at_bound.back().origin) == std::string::npos) continue;
+        const YamlMark mark = parse(source)["design"]["variables"][i][side].mark();
+        throw SceneError(source.path, mark.line + 1, mark.column + 1,
+                         std::string("design variable ") + quoted(v.parameter) + ": its " + side + " bound " +
+                             formatNumber(side[0] == 'l' ? v.lower : v.upper) + " is a value the scene refuses: " +
+                             e.reason());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   LoadedScene loaded = loadScene(source, overrides);
   if (!loaded.design) throw SceneError(source.path, 0, 0, "the scene has no 'design:' section");
+  checkVariableBounds(source, overrides, *loaded.design);
   DesignProblem problem{std::move(loaded.scene), std::move(*loaded.design), {}};
   // Each load case: the scene again with the command line's overrides, then the case's own.
   for (std::size_t c = 0; c < problem.design.load_cases.size(); ++c) {

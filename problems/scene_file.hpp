@@ -56,6 +56,8 @@ struct ParameterOverride {
   std::string name;
   double value = 0.0;
   std::string word;  ///< the value of a word setting, as typed; empty for a number
+  /// Where the value comes from, as the messages name it ("--set", "the design point", a bound's name).
+  std::string origin = "--set";
 };
 
 /// Whether `dotted_name` is a setting whose value is a word, not a number: `settings.closure`.

@@ -174,7 +174,7 @@ void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<Para
 }
 
 std::string describe(const ParameterOverride& o) {
-  return "--set " + o.name + "=" + (o.word.empty() ? formatNumber(o.value) : o.word);
+  return o.origin + " " + o.name + "=" + (o.word.empty() ? formatNumber(o.value) : o.word);
 }
 
 }  // namespace mbsopt

@@ -19,7 +19,7 @@ void forEachNumber(const YamlNode& root, const std::function<void(const std::str
 /// like any other; a name that leads nowhere is an error naming the override.
 void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<ParameterOverride>& overrides);
 
-/// "--set name=value", for messages.
+/// "--set name=value" (ParameterOverride::origin, name and value), for messages.
 std::string describe(const ParameterOverride& override_);
 
 }  // namespace mbsopt

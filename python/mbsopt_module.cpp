@@ -17,6 +17,7 @@
 #include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/dynamics/newmark.hpp"
 #include "mbsopt/problems/design_nlp.hpp"
+#include "mbsopt/problems/design_point.hpp"
 #include "mbsopt/problems/scene_file.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 
@@ -152,8 +153,8 @@ class PythonProblem {
  public:
   PythonProblem(const std::string& problem, const std::string& gradient, const py::dict& set, int jobs)
       : source_(resolveScene(problem)),
-        nlp_(loadDesignProblem(source_, overridesOf(source_, set)), gradient == "fd" ? "fd_central" : gradient, 1e-6,
-             checkedJobs(jobs)),
+        overrides_(overridesOf(source_, set)),
+        nlp_(loadDesignProblem(source_, overrides_), gradient == "fd" ? "fd_central" : gradient, 1e-6, checkedJobs(jobs)),
         gradient_(gradient),
         jobs_(jobs) {}
 
@@ -183,17 +184,9 @@ class PythonProblem {
   }
 
   py::dict evaluate(const std::optional<std::vector<double>>& design, std::optional<double> artificial,
-                    bool gradients) {
-    Eigen::VectorXd x = nlp_.start();
-    const std::vector<DesignVariable>& design_variables = problem().design.variables;
-    if (design) {
-      if (design->size() != design_variables.size())
-        throw std::invalid_argument("evaluate: " + std::to_string(design->size()) + " design values for " +
-                                    std::to_string(design_variables.size()) + " variables");
-      for (std::size_t i = 0; i < design->size(); ++i)
-        x[static_cast<Eigen::Index>(i)] = (*design)[i] / design_variables[i].scale;
-    }
-    if (artificial) x[x.size() - 1] = *artificial / problem().design.artificial.scale;
+                    bool gradients, bool outside_bounds) {
+    const Eigen::VectorXd x =
+        checkedDesignPoint(source_, overrides_, problem(), {design.value_or(std::vector<double>{}), artificial, outside_bounds});
     NlpEvaluation e;
     {
       const py::gil_scoped_release unlocked;  // released first, so the mutex is never awaited with it
@@ -207,6 +200,7 @@ class PythonProblem {
     out["cost_functional"] = e.reported_cost;  // the cost sensor's own, SI
     out["constraint_names"] = constraintNames();
     out["constraints"] = array(e.constraints);
+    out["outside_bounds"] = outsideBounds(problem(), x);  // what outside_bounds=True let through
     if (gradients) {
       out["cost_gradient"] = array(e.cost_gradient);
       out["constraint_jacobian"] = array(e.constraint_jacobian);
@@ -251,6 +245,7 @@ class PythonProblem {
   }
 
   SceneSource source_;
+  std::vector<ParameterOverride> overrides_;
   DesignNlp nlp_;
   std::string gradient_;
   int jobs_;
@@ -299,10 +294,12 @@ PYBIND11_MODULE(mbsopt, m) {
       .def(py::init<const std::string&, const std::string&, const py::dict&, int>(), py::arg("problem"),
            py::arg("gradient") = "adjoint", py::arg("set") = py::dict(), py::arg("jobs") = 1)
       .def("evaluate", &PythonProblem::evaluate, py::arg("design") = py::none(), py::arg("artificial") = py::none(),
-           py::arg("gradients") = true,
+           py::arg("gradients") = true, py::arg("outside_bounds") = false,
            "The problem at a design (SI values of its variables; default its start) and b_{k+1} (default its "
            "start): cost (b_{k+1}), cost_functional, the transcribed constraints (each <= 0, equalities = 0) "
-           "and, with gradients, cost_gradient and constraint_jacobian (columns: variables).")
+           "and, with gradients, cost_gradient and constraint_jacobian (columns: variables). Each design value "
+           "must lie within its bounds unless outside_bounds=True (outside_bounds then lists those that do not) "
+           "and pass the scene file's checks of the same number (a RuntimeError with its message otherwise).")
       .def("optimize", &PythonProblem::optimize, py::arg("optimizer") = "sdcc", py::arg("formulation") = "",
            py::arg("epsilon") = py::none(), py::arg("budget") = py::none(), py::arg("max_iter") = 100,
            py::arg("settings") = py::dict(),
@@ -340,13 +337,14 @@ PYBIND11_MODULE(mbsopt, m) {
   m.def(
       "evaluate",
       [](const std::string& problem, const std::optional<std::vector<double>>& design, std::optional<double> artificial,
-         const std::string& gradient, const py::dict& set) {
+         const std::string& gradient, const py::dict& set, bool outside_bounds) {
         return PythonProblem(problem, gradient.empty() ? "adjoint" : gradient, set, 1)
-            .evaluate(design, artificial, !gradient.empty());
+            .evaluate(design, artificial, !gradient.empty(), outside_bounds);
       },
       py::arg("problem"), py::arg("design") = py::none(), py::arg("artificial") = py::none(),
-      py::arg("gradient") = "adjoint", py::arg("set") = py::dict(),
-      "Problem(problem, gradient, set).evaluate(design, artificial); gradient '' evaluates without gradients.");
+      py::arg("gradient") = "adjoint", py::arg("set") = py::dict(), py::arg("outside_bounds") = false,
+      "Problem(problem, gradient, set).evaluate(design, artificial, outside_bounds=...); gradient '' evaluates "
+      "without gradients.");
   m.def(
       "optimize",
       [](const std::string& problem, const std::string& optimizer, const std::string& gradient,

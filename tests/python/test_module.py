@@ -14,6 +14,7 @@ import numpy
 import mbsopt
 
 EXECUTABLE = os.environ["MBSOPT_EXECUTABLE"]
+SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def command(*arguments):
@@ -196,12 +197,24 @@ class PersistentObjects(unittest.TestCase):
             mbsopt.Problem("tramway", gradient="nope")
         with self.assertRaisesRegex(RuntimeError, "no 'design:' section"):
             mbsopt.Problem("pendulum")
-        with self.assertRaisesRegex(ValueError, "2 design values for 4 variables"):
+        with self.assertRaisesRegex(ValueError, "2 values for 4 design variables"):
             mbsopt.Problem("tramway").evaluate([1.0, 2.0])
         with self.assertRaisesRegex(RuntimeError, "did you mean 'mass'"):
             mbsopt.Scene("pendulum").set({"bob.mas": 1})
         with self.assertRaisesRegex(ValueError, "jobs must be at least 1, not 0"):
             mbsopt.Problem("tramway", jobs=0)
+
+    def test_a_design_is_checked_as_the_scene_checks_its_numbers(self):
+        # Outside its bounds only when asked for, and then named; a negative stiffness never (the
+        # scene's own check, at its line), where it used to give an RMS of 1e135.
+        problem = mbsopt.Problem(os.path.join(SOURCE, "problems", "suite", "tuned_mass_damper.yaml"))
+        with self.assertRaisesRegex(ValueError, "tmd.k = -400 lies outside its bounds"):
+            problem.evaluate([-400.0, 5.0], gradients=False)
+        with self.assertRaisesRegex(ValueError, "k must not be negative, got -400"):
+            problem.evaluate([-400.0, 5.0], gradients=False, outside_bounds=True)
+        outside = problem.evaluate([1200.0, 5.0], gradients=False, outside_bounds=True)
+        self.assertEqual(outside["outside_bounds"], ["tmd.k = 1200 above its upper bound 1000"])
+        self.assertEqual(problem.evaluate([464.85, 10.58], gradients=False)["outside_bounds"], [])
 
 
 class Gradients(unittest.TestCase):
