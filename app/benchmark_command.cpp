@@ -1,3 +1,5 @@
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/benchmark_command.hpp"
 
 #include <cstdio>
@@ -38,7 +40,7 @@ void benchmark(const BenchmarkOptions& options) {
   BenchmarkPlan plan = benchmarkPlan(options);
   std::string costs;
   if (root) {
-    std::filesystem::create_directories(options.out);
+    checkOutputDirectory("--out", options.out);
     costs = sweepGradientCosts(options, plan).dump();
   }
   if (mpi) costs = mpi->broadcast(costs);
@@ -128,7 +130,7 @@ void registerBenchmarkCommand(CLI::App& app) {
   command->add_option("--starts", options->starts,
                       "Starts per problem: its own, then a Latin hypercube in the design variables' bounds, the same "
                       "for every optimizer")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveInteger())
       ->capture_default_str();
   command->add_option("--seed", options->seed, "The Latin hypercube's seed")->capture_default_str();
   addBudgetOptions(*command, options->shared);
@@ -141,7 +143,7 @@ void registerBenchmarkCommand(CLI::App& app) {
   command->add_option("--jobs", options->jobs,
                       "Runs at once on this machine (default: its hardware threads); under MPI each rank runs one at a "
                       "time. The records do not depend on it")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveInteger())
       ->capture_default_str();
   command->add_option("--out", options->out, "The sweep's directory (created if missing; an existing one is resumed)")
       ->required();

@@ -1,3 +1,5 @@
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/compare_command.hpp"
 
 #include <algorithm>
@@ -111,9 +113,9 @@ void plotConvergence(const std::string& stem, const std::string& problem, const 
 }
 
 void compare(const CompareOptions& options) {
+  checkOutputDirectory("--out", options.out);
   const SceneSource source = resolveScene(options.problem.scene);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
-  if (!options.out.empty()) std::filesystem::create_directories(options.out);
   std::vector<RunChoice> choices = sweepChoices(options.axes, options.shared);
   // Each gradient method's cost measured once, before the runs and alone on the machine, so that
   // every optimizer's budget counts its gradients alike.
@@ -170,7 +172,7 @@ void registerCompareCommand(CLI::App& app) {
                       "when no run is left to start, the idle threads help the gradients of the runs still going. Ipopt "
                       "runs one at a time (its linear solver MUMPS is not thread-safe) and starts first; the results "
                       "do not depend on --jobs")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveInteger())
       ->capture_default_str();
   command->add_option("--out", options->out,
                       "Directory for comparison.md, comparison.csv, convergence.png (with its .dat and .gp) and one "

@@ -1,3 +1,5 @@
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/gradcheck_command.hpp"
 
 #include <chrono>
@@ -50,6 +52,7 @@ std::vector<double> toVector(const Eigen::VectorXd& v) { return {v.data(), v.dat
 
 void gradcheck(const GradcheckOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
+  checkOutputFile("--json", options.json, source.path);
   const std::vector<ParameterOverride> overrides = parseOverrides(source, options.problem.sets);
   const DesignProblem problem = loadDesignProblem(source, overrides);
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
@@ -159,7 +162,7 @@ void registerGradcheckCommand(CLI::App& app) {
   addSceneArgument(*command, options->problem, true);
   addDesignPointOptions(*command, options->point);
   command->add_option("--fd-step", options->fd_step, "Relative step of the forward and central differences")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command->add_option("--json", options->json,
                       "Write the results as JSON: variables[{name, scale}] (the gradients' columns, d/dx with x = "
                       "value/scale, b_{k+1} last), design_point (x), outside_bounds (the values outside the design's bounds, --outside-bounds), functionals[{name, value, gradients{method: [..]}, "

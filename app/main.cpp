@@ -31,7 +31,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // One line in the program's own words, and the documented exit status of an error.
+    const std::vector<CLI::App*> chosen = app.get_subcommands();
+    std::cerr << "mbsopt: error: " << e.what() << " (mbsopt " << (chosen.empty() ? "" : chosen.front()->get_name() + " ")
+              << "--help lists the options)\n";
+    return 1;
   } catch (const mbsopt::NotConverged& e) {  // the outputs are written; the summary said why
     std::cerr << "mbsopt: " << e.what() << '\n';
     return mbsopt::kExitNotConverged;

@@ -1,3 +1,4 @@
+#include "app/option_checks.hpp"
 #include "app/optimization_run.hpp"
 
 #include "app/command_line.hpp"
@@ -149,7 +150,7 @@ void addSweepOptions(CLI::App& command, SweepAxes& axes, RunChoice& shared) {
           "--epsilon", [&shared](double epsilon) { shared.epsilon = epsilon; },
           "ε ≥ 0 of every run, with the problem's measure or each of --formulations (see `mbsopt optimize --help`); "
           "default: each problem's own")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
 }
 
 std::vector<RunChoice> sweepChoices(const SweepAxes& axes, const RunChoice& shared) {
@@ -439,21 +440,21 @@ void addBudgetOptions(CLI::App& command, RunChoice& choice) {
                      "The budget of each run in simulation-equivalents, alike for every optimizer: a simulation "
                      "counts 1, a gradient --gradient-cost; an evaluation that would exceed it is not made, and the "
                      "run ends with its best point, status max_iterations (default: none)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command.add_option("--wall-time", choice.budget.wall_time_s,
                      "The wall time of each run's optimizer [s]: no evaluation starts after it (default: none)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command
       .add_option_function<double>(
           "--gradient-cost", [&choice](double cost) { choice.gradient_cost = cost; },
           "What one gradient counts in simulation-equivalents (default: for finite differences their simulations, "
           "one per design variable or two with fd_central; for an exact method the median of three timed "
           "gradient/simulation pairs on one thread at the start with b_{k+1} = 0, where the whole backward sweep runs)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command.add_option("--max-iter", choice.max_iterations,
                      "Each optimizer's own limit (NLopt: objective evaluations; Ipopt and SDCC: their own "
                      "iterations); --budget is the one that counts alike for all")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveInteger())
       ->capture_default_str();
 }
 

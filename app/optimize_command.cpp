@@ -1,3 +1,5 @@
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/optimize_command.hpp"
 
 #include <algorithm>
@@ -158,6 +160,8 @@ void printIteration(const IterationRecord& r) {
 
 void optimize(const OptimizeOptions& options) {
   const SceneSource source = resolveScene(options.problem.scene);
+  checkOutputFile("--json", options.json, source.path);
+  checkOutputDirectory("--out", options.out);
   const DesignProblem problem = loadDesignProblem(source, parseOverrides(source, options.problem.sets));
   std::string why;
   const RunChoice c = options.accuracy > 0.0 ? accurateChoice(problem, options.choice, &why) : options.choice;
@@ -220,7 +224,6 @@ void optimize(const OptimizeOptions& options) {
   if (!options.json.empty())
     writeAtomically(options.json, [&](std::ostream& out) { out << record.dump(2) << '\n'; });
   if (!options.out.empty()) {
-    std::filesystem::create_directories(options.out);
     writeAtomically(options.out + "/result.json", [&](std::ostream& out) { out << record.dump(2) << '\n'; });
     plotRun(options.out, source.path, run);
     std::printf("wrote %s/result.json, history.png, response.png (with their .dat and .gp)\n", options.out.c_str());
@@ -262,7 +265,7 @@ void registerOptimizeCommand(CLI::App& app) {
           "ε ≥ 0: each transcribed constraint becomes measure ≤ ε, with the problem's measure or --formulation's "
           "(the paper's ∫⟨φ⟩dt has a zero gradient where satisfied; ε > 0 gives it an interior); default: the "
           "problem's own (design.transcription.tolerance)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   addBudgetOptions(*command, options->choice);
   addSettingOption(*command, options->choice.settings);
   options->choice.gradient_jobs = machineThreads();
@@ -273,7 +276,7 @@ void registerOptimizeCommand(CLI::App& app) {
                       "simulated on a spare core while the current one is. The results do not depend on it, and "
                       "thread_time_simulations only through the threads' overheads and the "
                       "simulations run ahead for nothing")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveInteger())
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, lower, "
@@ -305,7 +308,7 @@ void registerOptimizeCommand(CLI::App& app) {
                    "positive_part or squared_positive_part transcription becomes grid_max unless --formulation says "
                    "(the integrals are met only to the optimizer's feasibility tolerance). The summary gives the cost "
                    "as value +- error; the JSON a `discretisation` record. Exit status 2 when the accuracy is not met")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
                       "history.png (the cost's own functional, max violation and design variables against iterations) and response.png "

@@ -1,3 +1,5 @@
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/precision_command.hpp"
 
 #include <algorithm>
@@ -255,9 +257,9 @@ void gradientStudy(const PrecisionOptions& options, const SceneSource& source,
 }
 
 void run(const PrecisionOptions& options) {
+  checkOutputDirectory("--out", options.out);
   const SceneSource source = resolveScene(options.scene.scene);
   const std::vector<ParameterOverride> overrides = parseOverrides(source, options.scene.sets);
-  if (!options.out.empty()) std::filesystem::create_directories(options.out);
   if (options.gradients) gradientStudy(options, source, overrides);
   else integratorStudy(options, source, overrides);
 }
@@ -280,7 +282,7 @@ void registerPrecisionCommand(CLI::App& app) {
                       "The steps h [s] to sweep, e.g. 2e-2,1e-2,5e-3 (default: 8h, 4h, 2h, h, h/2 with h the scene's "
                       "settings.step; with --gradients 2e-3,1e-3,5e-4,2.5e-4)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command->add_option("--variants", options->variants,
                       "Comma-separated variants (default: all): newmark (the scene's beta, gamma), damped (numerical "
                       "damping: gamma = 1/2 + alpha, beta = (gamma + 1/2)^2/4), fast-newton (accept a Newton iterate "
@@ -293,9 +295,9 @@ void registerPrecisionCommand(CLI::App& app) {
       ->delimiter(',');
   CLI::Option* alpha =
       command->add_option("--alpha", options->alpha, "The numerical damping alpha of the damped variant")
-          ->check(CLI::Range(0.0, 0.5));
+          ->check(numberBetween(0.0, 0.5));
   CLI::Option* runs = command->add_option("--runs", options->runs, "Runs per macro step of the extrapolation variant")
-                          ->check(CLI::Range(2, kMaxExtrapolationRuns))
+                          ->check(integerBetween(2, kMaxExtrapolationRuns))
                           ->capture_default_str();
   CLI::Option* reference =
       command->add_option("--reference", options->reference,
@@ -306,7 +308,7 @@ void registerPrecisionCommand(CLI::App& app) {
   command->add_option("--reference-step", options->reference_step,
                       "Step of the reference run [s] (default: the smallest swept step / 16; with --gradients, the "
                       "step of the reference gradient, by the direct method, default the smallest step / 4)")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->excludes(reference);
   CLI::Option* quantities =
       command->add_option("--quantities", options->quantities,
@@ -315,10 +317,10 @@ void registerPrecisionCommand(CLI::App& app) {
           ->delimiter(',');
   command->add_option("--repeat", options->repeat,
                       "Runs per (variant, step); the time is their median (default 3; 1 with --gradients)")
-      ->check(CLI::Range(1, 1000));
+      ->check(integerBetween(1, 1000));
   command->add_option("--target-error", options->target_error,
                       "Print the variant and step that reach this error in the least time (or that none does)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command->add_option("--out", options->out,
                       "Directory (created if missing) for precision.json (command, scene, study, reference, "
                       "quantities or functionals, steps, variants, repeat, target_error, cheapest, runs[{variant, "
@@ -332,7 +334,7 @@ void registerPrecisionCommand(CLI::App& app) {
       "--reference-step, at the scene's design point or the one of --design and --artificial");
   command->add_option("--fd-step", options->fd_step,
                       "With --gradients: the relative step of the finite-difference methods")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->needs(gradients);
   for (CLI::Option* point : addDesignPointOptions(*command, options->point, "With --gradients: ")) point->needs(gradients);
   gradients->excludes(reference)->excludes(quantities)->excludes(alpha)->excludes(runs);

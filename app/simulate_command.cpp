@@ -1,3 +1,4 @@
+#include "app/option_checks.hpp"
 #include "app/simulate_command.hpp"
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/atomic_file.hpp"
+#include "app/output_paths.hpp"
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
 #include "app/simulation_summary.hpp"
@@ -64,22 +66,6 @@ IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene)
   return request;
 }
 
-/// Refuses, before a run, an output path that cannot or must not be replaced by the CSV.
-void checkOutputPath(const SceneSource& source, const std::string& out) {
-  namespace fs = std::filesystem;
-  const fs::path path(out);
-  const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::error_code error;
-  if (!fs::is_directory(directory, error))
-    throw SceneError(source.path, 0, 0, "--out " + out + ": the directory " + directory.string() + " does not exist");
-  const fs::file_status status = fs::symlink_status(path, error);
-  if (fs::exists(status) && !fs::is_regular_file(status))
-    throw SceneError(source.path, 0, 0, "--out " + out + ": exists and is not a regular file (a directory, a link "
-                                        "or a device); give a file name");
-  if (fs::exists(status) && fs::exists(source.path) && fs::equivalent(path, source.path, error))
-    throw SceneError(source.path, 0, 0, "--out " + out + ": is the scene file itself");
-}
-
 /// An error in the run names an element; the file says where that element is declared.
 [[noreturn]] void failAt(const SceneSource& source, const LoadedScene& loaded, const std::string& element,
                          const std::string& what) {
@@ -93,7 +79,8 @@ void run(const SimulateOptions& options) {
   std::vector<ParameterOverride> overrides = parseOverrides(source, options.scene.sets);
   for (const auto& [text, name] : {std::pair{options.step, "settings.step"}, {options.end_time, "settings.end_time"}})
     if (!text.empty()) overrides.push_back(parseOverride(source, name, text));
-  if (!options.out.empty()) checkOutputPath(source, options.out);
+  checkOutputFile("--out", options.out, source.path);
+  checkOutputFile("--json", options.json, source.path);
   LoadedScene loaded = loadScene(source, overrides);
   for (const std::string& warning : loaded.warnings) std::cerr << warning << '\n';
   Scene& scene = loaded.scene;
@@ -213,18 +200,18 @@ void registerSimulateCommand(CLI::App& app) {
                        "second time (its runs repeated at steps a few ulps longer) and the round-off floor this "
                        "measures is included in the estimate: about twice the work, and below the floor the run "
                        "says so instead of claiming an accuracy it cannot have")
-          ->check(CLI::PositiveNumber);
+          ->check(positiveNumber());
   command
       ->add_option("--relative-accuracy", options->relative_accuracy,
                    "The relative part R of --accuracy (IDA's rtol beside its atol)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegativeNumber())
       ->needs(accuracy);
   command
       ->add_option("--local-tolerance", options->local_tolerance,
                    "The adaptive integrator without --accuracy: each step's local error in a coordinate (1/12 h^2 "
                    "times the change of its acceleration over the step) at most TOL, in its unit (default: the scene's "
                    "settings.local_tolerance, 1e-6 unless it says); the global error is what the estimate says")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->excludes(accuracy);
   command
       ->add_option("--output-step", options->output_step,
@@ -232,13 +219,13 @@ void registerSimulateCommand(CLI::App& app) {
                    "them so that the last is at T, whatever steps the integrator takes (an adaptive run's steps end "
                    "there; a fixed step or macro step is shortened to a whole number per interval) (default: every "
                    "step, or every macro step of an extrapolation)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   command
       ->add_option("--runs", options->runs,
                    "Extrapolation at a fixed macro step (no --accuracy): Newmark runs at H, H/2, ..., H/K with H "
                    "the scene's step; the result has order K (2K - 2 without cut joints) (default: the scene's "
                    "settings.extrapolation_runs, 3 unless it says)")
-      ->check(CLI::Range(2, kMaxExtrapolationRuns))
+      ->check(integerBetween(2, kMaxExtrapolationRuns))
       ->excludes(accuracy);
   command
       ->add_option("--error-estimate", options->error_estimate,
@@ -251,7 +238,7 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--warn-error", options->warn_error,
                    "Warn on stderr when the estimated global error of a coordinate exceeds TOL + TOL |q|")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the run's summary as JSON: integrator, steps, the estimated global errors (largest "
@@ -261,7 +248,7 @@ void registerSimulateCommand(CLI::App& app) {
                    "Write only every N-th time point to the CSV, and always the first and the last (t = 0, N·h, "
                    "2N·h, ..., T); the peaks printed still cover every time point of the run (every step of a "
                    "fixed Newmark step; the output times of --output-step and of the extrapolation) (default 1)")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveInteger())
       ->needs(out);
   command->callback([options] { run(*options); });
 }
