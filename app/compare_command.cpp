@@ -177,7 +177,7 @@ void registerCompareCommand(CLI::App& app) {
   command->add_option("--out", options->out,
                       "Directory for comparison.md, comparison.csv, convergence.png (with its .dat and .gp) and one "
                       "JSON per run (created if missing)");
-  command->callback([options] { compare(*options); });
+  command->callback([options] { locatingRunFailures(options->problem, [&] { compare(*options); }); });
 }
 
 }  // namespace mbsopt

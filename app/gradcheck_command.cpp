@@ -167,7 +167,7 @@ void registerGradcheckCommand(CLI::App& app) {
                       "Write the results as JSON: variables[{name, scale}] (the gradients' columns, d/dx with x = "
                       "value/scale, b_{k+1} last), design_point (x), outside_bounds (the values outside the design's bounds, --outside-bounds), functionals[{name, value, gradients{method: [..]}, "
                       "fd_sweep[{relative_step, gradient}]}], timings_s{simulation, method: seconds}");
-  command->callback([options] { gradcheck(*options); });
+  command->callback([options] { locatingRunFailures(options->problem, [&] { gradcheck(*options); }); });
 }
 
 }  // namespace mbsopt

@@ -313,7 +313,7 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
                       "history.png (the cost's own functional, max violation and design variables against iterations) and response.png "
                       "(the cost's sensor over time at the start and at the final design)");
-  command->callback([options] { optimize(*options); });
+  command->callback([options] { locatingRunFailures(options->problem, [&] { optimize(*options); }); });
 }
 
 }  // namespace mbsopt

@@ -340,7 +340,7 @@ void registerPrecisionCommand(CLI::App& app) {
   gradients->excludes(reference)->excludes(quantities)->excludes(alpha)->excludes(runs);
   command->callback([options, command] {
     options->command_line = commandLine(*command);
-    run(*options);
+    locatingRunFailures(options->scene, [&] { run(*options); });
   });
 }
 

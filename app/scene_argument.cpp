@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "mbsopt/dynamics/newmark.hpp"
 #include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
@@ -61,6 +62,15 @@ std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const s
     overrides.push_back(parseOverride(source, set.substr(0, equals), set.substr(equals + 1)));
   }
   return overrides;
+}
+
+void locatingRunFailures(const SceneArgument& argument, const std::function<void()>& work) {
+  try {
+    work();
+  } catch (const SimulationError& e) {
+    const SceneSource source = resolveScene(argument.scene);
+    throw failureAt(source, parseOverrides(source, argument.sets), e.element, e.what());
+  }
 }
 
 }  // namespace mbsopt

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,5 +28,10 @@ ParameterOverride parseOverride(const SceneSource& source, const std::string& na
 
 /// Parses "name=value" (value a number, optionally with `deg`, or a word setting's word); errors name the scene.
 std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets);
+
+/// Runs a command's work on the scene: a run's failure that escapes it (a SimulationError: a loop
+/// that cannot close, Newton on a step too large) becomes the scene's error at the line of the element
+/// it names (failureAt), as `mbsopt simulate` reports it.
+void locatingRunFailures(const SceneArgument& argument, const std::function<void()>& work);
 
 }  // namespace mbsopt

@@ -45,7 +45,7 @@ void throwOpenLoops(const Model& model, const Eigen::VectorXd& b, const std::str
   }
   throw AssemblyError(context + "the loop(s) closed by " + names + " cannot be assembled: closure error " +
                           std::to_string(b.cwiseAbs().maxCoeff()) + " m" + detail,
-                      std::move(open));
+                      std::move(open), b.cwiseAbs().maxCoeff());
 }
 
 AssemblyReport assemble(const Model& model, Eigen::VectorXd& q, Eigen::VectorXd& v, double t, double tolerance,

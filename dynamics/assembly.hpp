@@ -24,12 +24,14 @@ struct AssemblyReport {
 /// A loop that cannot be closed: the cut joints whose equations stay violated.
 class AssemblyError : public std::runtime_error {
  public:
-  AssemblyError(const std::string& what, std::vector<int> open_cuts)
-      : std::runtime_error(what), open_cuts_(std::move(open_cuts)) {}
+  AssemblyError(const std::string& what, std::vector<int> open_cuts, double closure_error)
+      : std::runtime_error(what), open_cuts_(std::move(open_cuts)), closure_error_(closure_error) {}
   const std::vector<int>& openCuts() const { return open_cuts_; }  ///< indices into Model::cuts()
+  double closureError() const { return closure_error_; }            ///< ‖b(q)‖∞ where the corrections ended [m]
 
  private:
   std::vector<int> open_cuts_;
+  double closure_error_;
 };
 
 /// The correction of the free coordinates a Gauss-Newton step on b(q) = 0 subtracts, from b and

@@ -1,5 +1,7 @@
 #include "mbsopt/dynamics/newmark.hpp"
 
+#include "mbsopt/dynamics/assembly.hpp"
+
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -20,8 +22,10 @@ namespace {
 std::string describe(const std::string& what, double time, long step, double residual_norm,
                      const std::string& element) {
   std::ostringstream out;
-  out << what << " at t = " << time << " s (step " << step << "), residual norm " << residual_norm;
-  if (!element.empty()) out << ", largest at '" << element << "'";
+  out << what << " at t = " << time << " s (step " << step << ")";
+  const bool residual = !std::isnan(residual_norm);
+  if (residual) out << ", residual norm " << residual_norm;
+  if (!element.empty()) out << (residual ? ", largest at '" : ", at '") << element << "'";
   return out.str();
 }
 
@@ -581,12 +585,31 @@ void NewmarkIntegrator::step() {
 void NewmarkIntegrator::advanceTo(double t_next) { advance(t_next, std::nullopt); }
 
 void NewmarkIntegrator::advance(double t_next, std::optional<double> h) {
-  if (!attempt(t_next, h))
+  if (!attempt(t_next, h)) {
+    failIfLoopsCannotClose(t_next);
     fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
              " iterations (a step too large for Newton, or a singular configuration: a smaller step, or --accuracy, "
              "which retries smaller ones)",
          r_free_);
+  }
   acceptStep();
+}
+
+void NewmarkIntegrator::failIfLoopsCannotClose(double t) const {
+  if (model_.constraintCount() == 0) return;
+  Eigen::VectorXd q = q_accepted_, v = v_accepted_;
+  try {
+    assemble(model_, q, v, t, 1e-9 * (1.0 + q.cwiseAbs().maxCoeff()), settings_.svd_threshold);
+  } catch (const AssemblyError& e) {
+    std::string cuts;
+    for (int c : e.openCuts()) cuts += (cuts.empty() ? "" : ", ") + model_.cuts()[static_cast<std::size_t>(c)].name;
+    std::ostringstream what;
+    what << "the loop closed by " << cuts << " cannot be closed: the configuration nearest the last step's leaves a "
+         << "closure error of " << e.closureError() << " m (a link too short for the driven motion, or a position the "
+         << "loop cannot reach), so Newton could not either";
+    throw SimulationError(what.str(), t, step_count_, std::numeric_limits<double>::quiet_NaN(),
+                          e.openCuts().empty() ? "" : model_.cuts()[static_cast<std::size_t>(e.openCuts().front())].name);
+  }
 }
 
 bool NewmarkIntegrator::attemptStep(double t_next) { return attempt(t_next, std::nullopt); }

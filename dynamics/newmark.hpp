@@ -316,6 +316,11 @@ class NewmarkIntegrator {
   /// The checks of run_checks.hpp after a step; throws SimulationError when one fails.
   void checkStep();
   [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
+  /// After Newton failed on the step to t: when no configuration at t closes the loops (assemble()
+  /// from the last accepted one leaves a closure error: a link too short for a driven motion), a
+  /// SimulationError that says so at the cut joint, distinct from a step too large for Newton;
+  /// otherwise nothing.
+  void failIfLoopsCannotClose(double t) const;
   /// The element of the coordinate that `matrix` resists least within the free directions.
   std::string unresistedCoordinate(const Eigen::MatrixXd& matrix) const;
   /// For an iteration matrix singular on the free directions: names the coordinate it leaves free.

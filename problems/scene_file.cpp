@@ -695,6 +695,19 @@ void checkVariableBounds(const SceneSource& source, const std::vector<ParameterO
 
 }  // namespace
 
+SceneError failureAt(const SceneSource& source, const std::vector<ParameterOverride>& overrides,
+                     const std::string& element, const std::string& what) {
+  if (!element.empty()) {
+    try {
+      const LoadedScene loaded = loadScene(source, overrides);
+      if (const auto where = loaded.locations.find(element); where != loaded.locations.end())
+        return SceneError(source.path, where->second.line, where->second.column, what);
+    } catch (const SceneError&) {  // located at the file, then
+    }
+  }
+  return SceneError(source.path, 0, 0, what);
+}
+
 DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   LoadedScene loaded = loadScene(source, overrides);
   if (!loaded.design) throw SceneError(source.path, 0, 0, "the scene has no 'design:' section");

@@ -74,6 +74,12 @@ struct LoadedScene {
   std::optional<DesignDescription> design;         ///< the `design:` section, when the file has one
 };
 
+/// A failure of a run of the scene (a SimulationError's message and the element it names) as the
+/// scene's error, at the line where the element is declared (at the file when it names none, or
+/// the scene does not load with these overrides).
+SceneError failureAt(const SceneSource& source, const std::vector<ParameterOverride>& overrides,
+                     const std::string& element, const std::string& what);
+
 /// The scene and its `design:` section as a design problem; a SceneError when it has none.
 DesignProblem loadDesignProblem(const SceneSource& source, const std::vector<ParameterOverride>& overrides = {});
 

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "tests/command_directory.hpp"
@@ -46,6 +48,27 @@ TEST_F(CommandErrors, AnOutputThatCannotBeWrittenIsRefusedBeforeTheWork) {
   expectRefused("simulate pendulum --out " + directory_.string(), "is not a regular file");
   expectRefused("precision pendulum --out /proc/mbsopt-precision", "cannot be created");
   expectRefused("benchmark tramway --out /proc/mbsopt-benchmark", "cannot be created");
+}
+
+// A loop that cannot close during a run (test_integrator_errors.cpp has its time) is the scene's
+// error at the cut joint's line, from simulate as from the design commands.
+TEST_F(CommandErrors, ALoopThatCannotCloseIsLocatedAtItsCut) {
+  const std::string short_rod = " --set conrod_end.translation.x=0.12 --set rail.translation.y=0.05";
+  EXPECT_EQ(mbsopt("simulate slider_crank" + short_rod), 1);
+  EXPECT_NE(read("stderr").find("slider_crank.yaml:38:12: error: the loop closed by wrist_pin cannot be closed"),
+            std::string::npos)
+      << read("stderr");
+  std::ifstream in(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/slider_crank.yaml");
+  std::stringstream scene;
+  scene << in.rdbuf() << "design:\n  variables: [{parameter: block.mass, lower: 0.1, upper: 2}]\n"
+        << "  cost: {sensor: slider_a, of: max_abs}\n  artificial: {initial: 100, lower: 0, upper: 1000, scale: 10}\n";
+  std::ofstream(path("design.yaml")) << scene.str();
+  for (const std::string command : {"gradcheck", "optimize"}) {
+    EXPECT_EQ(mbsopt(command + " " + path("design.yaml") + short_rod), 1) << command;
+    EXPECT_NE(read("stderr").find("design.yaml:38:12: error: the loop closed by wrist_pin cannot be closed"),
+              std::string::npos)
+        << command << ": " << read("stderr");
+  }
 }
 
 TEST_F(CommandErrors, HelpAndVersionStillExitZero) {

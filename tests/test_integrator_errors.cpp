@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/problems/scene_file.hpp"
 
 using namespace mbsopt;
 
@@ -82,6 +84,31 @@ TEST(IntegratorErrors, NewtonNonConvergenceSaysHowFarItGot) {
     EXPECT_NE(message.find("t = "), std::string::npos) << message;
     EXPECT_NE(message.find("'hinge'"), std::string::npos) << message;
     EXPECT_GT(error.residual_norm, 0.0);
+  }
+}
+
+// A loop that no configuration closes is said to be one, at its cut joint, not a Newton failure. The
+// slider-crank of problems/scenes/slider_crank.yaml with a rod of L = 0.12 m, its rail at e = 0.05 m:
+// the rod reaches the rail while r sin θ ≥ e − L, r = 0.1 m, θ = 10 t (the crank's drive), so until
+// θ = π + asin(0.7), t* = 0.391665 s; the run stops at the first step after it.
+TEST(IntegratorErrors, ALoopThatCannotCloseIsNamedAtItsCutWithTheTime) {
+  const LoadedScene loaded =
+      loadScene(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/scenes/slider_crank.yaml"),
+                {{"conrod_end.translation.x", 0.12}, {"rail.translation.y", 0.05}});
+  const Scene& scene = loaded.scene;
+  NewmarkIntegrator integrator(scene.model, scene.settings);
+  try {
+    integrator.simulate(scene.q0, scene.v0);
+    FAIL() << "expected a SimulationError";
+  } catch (const SimulationError& error) {
+    const double t_star = (std::numbers::pi + std::asin(0.7)) / 10.0, h = scene.settings.step;
+    EXPECT_EQ(error.element, "wrist_pin");
+    EXPECT_GT(error.time, t_star);
+    EXPECT_LE(error.time, t_star + h * (1 + 1e-9));
+    const std::string message = error.what();
+    EXPECT_NE(message.find("the loop closed by wrist_pin cannot be closed"), std::string::npos) << message;
+    EXPECT_NE(message.find("closure error of"), std::string::npos) << message;
+    EXPECT_EQ(message.find("Newton did not converge"), std::string::npos) << message;
   }
 }
 
