@@ -261,7 +261,10 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
   for (std::size_t p = 0; p < plan.problems.size(); ++p) {
     std::vector<PlotPanel> rows;
     for (int start = 0; start < options.starts; ++start) {
-      PlotPanel cost{.xlabel = "simulation-equivalents", .ylabel = cost_key[p], .title = "start " + std::to_string(start)};
+      char label[200];
+      std::snprintf(label, sizeof label, "|%s - %.8g| (%s; 0 drawn at %.0e of it)", cost_key[p].c_str(), best[p],
+                    best_source[p].c_str(), kDistanceFloor);
+      PlotPanel cost{.xlabel = "simulation-equivalents", .ylabel = label, .log_y = true, .title = "start " + std::to_string(start)};
       PlotPanel violation{.xlabel = "simulation-equivalents", .ylabel = "max violation (0 drawn at 1e-12)", .log_y = true,
                           .title = "start " + std::to_string(start)};
       for (std::size_t s = 0; s < solvers.size(); ++s) {
@@ -272,7 +275,8 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
             continue;
           for (const nlohmann::json& h : r.json["history"]) {
             const double at = h["simulation_equivalents"].get<double>();
-            if (h["cost_functional"].is_number()) c.points.emplace_back(at, h["cost_functional"].get<double>());
+            if (h["cost_functional"].is_number())
+              c.points.emplace_back(at, distanceToBest(h["cost_functional"].get<double>(), best[p]));
             v.points.emplace_back(at, std::max(h["max_violation"].get<double>(), 1e-12));
           }
         }

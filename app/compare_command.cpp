@@ -31,32 +31,40 @@ struct CompareOptions {
 };
 
 
-/// The table's columns, as (header, value) per run; the same for Markdown and CSV.
-std::vector<std::pair<std::string, std::string>> row(const OptimizationRun& run, const std::string& cost_key) {
+/// One column of the table: its header (with its unit), the value as the Markdown table shows it
+/// (rounded) and as the CSV holds it (a number at full precision, or a word).
+struct Cell {
+  std::string header, shown, exact;
+};
+
+/// The table's columns for one run; the same for Markdown and CSV.
+std::vector<Cell> row(const OptimizationRun& run, const std::string& cost_key) {
   const OptimizerResult& r = run.result;
   const double final_cost = run.responses[cost_key].get<double>();
-  const auto number = [](double value, const char* format) {
-    char text[64];
-    std::snprintf(text, sizeof text, format, value);
-    return std::string(text);
+  const auto text = [](double value, const char* format) {
+    char out[64];
+    std::snprintf(out, sizeof out, format, value);
+    return std::string(out);
   };
-  std::vector<std::pair<std::string, std::string>> cells{
-      {"optimizer", run.choice.optimizer},
-      {"gradient", run.choice.gradient},
-      {"formulation", formulationLabel(run.choice)},
-      {"status", toString(r.status)},
-      {cost_key, number(final_cost, "%.5g")},
-      {"lowered by", number(100.0 * (run.initial_cost - final_cost) / run.initial_cost, "%.2f %%")}};
+  const auto number = [&](const std::string& header, double value, const char* format) {
+    return Cell{header, text(value, format), text(value, "%.17g")};
+  };
+  const auto word = [](const std::string& header, const std::string& value) { return Cell{header, value, value}; };
+  const auto unit = [&](const std::string& key) { return " [" + run.response_units.value(key, std::string("SI")) + "]"; };
+  std::vector<Cell> cells{word("optimizer", run.choice.optimizer), word("gradient", run.choice.gradient),
+                          word("formulation", formulationLabel(run.choice)), word("status", toString(r.status)),
+                          word("reported point", toString(r.reported)),
+                          number(cost_key + unit(cost_key), final_cost, "%.8g"),
+                          number("lowered by [%]", 100.0 * (run.initial_cost - final_cost) / run.initial_cost, "%.2f")};
   for (const auto& [name, value] : run.responses.items())
-    if (name != cost_key) cells.emplace_back(name, number(value.get<double>(), "%.4g"));
-  cells.insert(cells.end(), {
-          {"feasible", feasible(run) ? "yes" : "no"},
-          {"max violation", number(r.max_violation, "%.2g")},
-          {"iterations", std::to_string(r.iterations)},
-          {"simulations", std::to_string(r.value_evaluations)},
-          {"gradients", std::to_string(r.gradient_evaluations)},
-          {"sim.-equivalents", number(r.simulation_equivalents, "%.0f")},
-          {"wall time [s]", number(r.wall_time_s, "%.1f")}});
+    if (name != cost_key) cells.push_back(number(name + unit(name), value.get<double>(), "%.6g"));
+  cells.insert(cells.end(), {word("feasible", feasible(run) ? "yes" : "no"),
+                             number("max violation [formulation's measure]", r.max_violation, "%.2g"),
+                             word("iterations", std::to_string(r.iterations)),
+                             word("simulations", std::to_string(r.value_evaluations)),
+                             word("gradients", std::to_string(r.gradient_evaluations)),
+                             number("sim.-equivalents", r.simulation_equivalents, "%.0f"),
+                             number("wall time [s]", r.wall_time_s, "%.1f")});
   return cells;
 }
 
@@ -64,49 +72,51 @@ std::string markdownTable(const std::vector<OptimizationRun>& runs, const std::s
   std::ostringstream out;
   const auto header = row(runs.front(), cost_key);
   out << '|';
-  for (const auto& [name, value] : header) out << ' ' << name << " |";
+  for (const Cell& cell : header) out << ' ' << cell.header << " |";
   out << "\n|";
   for (std::size_t i = 0; i < header.size(); ++i) out << "---|";
   out << '\n';
   for (const OptimizationRun& run : runs) {
     out << '|';
-    for (const auto& [name, value] : row(run, cost_key)) out << ' ' << value << " |";
+    for (const Cell& cell : row(run, cost_key)) out << ' ' << cell.shown << " |";
     out << '\n';
   }
   return out.str();
+}
+
+/// A CSV field: quoted where it holds a comma or a quote.
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
 }
 
 std::string csvTable(const std::vector<OptimizationRun>& runs, const std::string& cost_key) {
   std::ostringstream out;
   const auto header = row(runs.front(), cost_key);
-  for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i].first;
+  for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << csvField(header[i].header);
   out << '\n';
   for (const OptimizationRun& run : runs) {
     const auto cells = row(run, cost_key);
-    for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i].second;
+    for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << csvField(cells[i].exact);
     out << '\n';
   }
   return out.str();
 }
 
-/// Cost and max violation against simulations: one row of two panels per (formulation, gradient),
-/// one curve per optimizer, in the same colour in every row. A violation of exactly zero is drawn at
-/// 1e-12 so that the logarithmic axis can show it (the axis label says so); costs above the start's
-/// (the cost's own functional at the start, the same point for every run) are cut off, so that an
-/// excursion does not flatten the rest.
+/// The cost's distance to the best and the max violation against simulation-equivalents
+/// (convergencePanels): one row of two panels per (formulation, gradient), one curve per optimizer,
+/// in the same colour in every row.
 void plotConvergence(const std::string& stem, const std::string& problem, const std::vector<OptimizationRun>& runs) {
   std::vector<PlotPanel> panels;
   for (std::size_t first = 0; first < runs.size();) {
     const std::string group = formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient;
     std::vector<std::pair<std::string, const OptimizationRun*>> titled;
-    double start_cost = 0.0;
-    for (; first < runs.size() && formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient == group; ++first) {
+    for (; first < runs.size() && formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient == group; ++first)
       titled.emplace_back(runs[first].choice.optimizer, &runs[first]);
-      start_cost = std::max(start_cost, runs[first].initial_cost);
-    }
     std::vector<PlotPanel> row = convergencePanels(titled, true);
     for (PlotPanel& panel : row) panel.title = group;
-    if (start_cost > 0.0) row.front().y_max = start_cost;
     panels.insert(panels.end(), row.begin(), row.end());
   }
   plotPanels(stem, "convergence on " + problem, panels, 2);

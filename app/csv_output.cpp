@@ -1,6 +1,7 @@
 #include "app/csv_output.hpp"
 
 #include "app/atomic_file.hpp"
+#include "mbsopt/dynamics/units.hpp"
 
 namespace mbsopt {
 
@@ -8,9 +9,10 @@ void writeTrajectoryCsv(const std::string& path, const Model& model, const Traje
                         const Eigen::MatrixXd& sensors, long every) {
   writeAtomically(path, [&](std::ostream& out) {
     out.precision(17);
-    out << 't';
-    for (const Coordinate& c : model.coordinates()) out << ',' << c.name;
-    for (const Sensor& s : model.sensors()) out << ',' << s.name;
+    out << withUnit("t", "s");  // each column "name [unit]", SI (csv_output.hpp)
+    for (std::size_t i = 0; i < model.coordinates().size(); ++i)
+      out << ',' << withUnit(model.coordinates()[i].name, coordinateUnit(model, static_cast<int>(i)));
+    for (const Sensor& s : model.sensors()) out << ',' << withUnit(s.name, sensorSiUnit(model, s));
     out << '\n';
     const Eigen::Index last = trajectory.time.size() - 1;
     for (Eigen::Index k = 0; k <= last; ++k) {

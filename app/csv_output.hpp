@@ -1,5 +1,8 @@
 // Writes a simulation to CSV: one row per time point (or every N-th), `t`, every coordinate, then
-// every sensor. The file appears only when complete (written to a temporary name, then renamed).
+// every sensor, each number in SI units to 17 significant digits (it reads back to the bit). Each
+// column's header is "name [unit]" (units.hpp): one file that says what it holds to any CSV reader,
+// with no sidecar to lose (a relative angle is in rad here, as the trajectories hold it; the reports
+// give it in degrees). The file appears only when complete (written to a temporary name, then renamed).
 #pragma once
 
 #include <string>

@@ -13,6 +13,20 @@ namespace mbsopt {
 
 namespace {
 
+/// The series' line types: Okabe and Ito's colour-blind-safe palette without its yellow, which reads
+/// badly on white (black, then orange, sky blue, bluish green, blue, vermillion, reddish purple,
+/// grey), solid for the first eight series and dashed for the next eight.
+constexpr const char* kLineTypes =
+    "set linetype 1 lc rgb '#000000' lw 1.5\nset linetype 2 lc rgb '#E69F00' lw 1.5\n"
+    "set linetype 3 lc rgb '#56B4E9' lw 1.5\nset linetype 4 lc rgb '#009E73' lw 1.5\n"
+    "set linetype 5 lc rgb '#0072B2' lw 1.5\nset linetype 6 lc rgb '#D55E00' lw 1.5\n"
+    "set linetype 7 lc rgb '#CC79A7' lw 1.5\nset linetype 8 lc rgb '#999999' lw 1.5\n"
+    "set linetype 9 lc rgb '#000000' lw 1.5 dt 2\nset linetype 10 lc rgb '#E69F00' lw 1.5 dt 2\n"
+    "set linetype 11 lc rgb '#56B4E9' lw 1.5 dt 2\nset linetype 12 lc rgb '#009E73' lw 1.5 dt 2\n"
+    "set linetype 13 lc rgb '#0072B2' lw 1.5 dt 2\nset linetype 14 lc rgb '#D55E00' lw 1.5 dt 2\n"
+    "set linetype 15 lc rgb '#CC79A7' lw 1.5 dt 2\nset linetype 16 lc rgb '#999999' lw 1.5 dt 2\n"
+    "set linetype cycle 16\n";
+
 /// gnuplot's own quoting: single quotes, with ' doubled.
 std::string quoted(const std::string& text) {
   std::string out = "'";
@@ -48,7 +62,8 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
         << " font ',10'\n"
         << "set output " << quoted(std::filesystem::path(image).filename().string()) << '\n'
         << "set multiplot layout " << rows << "," << width << " rowsfirst title " << quoted(title) << '\n'
-        << (width == 1 ? "set key outside right\n" : "set key top right font ',8'\n") << "set grid\n";
+        << (width == 1 ? "set key outside right\n" : "set key top right font ',8'\n") << "set grid\n"
+        << kLineTypes;
     int block = 0;
     for (const PlotPanel& panel : panels) {
       out << "set title " << quoted(panel.title) << "\nset xlabel " << quoted(panel.xlabel) << "\nset ylabel "

@@ -65,14 +65,16 @@ std::string costKey(const DesignProblem& problem) {
 }
 
 /// max |y| over the time grid of every sensor the cost and the constraints use, and the value of each
-/// exact functional the cost or a constraint takes (functionalKey), on one trajectory.
-nlohmann::json trajectoryResponses(const DesignNlp& nlp, const Trajectory& trajectory) {
+/// exact functional the cost or a constraint takes (functionalKey), on one trajectory; the unit of
+/// each into `units` under the same key.
+nlohmann::json trajectoryResponses(const DesignNlp& nlp, const Trajectory& trajectory, nlohmann::json& units) {
   const DesignProblem& problem = nlp.problem();
   const Model& model = problem.scene.model;
   nlohmann::json out = nlohmann::json::object();
   for (const ConstraintFunctional& f : nlp.functionals()) {
     const Sensor& sensor = model.sensors()[static_cast<std::size_t>(f.sensor)];
     out[responseKey(sensor)] = inUnits(sensor, trajectory.sensors.col(f.sensor).cwiseAbs().maxCoeff());
+    units[responseKey(sensor)] = sensorUnit(model, sensor);
   }
   const auto addExact = [&](const std::string& name, ResponseMeasure of) {
     const std::optional<TimeMeasure> exact = exactMeasure(of);
@@ -81,6 +83,7 @@ nlohmann::json trajectoryResponses(const DesignNlp& nlp, const Trajectory& traje
     const Sensor& sensor = model.sensors()[static_cast<std::size_t>(index)];
     out[functionalKey(sensor, *exact)] =
         inUnits(sensor, evaluateTimeFunctional(*exact, trajectory.time, trajectory.sensors.col(index)).value);
+    units[functionalKey(sensor, *exact)] = measureUnit(model, sensor, of);
   };
   addExact(problem.design.cost.sensor, problem.design.cost.of);
   for (const ResponseConstraint& c : problem.design.constraints) addExact(c.sensor, c.of);
@@ -89,13 +92,14 @@ nlohmann::json trajectoryResponses(const DesignNlp& nlp, const Trajectory& traje
 
 /// trajectoryResponses of the response; with load cases, each case's under KEY_CASE and, under KEY,
 /// the largest over the cases (the worst case, which the cost's epigraph bounds).
-nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response) {
+nlohmann::json responses(const DesignNlp& nlp, const DesignResponse& response, nlohmann::json& units) {
   const std::vector<LoadCase>& cases = nlp.problem().load_cases;
-  if (cases.empty()) return trajectoryResponses(nlp, caseTrajectory(response, 0));
+  if (cases.empty()) return trajectoryResponses(nlp, caseTrajectory(response, 0), units);
   nlohmann::json out = nlohmann::json::object();
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    const nlohmann::json own = trajectoryResponses(nlp, caseTrajectory(response, c));
+    const nlohmann::json own = trajectoryResponses(nlp, caseTrajectory(response, c), units);
     for (const auto& [key, value] : own.items()) {
+      units[key + "_" + cases[c].name] = units[key];
       out[key + "_" + cases[c].name] = value;
       out[key] = out.contains(key) ? std::max(out[key].get<double>(), value.get<double>()) : value.get<double>();
     }
@@ -250,7 +254,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.thread_time_simulations = nlp.evaluationThreadSeconds() / run.simulation_s;
   run.simulations_ahead = nlp.simulationsAhead();
   run.simulations_ahead_used = nlp.simulationsAheadUsed();
-  run.responses = responses(nlp, final);
+  run.response_units = nlohmann::json::object();
+  run.responses = responses(nlp, final, run.response_units);
   run.verdicts = constraintVerdicts(nlp.problem(), final);
   if (run.result.first_order) {
     run.bound_worth = boundWorth(nlp.problem(), nlp.functionals(), final, run.result.first_order->multipliers);
@@ -259,10 +264,12 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   const int cost_sensor = nlp.functionals()[0].sensor;  // the cost's constraints come first
   run.cost_response = costKey(nlp.problem());
   run.cost_sensor = nlp.problem().design.cost.sensor;
-  run.initial_cost = responses(nlp, initial)[run.cost_response].get<double>();
+  nlohmann::json units;
+  run.initial_cost = responses(nlp, initial, units)[run.cost_response].get<double>();
   const Model& model = nlp.problem().scene.model;
   const Sensor& sensor = model.sensors()[static_cast<std::size_t>(cost_sensor)];
   run.cost_unit = measureUnit(model, sensor, nlp.problem().design.cost.of);
+  run.cost_sensor_unit = sensorSiUnit(model, sensor);
   for (const IterationRecord& h : run.result.history) run.iterate_costs.push_back(inUnits(sensor, h.reported_cost));
   if (run.result.cheapest_x.size() > 0 && run.result.cheapest_x != run.result.x) {
     run.cheapest_cost = inUnits(sensor, run.result.cheapest_cost);
@@ -406,6 +413,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"message", r.message},
           {"design", run.design},
           {"responses", run.responses},
+          {"response_units", run.response_units},
           {"constraints", verdictsJson(run.verdicts)},
           {"feasible", feasible(run)},
           {"initial_cost", run.initial_cost},
@@ -490,22 +498,45 @@ PlotPanel designPanel(const OptimizationRun& run) {
   return panel;
 }
 
+double distanceToBest(double cost, double best) {
+  return std::max(std::abs(cost - best), kDistanceFloor * std::max(std::abs(best), 1e-300));
+}
+
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
-                                         bool against_simulation_equivalents) {
+                                         bool against_simulation_equivalents, double reference) {
   const std::string x = against_simulation_equivalents ? "simulation-equivalents (simulations + gradients at their cost)" : "iteration";
-  PlotPanel cost{.xlabel = x, .ylabel = runs.empty() ? "cost" : runs.front().second->cost_response};
+  // The best: the reference where given, else the least reported cost among the feasible runs, else
+  // the least cost any record has.
+  double best = reference;
+  const std::string source = std::isnan(reference) ? "the best reported" : "the reference";
+  for (const bool feasible_only : {true, false})
+    for (const auto& [title, run] : runs) {
+      if (!std::isnan(reference)) break;
+      if (feasible_only && feasible(*run)) best = std::min(std::isnan(best) ? INFINITY : best, run->responses[run->cost_response].get<double>());
+      if (!feasible_only && std::isnan(best))
+        for (double c : run->iterate_costs)
+          if (!std::isnan(c)) best = std::min(std::isnan(best) ? INFINITY : best, c);
+    }
+  const OptimizationRun* first = runs.empty() ? nullptr : runs.front().second;
+  char label[200];
+  std::snprintf(label, sizeof label, "|%s - %.8g| [%s] (%s; 0 drawn at %.0e of it)", first ? first->cost_response.c_str() : "cost",
+                best, first ? first->cost_unit.c_str() : "SI", source.c_str(), kDistanceFloor);
+  PlotPanel cost{.xlabel = x, .ylabel = label, .log_y = true};
   PlotPanel violation{.xlabel = x, .ylabel = "max violation (0 drawn at 1e-12)", .log_y = true};
+  double start = 0.0;  // the farthest start: excursions above it are cut off, not to flatten the rest
   for (const auto& [title, run] : runs) {
     PlotSeries c{title, {}}, v{title, {}};
     for (std::size_t k = 0; k < run->result.history.size(); ++k) {
       const IterationRecord& h = run->result.history[k];
       const double at = against_simulation_equivalents ? h.simulation_equivalents : h.iteration;
-      if (!std::isnan(run->iterate_costs[k])) c.points.emplace_back(at, run->iterate_costs[k]);
+      if (!std::isnan(run->iterate_costs[k])) c.points.emplace_back(at, distanceToBest(run->iterate_costs[k], best));
       v.points.emplace_back(at, std::max(h.max_violation, 1e-12));
     }
+    start = std::max(start, distanceToBest(run->initial_cost, best));
     cost.series.push_back(c);
     violation.series.push_back(v);
   }
+  if (start > 0.0) cost.y_max = 2.0 * start;
   return {cost, violation};
 }
 

@@ -83,11 +83,13 @@ struct OptimizationRun {
   /// max |y| of each sensor of the cost and constraints (`max_abs_NAME`), and the value of each exact
   /// functional the cost or a constraint takes (`integral_NAME`, `rms_NAME`, `final_NAME`); angles in degrees.
   nlohmann::json responses;
+  nlohmann::json response_units;  ///< the unit of each of `responses`, by the same keys
   std::string cost_response;   ///< the key in `responses` of the cost's own functional (max_abs_, rms_, integral_)
   /// Every constraint judged at the final design in its own units, whatever the formulation.
   std::vector<ConstraintVerdict> verdicts;
   std::string cost_sensor;     ///< the cost's sensor
   std::string cost_unit;       ///< the unit of cost_response (sensorUnit; ·s for an integral)
+  std::string cost_sensor_unit;  ///< the SI unit of the cost's sensor (initial_history, final_history)
   double initial_cost = 0.0;   ///< the cost's functional (cost_response) at the start
   double simulation_s = 0.0;   ///< the wall time of one simulation of this problem (the fastest the run timed)
   /// The optimizer's evaluations (simulations and gradients) in simulations as timed: their thread
@@ -169,10 +171,19 @@ std::vector<std::string> gradientChoices();
 /// (the paper's figure 7).
 PlotPanel designPanel(const OptimizationRun& run);
 
-/// Two panels, the cost's own functional (OptimizationRun::iterate_costs) and the max violation
-/// (zero drawn at 1e-12 on the logarithmic axis), against iterations or against the budget's
-/// simulation-equivalents, one curve per (title, run).
+/// How close a convergence plot draws a cost that equals the best, relative to the best.
+inline constexpr double kDistanceFloor = 1e-10;
+/// |cost − best|, at least kDistanceFloor |best|: a cost's distance on a logarithmic axis, where the
+/// end of a convergence shows (the paper's figures draw the cost itself, on which it does not).
+double distanceToBest(double cost, double best);
+
+/// Two panels on logarithmic axes, the distance of the cost's own functional (OptimizationRun::
+/// iterate_costs) to the best (distanceToBest: `reference` where given, else the least reported cost
+/// of the feasible runs) and the max violation (zero drawn at 1e-12), against iterations or against
+/// the budget's simulation-equivalents, one curve per (title, run); distances above twice the
+/// farthest start's are cut off.
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
-                                         bool against_simulation_equivalents);
+                                         bool against_simulation_equivalents,
+                                         double reference = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace mbsopt

@@ -65,7 +65,7 @@ void plotRun(const std::string& directory, const std::string& problem, const Opt
   history.push_back(designPanel(run));
   plotPanels(directory + "/history", "optimisation of " + problem, history);
   PlotPanel response{.xlabel = "t [s]",
-                     .ylabel = run.cost_sensor + " (SI)",
+                     .ylabel = run.cost_sensor + " [" + run.cost_sensor_unit + "]",
                      .markers = false};
   PlotSeries initial{"start", {}}, final{"final design", {}};
   for (Eigen::Index k = 0; k < run.time.size(); ++k) {

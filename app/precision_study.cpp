@@ -177,8 +177,10 @@ ReferenceSolution readReferenceCsv(const std::string& path, const Model& model,
   if (!in) throw SceneError(path, 0, 0, "cannot open the reference file");
   std::string line;
   if (!std::getline(in, line))
-    throw SceneError(path, 0, 0, "the reference file is empty: expected a header t,<name>,...");
-  const auto header = splitCsvLine(line);
+    throw SceneError(path, 0, 0, "the reference file is empty: expected a header t,<name>,... (each name may carry its unit, t [s])");
+  auto header = splitCsvLine(line);
+  for (auto& [name, column] : header)  // "name [unit]", as mbsopt simulate writes its headers: the name
+    if (const std::size_t unit = name.find(" ["); unit != std::string::npos && name.back() == ']') name.resize(unit);
   if (header[0].first != "t")
     throw SceneError(path, 1, header[0].second,
                      "the first column must be the time 't', not " + quoted(header[0].first));

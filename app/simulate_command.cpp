@@ -130,8 +130,11 @@ void run(const SimulateOptions& options) {
     }
   }
   if (!options.out.empty()) writeTrajectoryCsv(options.out, scene.model, trajectory, sensors, options.every);
-  const SimulationSummary summary =
+  SimulationSummary summary =
       summarize(scene.model, source.path, integration, request, scene.settings, wall, options.warn_error);
+  // The JSON's warnings are every one the run printed: the loader's (on stderr above) first.
+  summary.json["warnings"] = loaded.warnings;
+  for (const std::string& warning : summary.warnings) summary.json["warnings"].push_back(warning);
   for (const std::string& line : summary.sensor_lines) std::printf("%s\n", line.c_str());
   for (const std::string& warning : summary.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   std::printf("%s%s\n", summary.line.c_str(), options.out.empty() ? "" : (", wrote " + options.out).c_str());
@@ -170,9 +173,10 @@ void registerSimulateCommand(CLI::App& app) {
   CLI::Option* out =
       command
           ->add_option("--out", options->out,
-                       "CSV file: one row per time point (see --every) with t [s], every coordinate, then every "
-                       "sensor, by name (SI units: m, rad, m/s², ...); written to a temporary name and renamed when "
-                       "complete, so it never exists half written")
+                       "CSV file: one row per time point (see --every) with t, every coordinate, then every sensor, "
+                       "each column headed 'name [unit]' (SI: s, m, rad, m/s², N, ...; a relative angle in rad) and "
+                       "written to 17 significant digits; written to a temporary name and renamed when complete, so "
+                       "it never exists half written")
           ->check([](const std::string& path) { return path.empty() ? "the file name is empty" : ""; });
   command
       ->add_option("--integrator", options->integrator,
@@ -242,7 +246,8 @@ void registerSimulateCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--json", options->json,
                       "Write the run's summary as JSON: integrator, steps, the estimated global errors (largest "
-                      "over the coordinates and rates, weighted, per sensor), each sensor's peak, wall time");
+                      "over the coordinates and rates, weighted, per sensor), each sensor's {name, unit (SI), max_abs, "
+                      "at_time [s], estimated_error}, warnings (every one printed, the loader's first), wall time");
   command
       ->add_option("--every", options->every,
                    "Write only every N-th time point to the CSV, and always the first and the last (t = 0, N·h, "

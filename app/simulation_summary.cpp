@@ -1,5 +1,7 @@
 #include "app/simulation_summary.hpp"
 
+#include "mbsopt/dynamics/units.hpp"
+
 #include <cstdio>
 #include <sstream>
 
@@ -53,9 +55,10 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
     const Eigen::Index column = static_cast<Eigen::Index>(s);
     Eigen::Index at = 0;
     const double peak = trajectory.sensors.col(column).cwiseAbs().maxCoeff(&at);
-    std::string line = "  max |" + model.sensors()[s].name + "| = " + format("%.6g", peak) + " at t = " +
+    const std::string unit = sensorSiUnit(model, model.sensors()[s]);
+    std::string line = "  max |" + model.sensors()[s].name + "| = " + format("%.6g", peak) + " " + unit + " at t = " +
                        format("%.4g", trajectory.time[at]) + " s";
-    nlohmann::json record = {{"name", model.sensors()[s].name}, {"max_abs", peak}, {"at_time", trajectory.time[at]}};
+    nlohmann::json record = {{"name", model.sensors()[s].name}, {"unit", unit}, {"max_abs", peak}, {"at_time", trajectory.time[at]}};
     if (integration.estimated) {
       const double error = run.sensor_error.col(column).cwiseAbs().maxCoeff();
       line += " (estimated error " + format("%.2g", error) + ")";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mbsopt/dynamics/units.hpp"
 #include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
@@ -84,8 +85,16 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
     if (!constraint.equality && !c.has("bound")) c.fail("sensor", "a constraint needs a bound (or 'equals')");
     if (constraint.equality && constraint.of != ResponseMeasure::Integral && constraint.of != ResponseMeasure::FinalValue)
       c.fail("equals", "an equality needs an exact functional: of: integral or of: final");
-    constraint.bound = c.number(constraint.equality ? "equals" : "bound");
+    const std::string bound_key = constraint.equality ? "equals" : "bound";
+    constraint.bound = c.number(bound_key);
     if (c.has("tolerance")) constraint.tolerance = c.positive("tolerance");
+    // `deg` converts to rad: only where the sensor measures an angle (in rad, a relative angle or a
+    // revolute joint's position; `of: integral` of one is in rad·s).
+    const Sensor& sensor = model.sensors()[static_cast<std::size_t>(model.sensor(constraint.sensor))];
+    for (const std::string& key : {bound_key, std::string("tolerance")})
+      if (c.inDegrees(key) && !measuresAngle(model, sensor))
+        c.fail(key, key + " in deg on sensor '" + constraint.sensor + "', which measures " + sensorSiUnit(model, sensor) +
+                        ": deg is for angles (a relative angle, a revolute joint's position)");
     out.constraints.push_back(constraint);
   }
 

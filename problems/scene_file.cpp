@@ -205,7 +205,13 @@ class SceneBuilder {
                : SliderOrientation::FollowTrack;
   }
 
-  void initialValues(const MapReader& entry, const std::string& coordinate) {
+  /// q0 and v0 of a joint; `deg` (deg/s for v0) only on a revolute joint's angle.
+  void initialValues(const MapReader& entry, const std::string& coordinate, bool angular) {
+    if (!angular)
+      for (const char* key : {"q0", "v0"})
+        if (entry.inDegrees(key))
+          entry.fail(key, std::string(key) + " in deg on a joint that translates (its coordinate is in m): deg is for "
+                                             "a revolute joint's angle");
     initial_.push_back({coordinate, entry.number("q0", 0.0), entry.number("v0", 0.0)});
   }
 
@@ -389,7 +395,7 @@ class SceneBuilder {
       const TimeFunction motion = readTimeFunction(context_, e.node()["motion"], e.what() + ".motion");
       guarded(e, name, [&] { model().drive(name, motion); });
     } else {
-      initialValues(e, name);
+      initialValues(e, name, type == "revolute");
     }
   }
 
@@ -421,7 +427,7 @@ class SceneBuilder {
       const auto t = track(c);
       const SliderOrientation o = orientation(c);
       guarded(c, name, [&] { model().addCurveSliderCut(name, a, base, t, o); });
-      initialValues(c, name);
+      initialValues(c, name, false);
     } else if (type == "revolute") {
       c.allowKeys({"name", "type", "frame_a", "frame_b", "axis_in_a", "axis_in_b"});
       const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");

@@ -36,6 +36,8 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+bool writtenInDegrees(const std::string& text) { return trimmed(text).ends_with("deg"); }
+
 bool parseNumber(const std::string& text, double& value, std::string& why) {
   std::string_view digits = trimmed(text);
   const bool degrees = digits.ends_with("deg");

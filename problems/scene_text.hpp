@@ -11,6 +11,8 @@ namespace mbsopt {
 /// Parses a scene number: a decimal literal, optionally followed by `deg` (× π/180, exactly π/2
 /// for 90 deg). Returns false and sets `why` when the text is not a finite number.
 bool parseNumber(const std::string& text, double& value, std::string& why);
+/// Whether a number's text carries the `deg` suffix (parseNumber then reads it in degrees).
+bool writtenInDegrees(const std::string& text);
 
 /// The shortest text that reads back as the same double ("0.1", "246000").
 std::string formatNumber(double value);

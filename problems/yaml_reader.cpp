@@ -88,6 +88,11 @@ void MapReader::allowKeys(std::initializer_list<const char*> keys) const {
 
 bool MapReader::has(const std::string& key) const { return node_[key].isDefined(); }
 
+bool MapReader::inDegrees(const std::string& key) const {
+  const YamlNode& value = node_[key];
+  return value.isDefined() && value.isScalar() && writtenInDegrees(value.text());
+}
+
 const YamlNode& MapReader::required(const std::string& key) const {
   const YamlNode& value = node_[key];
   if (!value.isDefined()) context_.fail(node_, what_ + ": missing required key '" + key + "'");

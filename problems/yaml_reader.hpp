@@ -44,6 +44,8 @@ class MapReader {
   void allowKeys(std::initializer_list<const char*> keys) const;
 
   bool has(const std::string& key) const;
+  /// Whether the key's value is a number written with the `deg` suffix.
+  bool inDegrees(const std::string& key) const;
   const YamlNode& node() const { return node_; }
   const std::string& what() const { return what_; }
   const YamlContext& context() const { return context_; }

@@ -16,6 +16,7 @@
 #include "app/scene_argument.hpp"
 #include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/dynamics/units.hpp"
 #include "mbsopt/problems/design_nlp.hpp"
 #include "mbsopt/problems/design_point.hpp"
 #include "mbsopt/problems/scene_file.hpp"
@@ -92,6 +93,19 @@ class PythonScene {
     return out;
   }
 
+  /// The SI units of q's columns and of the sensors' (units.hpp), as the CSV's headers give them.
+  std::vector<std::string> coordinateUnits() const {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < loaded_.scene.model.coordinates().size(); ++i)
+      out.push_back(coordinateUnit(loaded_.scene.model, static_cast<int>(i)));
+    return out;
+  }
+  std::vector<std::string> sensorUnits() const {
+    std::vector<std::string> out;
+    for (const Sensor& sensor : loaded_.scene.model.sensors()) out.push_back(sensorSiUnit(loaded_.scene.model, sensor));
+    return out;
+  }
+
   /// As `mbsopt simulate` runs the scene: its own integrator at its step, or to `accuracy` (absolute,
   /// the extrapolation unless `integrator` says), rows at the multiples of `output_step` when given.
   py::dict simulate(const std::optional<std::string>& integrator, const std::optional<double>& accuracy,
@@ -114,10 +128,12 @@ class PythonScene {
     py::dict out;
     out["time"] = array(t.time);
     out["coordinates"] = coordinates();  // the columns of q, v and a
+    out["coordinate_units"] = coordinateUnits();  // of q (v and a per s, per s²)
     out["q"] = array(Eigen::MatrixXd(t.q.transpose()));
     out["v"] = array(Eigen::MatrixXd(t.v.transpose()));
     out["a"] = array(Eigen::MatrixXd(t.a.transpose()));
     out["sensor_names"] = sensorNames();  // the columns of sensors
+    out["sensor_units"] = sensorUnits();
     out["sensors"] = array(t.sensors);
     out["newton_iterations"] = array(Eigen::VectorXd(t.newton_iterations.cast<double>()));
     out["integrator"] = request.integrator;
@@ -274,8 +290,8 @@ PYBIND11_MODULE(mbsopt, m) {
            "Simulates as `mbsopt simulate` does: the scene's integrator at its step, or to `accuracy` (absolute, "
            "in the coordinates' units; the extrapolation unless `integrator` names one), rows at the multiples "
            "of `output_step` when given; fast_steps=True as `--fast-steps` (each step solved to a thousandth of "
-           "its truncation error; not with the extrapolation). A dict with time, coordinates, q, v, a (rows = time points), "
-           "sensor_names, sensors, newton_iterations, integrator, steps (of every Newmark run), order, and "
+           "its truncation error; not with the extrapolation). A dict with time [s], coordinates, coordinate_units (of q; "
+           "v and a per s and s²), q, v, a (rows = time points), sensor_names, sensor_units (SI), sensors, newton_iterations, integrator, steps (of every Newmark run), order, and "
            "estimated_error {q, sensors (same shapes), round_off_floor (None unless measured)} when there is an estimate (`accuracy`, the extrapolation, "
            "or estimate_error=True for a fixed step).")
       .def_property_readonly("parameters", &PythonScene::parameters, "Every model parameter by its dotted name (SI).")

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/dynamics/sensor_units.hpp"
+#include "mbsopt/dynamics/units.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 
 namespace mbsopt {

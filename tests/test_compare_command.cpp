@@ -44,8 +44,9 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
     EXPECT_NE(at, header.end()) << name;
     return static_cast<std::size_t>(at - header.begin());
   };
-  for (const char* name : {"optimizer", "gradient", "formulation", "status", "feasible", "max violation", "iterations",
-                           "simulations", "gradients", "sim.-equivalents", "wall time [s]"})
+  for (const char* name : {"optimizer", "gradient", "formulation", "status", "reported point", "feasible",
+                           "max violation [formulation's measure]", "iterations", "simulations", "gradients",
+                           "sim.-equivalents", "wall time [s]", "lowered by [%]"})
     column(name);
   std::vector<std::vector<std::string>> rows;
   while (std::getline(csv, line)) rows.push_back(splitCsv(line));
@@ -67,9 +68,11 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
                                run["gradient_evaluations"].get<double>() * run["budget"]["gradient_cost"].get<double>();
     EXPECT_NEAR(run["simulation_equivalents"].get<double>(), equivalents, 1e-9 * equivalents);
     EXPECT_NEAR(std::stod(rows[r][column("sim.-equivalents")]), equivalents, 0.5 + 1e-9);
-    // The cost column is the cost sensor's max |y| at the final design, printed to 5 digits.
+    // The cost column is the cost sensor's max |y| at the final design, with its unit, to the bit.
     const double cost = run["responses"]["max_abs_tip_acceleration"].get<double>();
-    EXPECT_NEAR(std::stod(rows[r][column("max_abs_tip_acceleration")]), cost, 5e-5 * cost);
+    EXPECT_EQ(run["response_units"]["max_abs_tip_acceleration"], "m/s²");
+    EXPECT_EQ(std::stod(rows[r][column("max_abs_tip_acceleration [m/s²]")]), cost);
+    EXPECT_EQ(rows[r][column("reported point")], run["reported_iterate"]["point"].get<std::string>());
   }
   // The prefixed setting reached SDCC alone (SLSQP would refuse it): SDCC's first step is bounded by
   // the initial ξ = 0.05 in the W-norm (W = I), so in the max norm too (the default ξ is 0.1).

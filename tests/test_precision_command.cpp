@@ -163,7 +163,7 @@ TEST(SimulateEvery, WritesEveryNthTimePointAndTheLast) {
   std::vector<double> times;
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line.substr(0, 2), "t,");
+  EXPECT_EQ(line.substr(0, 6), "t [s],");
   while (std::getline(in, line)) times.push_back(std::stod(line.substr(0, line.find(','))));
   ASSERT_EQ(times.size(), 4u);
   EXPECT_DOUBLE_EQ(times[0], 0.0);

@@ -19,6 +19,31 @@ class SimulateCommand : public test::CommandDirectory {
   int simulate(const std::string& arguments) const { return mbsopt("simulate " + arguments); }
 };
 
+// Every output names its units: the CSV's headers ("name [unit]", SI), the JSON's sensors and the
+// summary's peaks; and the JSON's warnings are every one printed (the slider-crank with a longer rod
+// starts off its closure, which loading moves and says twice).
+TEST_F(SimulateCommand, OutputsNameTheirUnitsAndTheJsonEveryWarning) {
+  ASSERT_EQ(simulate("slider_crank --set conrod_end.translation.x=0.45 --t-end 0.01 --out " + path("run.csv") +
+                     " --json " + path("run.json")),
+            0)
+      << read("stderr");
+  std::istringstream csv(read("run.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header,
+            "t [s],crank [rad],conrod [rad],slider [m],crank_angle [rad],slider_x [m],slider_v [m/s],slider_a [m/s²],"
+            "rod_angle [rad]");
+  const nlohmann::json run = json("run.json");
+  for (const nlohmann::json& sensor : run["sensors"])
+    if (sensor["name"] == "slider_a") EXPECT_EQ(sensor["unit"], "m/s²");
+  EXPECT_NE(read("stdout").find("max |slider_v| = "), std::string::npos);
+  EXPECT_NE(read("stdout").find(" m/s at t = "), std::string::npos) << read("stdout");
+  const std::string warnings = read("stderr");
+  ASSERT_EQ(run["warnings"].size(), 2u) << warnings;
+  for (const nlohmann::json& warning : run["warnings"])
+    EXPECT_NE(warnings.find(warning.get<std::string>()), std::string::npos) << warning;
+}
+
 TEST_F(SimulateCommand, AnAccuracyRunReportsItsEstimateInTheSummaryAndTheJson) {
   ASSERT_EQ(simulate("four_bar --accuracy 1e-6 --json " + path("run.json")), 0) << read("stderr");
   const std::string out = read("stdout");

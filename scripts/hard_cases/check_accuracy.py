@@ -35,9 +35,10 @@ FLOOR = 1e-9        # below this the reference (DOP853 at 1e-13, published value
 
 
 def read_csv(path):
+    """The column names (without the " [unit]" of mbsopt's headers) and the rows."""
     with open(path) as f:
         rows = list(csv.reader(f))
-    header = rows[0]
+    header = [name.split(" [")[0] for name in rows[0]]
     return header, [[float(v) for v in row] for row in rows[1:]]
 
 

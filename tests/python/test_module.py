@@ -48,7 +48,10 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
             with open(path, newline="") as f:
                 rows = list(csv.reader(f))
         header, values = rows[0], numpy.array(rows[1:], dtype=float)
-        self.assertEqual(header, ["t", *trajectory["coordinates"], *trajectory["sensor_names"]])
+        named = zip(["t", *trajectory["coordinates"], *trajectory["sensor_names"]],
+                    ["s", *trajectory["coordinate_units"], *trajectory["sensor_units"]])
+        self.assertEqual(header, ["%s [%s]" % (name, unit) for name, unit in named])
+        self.assertEqual(trajectory["coordinate_units"], ["rad"])  # the pendulum's hinge
         columns = numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]])
         self.assertEqual(columns.shape, values.shape)
         # The CSV prints 17 significant digits: it reads back to the same doubles.

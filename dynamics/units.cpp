@@ -1,4 +1,4 @@
-#include "mbsopt/dynamics/sensor_units.hpp"
+#include "mbsopt/dynamics/units.hpp"
 
 #include <numbers>
 #include <variant>
@@ -15,19 +15,23 @@ std::string derivativeUnit(Derivative d, bool angular) {
   return d == Derivative::Position ? base : d == Derivative::Velocity ? base + "/s" : base + "/s²";
 }
 
-/// Whether a joint sensor reads a revolute joint (an angle and its rates).
-bool readsRevolute(const Model& model, const JointSensor& s) {
+/// Whether coordinate i is a revolute joint's angle.
+bool isRevolute(const Model& model, int coordinate) {
   const KinematicElement& joint =
-      model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(s.coordinate)].element)];
+      model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(coordinate)].element)];
   return std::holds_alternative<RevoluteJoint>(joint.kind);
 }
 
 }  // namespace
 
+std::string coordinateUnit(const Model& model, int coordinate) { return isRevolute(model, coordinate) ? "rad" : "m"; }
+
+std::string withUnit(const std::string& name, const std::string& unit) { return name + " [" + unit + "]"; }
+
 std::string sensorSiUnit(const Model& model, const Sensor& sensor) {
   return std::visit(
       Overloaded{[](const PointSensor& s) -> std::string { return derivativeUnit(s.quantity, false); },
-                 [&](const JointSensor& s) -> std::string { return derivativeUnit(s.quantity, readsRevolute(model, s)); },
+                 [&](const JointSensor& s) -> std::string { return derivativeUnit(s.quantity, isRevolute(model, s.coordinate)); },
                  [](const RelativeAngleSensor&) -> std::string { return "rad"; },
                  [](const EnergySensor&) -> std::string { return "J"; },
                  [](const CutReactionSensor& s) -> std::string {

@@ -1,6 +1,6 @@
-// The units in which mbsopt reports a sensor: SI, except a relative angle, reported in degrees
-// (problems/scenes/README.md, "Sensors"). One table for every output that names a unit: the CSV
-// header, the JSON records, the tables and the plot axes.
+// The units of what mbsopt outputs: a coordinate's (m or rad) and a sensor's, SI, except that the
+// reports give a relative angle in degrees (problems/scenes/README.md, "Sensors"). One table for
+// every output that names a unit: the CSV header, the JSON records, the tables and the plot axes.
 #pragma once
 
 #include <string>
@@ -8,6 +8,13 @@
 #include "mbsopt/dynamics/model.hpp"
 
 namespace mbsopt {
+
+/// The unit of coordinate i (q; its rates per s, per s²): "rad" for a revolute joint, "m" for a
+/// prismatic joint or a curve slider's arc length.
+std::string coordinateUnit(const Model& model, int coordinate);
+
+/// "name [unit]": how the CSV headers name a column.
+std::string withUnit(const std::string& name, const std::string& unit);
 
 /// The unit of a sensor's reported value: "m", "m/s", "m/s²", "rad", "rad/s", "rad/s²" for points and
 /// joints, "deg" for a relative angle, "J" for an energy, "N" or "N·m" for a cut reaction.
