@@ -125,7 +125,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
     const MapReader t(context, design.node()["transcription"], "design.transcription");
     t.allowKeys({"measure", "tolerance", "rho", "windows"});
     const std::string measure = t.choice("measure", {"positive_part", "squared_positive_part", "ks", "grid_max"},
-                                         "positive_part");
+                                         "grid_max");
     out.transcription.measure = measure == "positive_part"           ? TimeMeasure::PositivePart
                                 : measure == "squared_positive_part" ? TimeMeasure::SquaredPositivePart
                                 : measure == "ks"                    ? TimeMeasure::KsAggregate

@@ -116,6 +116,7 @@ DesignProblem tramwayDesignProblem(const TramwayDesign& design, const TramwayOpt
   const double ten_degrees = 10.0 / 180.0 * std::numbers::pi;
   d.constraints = {{"yaw_front", ResponseMeasure::MaxAbs, ten_degrees, false, std::nullopt},
                    {"yaw_rear", ResponseMeasure::MaxAbs, ten_degrees, false, std::nullopt}};
+  d.transcription.measure = TimeMeasure::PositivePart;  // the paper's ∫⟨φ⟩dt (15)-(16)
   return problem;
 }
 

@@ -1,9 +1,9 @@
 // A design problem (docs/design.md §4, paper §3): a scene, design variables that are named model
-// parameters with bounds and scales, a cost and constraints on responses over time. The paper's
-// formulation is the default: the max-over-time cost becomes an artificial design variable
-// b_{k+1} (17)-(19), and every "max over t ≤ bound" a constraint on a time functional of
-// φ(t) = ±y(t) − bound (15)-(16). The transcription chooses that functional (the paper's ∫⟨φ⟩dt,
-// or a better-behaved one) and its tolerance.
+// parameters with bounds and scales, a cost and constraints on responses over time. As in the paper,
+// the max-over-time cost becomes an artificial design variable b_{k+1} (17)-(19), and every
+// "max over t ≤ bound" a constraint on a time functional of φ(t) = ±y(t) − bound (15)-(16). The
+// transcription chooses that functional (the grid maximum by default, the paper's ∫⟨φ⟩dt, or
+// another) and its tolerance.
 #pragma once
 
 #include <Eigen/Core>
@@ -55,7 +55,9 @@ struct ResponseConstraint {
 
 /// How each "max over t of φ ≤ 0" becomes one number: measure(φ) ≤ tolerance.
 struct Transcription {
-  TimeMeasure measure = TimeMeasure::PositivePart;  ///< the paper's ∫⟨φ⟩dt by default
+  /// The grid maximum by default: the formulation every optimizer can take (the paper's ∫⟨φ⟩dt has a
+  /// zero gradient wherever it is met, on which MMA and CCSAQ cannot move; its problems name it).
+  TimeMeasure measure = TimeMeasure::GridMax;
   double tolerance = 0.0;  ///< ε ≥ 0 (a small ε > 0 gives the constraint a strictly feasible interior)
   double rho = 50.0;       ///< KS sharpness [1 / units of φ]
   /// The run's time points split into this many equal windows, each extreme measured on each window

@@ -15,11 +15,13 @@ sensors:
   - {name: position, type: joint, joint: x, quantity: position}
 )";
 
-/// The same with a design problem: the spring's stiffness (scale 10), cost max x through b = 0.5.
+/// The same with a design problem: the spring's stiffness (scale 10), cost max x through b = 0.5,
+/// transcribed as the paper's ∫⟨x − b⟩dt.
 inline constexpr const char* kOscillatorDesign = R"(design:
   variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
   cost: {sensor: position, of: max}
   artificial: {initial: 0.5, lower: -2, upper: 2}
+  transcription: {measure: positive_part}
 )";
 
 /// An open spatial chain with a damped elbow spring: the stiffness, the damping and a mass as design

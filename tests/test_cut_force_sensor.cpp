@@ -219,6 +219,7 @@ design:
   artificial: {initial: 1, lower: 0, upper: 200}
   constraints:
     - {sensor: pin_x, of: integral, bound: -1}
+  transcription: {measure: positive_part}
 )";
   return loadDesignProblem(source, {{"settings.end_time", 1.0}, {"settings.step", step}});
 }

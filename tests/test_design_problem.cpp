@@ -52,6 +52,11 @@ TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
   EXPECT_EQ(initialPoint(cpp), (Eigen::VectorXd(5) << 2.46, 2.46, 1.5, 1.5, 3).finished());
   ASSERT_EQ(file.design.constraints.size(), 2u);
   EXPECT_EQ(file.design.constraints[1].bound, cpp.design.constraints[1].bound);
+  // The paper's formulation, named by both; a design that names none takes the grid maximum.
+  EXPECT_EQ(file.design.transcription.measure, TimeMeasure::PositivePart);
+  EXPECT_EQ(cpp.design.transcription.measure, TimeMeasure::PositivePart);
+  EXPECT_EQ(oscillatorProblem("0.5", "").design.transcription.measure, TimeMeasure::GridMax);
+  EXPECT_EQ(DesignDescription{}.transcription.measure, TimeMeasure::GridMax);
   // (17)-(19) and (15)-(16): ±a_lat − b5, then ±yaw − 10° for each yaw: six constraints.
   const std::vector<ConstraintFunctional> functionals = transcribe(cpp);
   ASSERT_EQ(functionals.size(), 6u);

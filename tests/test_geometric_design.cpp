@@ -44,6 +44,7 @@ design:
     - {sensor: joint_c_y, of: max_abs, bound: 0.7}
     - {sensor: crank_rate, of: integral, bound: -1}
     - {sensor: joint_c_x, of: final, bound: 0.9}
+  transcription: {measure: positive_part}
 )";
   return loadDesignProblem(source, {{"settings.end_time", 1.0}, {"settings.step", step}});
 }
