@@ -170,8 +170,10 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
   md << "\nConverged runs that are not feasible in their problem's own units: " << converged_infeasible << ".\n\n";
   md << "![profiles](profiles.png)\n\n";
   // Per problem.
-  csv << "problem,start,optimizer,gradient,formulation,status,feasible,cost_functional,best_known,relative_gap,"
-         "simulation_equivalents,wall_time_s,solved_1e-1,solved_1e-3,solved_1e-5\n";
+  // Each run's reported point (its result.json's cost_functional.final, in cost_unit), at full precision.
+  csv << "problem,start,optimizer,gradient,formulation,status,reported_point,reported_iteration,feasible,"
+         "cost_functional,best_known,cost_unit,relative_gap,simulation_equivalents,wall_time_s,solved_1e-1,"
+         "solved_1e-3,solved_1e-5\n";
   for (std::size_t p = 0; p < plan.problems.size(); ++p) {
     const BenchmarkProblem& problem = plan.problems[p];
     md << "## " << problem.name << "\n\n" << cost_key[p] << ": best known " << number(best[p], "%.8g") << " ("
@@ -201,9 +203,13 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
           reasons.push_back("- " + solvers[s] + ", start " + std::to_string(r.run->start) + ": " + status + " — " +
                             j["message"].get<std::string>());
         const double cost = finalCost(j);
+        const nlohmann::json reported = j.value("reported_iterate", nlohmann::json::object());
+        const nlohmann::json reported_iteration = reported.value("iteration", nlohmann::json(nullptr));
         csv << problem.name << ',' << r.run->start << ',' << r.run->choice.optimizer << ',' << r.run->choice.gradient << ','
-            << r.run->choice.formulation << ',' << status << ',' << (feasibleRun(j) ? "yes" : "no") << ','
-            << number(cost, "%.10g") << ',' << number(best[p], "%.10g") << ','
+            << r.run->choice.formulation << ',' << status << ',' << reported.value("point", std::string()) << ','
+            << (reported_iteration.is_number() ? std::to_string(reported_iteration.get<int>()) : "") << ','
+            << (feasibleRun(j) ? "yes" : "no") << ',' << number(cost, "%.17g") << ',' << number(best[p], "%.17g") << ','
+            << j.value("cost_functional", nlohmann::json::object()).value("unit", std::string()) << ','
             << number((cost - best[p]) / std::abs(best[p]), "%.3e") << ','
             << (j.contains("simulation_equivalents") ? number(j["simulation_equivalents"].get<double>(), "%.2f") : "")
             << ',' << (j.contains("wall_time_s") ? number(j["wall_time_s"].get<double>(), "%.3f") : "");
@@ -261,28 +267,42 @@ std::string writeBenchmarkReport(const BenchmarkOptions& options, const Benchmar
   for (std::size_t p = 0; p < plan.problems.size(); ++p) {
     std::vector<PlotPanel> rows;
     for (int start = 0; start < options.starts; ++start) {
-      char label[200];
-      std::snprintf(label, sizeof label, "|%s - %.8g| (%s; 0 drawn at %.0e of it)", cost_key[p].c_str(), best[p],
+      char title[200];
+      std::snprintf(title, sizeof title, "start %d: best %.8g (%s; 0 drawn at %.0e of it)", start, best[p],
                     best_source[p].c_str(), kDistanceFloor);
-      PlotPanel cost{.xlabel = "simulation-equivalents", .ylabel = label, .log_y = true, .title = "start " + std::to_string(start)};
+      PlotPanel cost{.xlabel = "simulation-equivalents", .ylabel = "|" + cost_key[p] + " - best|", .log_y = true,
+                     .title = title};
       PlotPanel violation{.xlabel = "simulation-equivalents", .ylabel = "max violation (0 drawn at 1e-12)", .log_y = true,
                           .title = "start " + std::to_string(start)};
+      std::vector<PlotSeries> reported_costs, reported_violations;  // each run's reported point, ringed
       for (std::size_t s = 0; s < solvers.size(); ++s) {
         PlotSeries c{solvers[s], {}}, v{solvers[s], {}};
+        PlotSeries reported_c{"", {}, true, static_cast<int>(s) + 1}, reported_v = reported_c;
         for (const Record& r : records) {
           if (r.run->problem != p || r.run->start != start || solverOf(*r.run) != s || r.json.is_null() ||
               !r.json.contains("history"))
             continue;
+          const nlohmann::json reported =
+              r.json.value("reported_iterate", nlohmann::json::object()).value("iteration", nlohmann::json(nullptr));
           for (const nlohmann::json& h : r.json["history"]) {
             const double at = h["simulation_equivalents"].get<double>();
-            if (h["cost_functional"].is_number())
-              c.points.emplace_back(at, distanceToBest(h["cost_functional"].get<double>(), best[p]));
-            v.points.emplace_back(at, std::max(h["max_violation"].get<double>(), 1e-12));
+            const double violation_at = std::max(h["max_violation"].get<double>(), 1e-12);
+            v.points.emplace_back(at, violation_at);
+            if (!h["cost_functional"].is_number()) continue;
+            c.points.emplace_back(at, distanceToBest(h["cost_functional"].get<double>(), best[p]));
+            if (h["iteration"] == reported) {
+              reported_c.points = {c.points.back()};
+              reported_v.points = {{at, violation_at}};
+            }
           }
         }
         cost.series.push_back(c);
         violation.series.push_back(v);
+        reported_costs.push_back(reported_c);
+        reported_violations.push_back(reported_v);
       }
+      cost.series.insert(cost.series.end(), reported_costs.begin(), reported_costs.end());
+      violation.series.insert(violation.series.end(), reported_violations.begin(), reported_violations.end());
       rows.push_back(cost);
       rows.push_back(violation);
     }

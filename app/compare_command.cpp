@@ -116,7 +116,7 @@ void plotConvergence(const std::string& stem, const std::string& problem, const 
     for (; first < runs.size() && formulationLabel(runs[first].choice) + ", " + runs[first].choice.gradient == group; ++first)
       titled.emplace_back(runs[first].choice.optimizer, &runs[first]);
     std::vector<PlotPanel> row = convergencePanels(titled, true);
-    for (PlotPanel& panel : row) panel.title = group;
+    for (PlotPanel& panel : row) panel.title = panel.title.empty() ? group : group + ": " + panel.title;
     panels.insert(panels.end(), row.begin(), row.end());
   }
   plotPanels(stem, "convergence on " + problem, panels, 2);

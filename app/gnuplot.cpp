@@ -51,7 +51,7 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
     out.precision(17);
     for (const PlotPanel& panel : panels)
       for (const PlotSeries& series : panel.series) {
-        out << "# " << series.title << '\n';
+        out << "# " << (series.title.empty() && series.marks_only ? "(marks)" : series.title) << '\n';
         for (const auto& [x, y] : series.points) out << x << ' ' << y << '\n';
         if (series.points.empty()) out << "NaN NaN\n";  // a block all the same: gnuplot's index counts only blocks with lines
         out << "\n\n";
@@ -80,11 +80,15 @@ bool plotPanels(const std::string& stem, const std::string& title, const std::ve
       // An empty series is left out of the plot, and each series keeps its line type: the n-th of
       // every panel has the same colour whichever are empty.
       std::string plots;
-      for (std::size_t s = 0; s < panel.series.size(); ++s, ++block)
-        if (!panel.series[s].points.empty())
-          plots += (plots.empty() ? "" : ", ") + quoted(std::filesystem::path(data).filename().string()) + " index " +
-                   std::to_string(block) + (panel.markers ? " with linespoints" : " with lines") + " lt " +
-                   std::to_string(s + 1) + " title " + quoted(panel.series[s].title);
+      for (std::size_t s = 0; s < panel.series.size(); ++s, ++block) {
+        const PlotSeries& series = panel.series[s];
+        if (series.points.empty()) continue;
+        const char* style = series.marks_only ? " with points pt 6 ps 2" : panel.markers ? " with linespoints" : " with lines";
+        plots += (plots.empty() ? "" : ", ") + quoted(std::filesystem::path(data).filename().string()) + " index " +
+                 std::to_string(block) + style + " lt " +
+                 std::to_string(series.line_type > 0 ? series.line_type : static_cast<int>(s) + 1) +
+                 (series.title.empty() ? std::string(" notitle") : " title " + quoted(series.title));
+      }
       if (plots.empty()) out << "set label 1 'no data' at graph 0.5, 0.5 center\nplot [0:1] NaN notitle\nunset label 1\n";
       else out << "plot " << plots << '\n';
     }

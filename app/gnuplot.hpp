@@ -10,8 +10,13 @@ namespace mbsopt {
 
 /// One curve: a title and its points (x, y).
 struct PlotSeries {
-  std::string title;
+  std::string title;  ///< empty: not in the key
   std::vector<std::pair<double, double>> points;
+  /// Large marks alone, no line (a run's reported point on its curve).
+  bool marks_only = false;
+  /// The line type (colour) of series n of a panel is n + 1 unless given here (a series drawn in
+  /// another's colour).
+  int line_type = 0;
 };
 
 struct PlotPanel {

@@ -518,24 +518,37 @@ std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string
           if (!std::isnan(c)) best = std::min(std::isnan(best) ? INFINITY : best, c);
     }
   const OptimizationRun* first = runs.empty() ? nullptr : runs.front().second;
-  char label[200];
-  std::snprintf(label, sizeof label, "|%s - %.8g| [%s] (%s; 0 drawn at %.0e of it)", first ? first->cost_response.c_str() : "cost",
-                best, first ? first->cost_unit.c_str() : "SI", source.c_str(), kDistanceFloor);
-  PlotPanel cost{.xlabel = x, .ylabel = label, .log_y = true};
+  char label[120], title[160];
+  std::snprintf(label, sizeof label, "|%s - best| [%s]", first ? first->cost_response.c_str() : "cost",
+                first ? first->cost_unit.c_str() : "SI");
+  std::snprintf(title, sizeof title, "best %.8g (%s; 0 drawn at %.0e of it)", best, source.c_str(), kDistanceFloor);
+  PlotPanel cost{.xlabel = x, .ylabel = label, .log_y = true, .title = title};
   PlotPanel violation{.xlabel = x, .ylabel = "max violation (0 drawn at 1e-12)", .log_y = true};
   double start = 0.0;  // the farthest start: excursions above it are cut off, not to flatten the rest
-  for (const auto& [title, run] : runs) {
+  std::vector<PlotSeries> reported_costs, reported_violations;  // each run's reported point, ringed in its colour
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const auto& [title, run] = runs[i];
     PlotSeries c{title, {}}, v{title, {}};
+    PlotSeries reported_c{"", {}, true, static_cast<int>(i) + 1}, reported_v = reported_c;
     for (std::size_t k = 0; k < run->result.history.size(); ++k) {
       const IterationRecord& h = run->result.history[k];
       const double at = against_simulation_equivalents ? h.simulation_equivalents : h.iteration;
+      const double violation_at = std::max(h.max_violation, 1e-12);
       if (!std::isnan(run->iterate_costs[k])) c.points.emplace_back(at, distanceToBest(run->iterate_costs[k], best));
-      v.points.emplace_back(at, std::max(h.max_violation, 1e-12));
+      v.points.emplace_back(at, violation_at);
+      if (h.iteration == run->reported_iteration && !std::isnan(run->iterate_costs[k])) {
+        reported_c.points = {{at, distanceToBest(run->iterate_costs[k], best)}};
+        reported_v.points = {{at, violation_at}};
+      }
     }
     start = std::max(start, distanceToBest(run->initial_cost, best));
     cost.series.push_back(c);
     violation.series.push_back(v);
+    reported_costs.push_back(reported_c);
+    reported_violations.push_back(reported_v);
   }
+  cost.series.insert(cost.series.end(), reported_costs.begin(), reported_costs.end());
+  violation.series.insert(violation.series.end(), reported_violations.begin(), reported_violations.end());
   if (start > 0.0) cost.y_max = 2.0 * start;
   return {cost, violation};
 }

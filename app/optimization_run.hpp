@@ -180,8 +180,9 @@ double distanceToBest(double cost, double best);
 /// Two panels on logarithmic axes, the distance of the cost's own functional (OptimizationRun::
 /// iterate_costs) to the best (distanceToBest: `reference` where given, else the least reported cost
 /// of the feasible runs) and the max violation (zero drawn at 1e-12), against iterations or against
-/// the budget's simulation-equivalents, one curve per (title, run); distances above twice the
-/// farthest start's are cut off.
+/// the budget's simulation-equivalents, one curve per (title, run), its reported point ringed in its
+/// colour (the point the summary, the tables and the JSON give); distances above twice the farthest
+/// start's are cut off.
 std::vector<PlotPanel> convergencePanels(const std::vector<std::pair<std::string, const OptimizationRun*>>& runs,
                                          bool against_simulation_equivalents,
                                          double reference = std::numeric_limits<double>::quiet_NaN());

@@ -4,7 +4,8 @@
 #   scripts/fuzz.sh                      # build the target (sanitize preset), fuzz 60 s
 #   scripts/fuzz.sh --seconds 1800 --jobs 2   # a long campaign, corpus kept in build/fuzz-corpus
 #
-# Every seed (the shipped scenes, the bad scenes of the tests, tests/fuzz/seeds) and every file of
+# Every seed (the shipped scenes, the suite's design problems, the bad scenes of the tests,
+# tests/fuzz/seeds) and every file of
 # tests/fuzz/regressions/ runs first; then the fuzzer mutates. A finding (crash, sanitizer report,
 # uncaught exception, an input slower than --timeout seconds or above 2 GB) is written to
 # WORK/findings/ and the script exits 1: reduce it (the binary's -minimize_crash=1), add it to
@@ -36,7 +37,7 @@ work="$(realpath "$work")"
 rm -f "$work"/findings/* "$work"/fuzz-*.log
 
 # The output corpus first (new inputs go there), then the read-only seed directories.
-seeds=("$root/problems/scenes" "$root/problems/scenes/hard" "$root/tests/scenes/bad" "$root/tests/fuzz/seeds"
+seeds=("$root/problems/scenes" "$root/problems/scenes/hard" "$root/problems/suite" "$root/tests/scenes/bad" "$root/tests/fuzz/seeds"
        "$root/tests/fuzz/regressions")
 options=(-max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=16384 -seed="$seed"
          -dict="$root/tests/fuzz/scene.dict" -artifact_prefix="$work/findings/" -print_final_stats=1)

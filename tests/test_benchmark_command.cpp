@@ -6,6 +6,7 @@
 // depend on the machine or the launch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -107,9 +108,34 @@ TEST(BenchmarkCommand, SweepsResumesAndGivesTheSameRecordsOverMpiRanks) {
   report << report_file.rdbuf();
   for (const std::string& problem : kProblems) EXPECT_NE(report.str().find("## " + problem), std::string::npos);
   EXPECT_NE(report.str().find("| sdcc/adjoint/problem's formulation | 6 |"), std::string::npos) << report.str();
+  // The CSV gives each run's reported point as its record does, to the bit, with its unit.
   std::ifstream csv(threaded / "summary.csv");
-  int lines = 0;
-  for (std::string line; std::getline(csv, line);) ++lines;
+  std::string header_line;
+  std::getline(csv, header_line);
+  std::vector<std::string> header;
+  for (std::stringstream fields(header_line); std::getline(fields, header_line, ',');) header.push_back(header_line);
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  int lines = 1;
+  for (std::string line; std::getline(csv, line); ++lines) {
+    std::vector<std::string> cells;
+    for (std::stringstream fields(line); std::getline(fields, line, ',');) cells.push_back(line);
+    ASSERT_EQ(cells.size(), header.size());
+    const nlohmann::json r = record(threaded, cells[column("problem")], cells[column("optimizer")], std::stoi(cells[column("start")]));
+    EXPECT_EQ(cells[column("reported_point")], r["reported_iterate"]["point"]);
+    EXPECT_EQ(std::stoi(cells[column("reported_iteration")]), r["reported_iterate"]["iteration"].get<int>());
+    EXPECT_EQ(std::stod(cells[column("cost_functional")]), r["cost_functional"]["final"].get<double>());
+    EXPECT_EQ(cells[column("cost_unit")], r["cost_functional"]["unit"]);
+    // The reported point is a record of the history, whose cost is the one reported.
+    bool in_history = false;
+    for (const nlohmann::json& h : r["history"])
+      if (h["iteration"] == r["reported_iterate"]["iteration"]) {
+        in_history = true;
+        EXPECT_EQ(h["cost_functional"].get<double>(), r["cost_functional"]["final"].get<double>());
+      }
+    EXPECT_TRUE(in_history);
+  }
   EXPECT_EQ(lines, 1 + 12);
   for (const char* figure : {"profiles.png", "convergence/quarter_car.png", "convergence/spring_floor.png"})
     EXPECT_TRUE(fs::exists(threaded / figure)) << figure;

@@ -83,12 +83,17 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
     EXPECT_GT(run["history"][1]["step"].get<double>(), 0.0);
     EXPECT_LE(run["history"][1]["step"].get<double>(), 0.05 * (1 + 1e-12));
   }
-  // Two panels (cost, violation) per (formulation, gradient), one block per run in each.
+  // Two panels (cost, violation) per (formulation, gradient), in each a curve per run and its reported
+  // point ringed (a block of its own, untitled).
   std::ifstream data(out / "convergence.dat");
-  int blocks = 0;
+  int blocks = 0, marks = 0;
   while (std::getline(data, line))
-    if (line.starts_with("# ")) ++blocks;
-  EXPECT_EQ(blocks, 2 * 4);
+    if (line.starts_with("# ")) {
+      ++blocks;
+      marks += line == "# (marks)";
+    }
+  EXPECT_EQ(blocks, 2 * 4 * 2);
+  EXPECT_EQ(marks, 2 * 4);
   std::filesystem::remove_all(directory);
 }
 
