@@ -103,8 +103,8 @@ void printVerdicts(const std::vector<ConstraintVerdict>& verdicts) {
 void printReportedPoint(const OptimizationRun& run) {
   const std::string iteration = run.reported_iteration >= 0 ? ", iteration " + std::to_string(run.reported_iteration) : "";
   switch (run.result.reported) {
-    case ReportedPoint::Converged:
-      std::printf("reported: the converged point%s, where the optimizer's own test passed and every constraint holds "
+    case ReportedPoint::Final:
+      std::printf("reported: the optimizer's final point%s, where its own test passed and every constraint holds "
                   "within its tolerance\n", iteration.c_str());
       if (!std::isnan(run.cheapest_cost)) {
         const double below = run.responses[run.cost_response].get<double>() - run.cheapest_cost;
@@ -141,13 +141,16 @@ void printBoundWorth(const OptimizationRun& run) {
               "(7)-(8)):\n");
   for (const BoundWorth& w : run.bound_worth) {
     const std::string unit = w.unit.empty() ? "SI unit" : w.unit;
+    char value[32];
+    std::snprintf(value, sizeof value, "%.8g", w.bound);
+    const std::string bound = w.unit.empty() ? value : std::string(value) + " " + w.unit;
     const char* relation = w.equality ? "=" : w.raising_relaxes ? "<=" : ">=";
     if (w.equality)
-      std::printf("  %s %s %.8g %s: raising it by one %s changes %s by %.4g %s\n", w.name.c_str(), relation, w.bound,
-                  w.unit.c_str(), unit.c_str(), run.cost_response.c_str(), w.derivative, run.cost_unit.c_str());
+      std::printf("  %s %s %s: raising it by one %s changes %s by %.4g %s\n", w.name.c_str(), relation, bound.c_str(),
+                  unit.c_str(), run.cost_response.c_str(), w.derivative, run.cost_unit.c_str());
     else
-      std::printf("  %s %s %.8g %s: %s it by one %s lowers %s by %.4g %s\n", w.name.c_str(), relation, w.bound,
-                  w.unit.c_str(), w.raising_relaxes ? "raising" : "lowering", unit.c_str(), run.cost_response.c_str(),
+      std::printf("  %s %s %s: %s it by one %s lowers %s by %.4g %s\n", w.name.c_str(), relation, bound.c_str(),
+                  w.raising_relaxes ? "raising" : "lowering", unit.c_str(), run.cost_response.c_str(),
                   w.relaxingLowersCostBy(), run.cost_unit.c_str());
   }
 }

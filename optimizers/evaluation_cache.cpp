@@ -170,7 +170,7 @@ void EvaluationCache::conclude(OptimizerResult& result, const Eigen::VectorXd& f
   if (result.status == OptimizerStatus::Converged && final_point.size() == cheapest.x.size()) {
     const Entry final = entryAt(final_point);
     if (final.feasible()) {
-      report(final, ReportedPoint::Converged, result);
+      report(final, ReportedPoint::Final, result);
     } else {
       result.status = OptimizerStatus::Failed;
       result.message += "; its own test passed at a point beyond the problem's tolerances (" +

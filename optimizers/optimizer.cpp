@@ -25,8 +25,8 @@ std::string toString(OptimizerStatus status) {
 
 std::string toString(ReportedPoint point) {
   switch (point) {
-    case ReportedPoint::Converged:
-      return "converged";
+    case ReportedPoint::Final:
+      return "final";
     case ReportedPoint::CheapestFeasible:
       return "cheapest_feasible";
     case ReportedPoint::LeastInfeasible:

@@ -29,9 +29,10 @@ std::string toString(OptimizerStatus status);
 /// problem's own tolerances (NlpEvaluation::excess_over_tolerance ≤ 1, the bounds held), cheapest the
 /// least of the problem's own cost (NlpEvaluation::reported_cost).
 enum class ReportedPoint {
-  /// The algorithm's final point, where it converged, feasible. An earlier point may be cheaper by
-  /// what the tolerances allow (OptimizerResult::cheapest_cost says).
-  Converged,
+  /// The algorithm's final point, where its own convergence test passed, feasible (the run's status
+  /// may still be failed, where the point fails the first-order check). An earlier point may be
+  /// cheaper by what the tolerances allow (OptimizerResult::cheapest_cost says).
+  Final,
   /// The cheapest feasible point evaluated (the latest of equals): the run did not converge.
   CheapestFeasible,
   /// No point evaluated is feasible: the closest one.

@@ -182,9 +182,10 @@ def main():
              "| bound | kind | value | stated | its accuracy | measured | its accuracy | agrees |",
              "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %s | %.8g %s | %.6g | %.2g | %.6g | %.2g | %s |" % (
-            r["bound"], r["kind"].replace("_", " "), r["value"], r["unit"] if r["unit"] != "SI" else "",
-            r["stated"], r["stated_accuracy"], r["measured"], r["measurement_accuracy"], "yes" if r["agrees"] else "NO"))
+        value = "%.8g" % r["value"] + ("" if r["unit"] == "SI" else " " + r["unit"])
+        lines.append("| %s | %s | %s | %.6g | %.2g | %.6g | %.2g | %s |" % (
+            r["bound"], r["kind"].replace("_", " "), value, r["stated"], r["stated_accuracy"], r["measured"],
+            r["measurement_accuracy"], "yes" if r["agrees"] else "NO"))
     with open(os.path.join(args.out, "bound_worth.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

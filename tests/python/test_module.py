@@ -36,7 +36,7 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
                     "gradient_evaluations", "iterations", "cost_functional", "variables"):
             self.assertEqual(record[key], expected[key], key)
         self.assertEqual([h["design"] for h in record["history"]], [h["design"] for h in expected["history"]])
-        self.assertEqual(record["reported_iterate"]["point"], "converged")
+        self.assertEqual(record["reported_iterate"]["point"], "final")
         self.assertAlmostEqual(record["cost_functional"]["final"], 2.189373, delta=record["tolerance_worth"])
 
     def test_simulate_gives_the_trajectory_of_mbsopt_simulate(self):
