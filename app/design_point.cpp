@@ -16,11 +16,11 @@ std::vector<CLI::Option*> addDesignPointOptions(CLI::App& command, DesignPointRe
       ->delimiter(',');
   CLI::Option* artificial = command.add_option(
       "--artificial", request.artificial,
-      help("the artificial variable b_{k+1} in the cost's units (default: the problem's); below the cost's peak it makes "
-           "the cost's constraint active"));
+      help("the artificial variable b_{k+1} in the cost's units, within design.artificial's bounds (default: the "
+           "problem's start); below the cost's peak it makes the cost's constraint active"));
   CLI::Option* outside = command.add_flag(
       "--outside-bounds", request.outside_bounds,
-      help("evaluate a --design outside the design's bounds (the output says which values are); values the scene "
+      help("evaluate a --design or --artificial outside the design's bounds (the output says which values are); values the scene "
            "refuses, such as a negative stiffness, stay refused"));
   return {design, artificial, outside};
 }

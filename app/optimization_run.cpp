@@ -193,9 +193,31 @@ std::string runFileStem(const RunChoice& c) {
   return name;
 }
 
+namespace {
+
+/// The limits and numbers of a choice, refused as the command line refuses them (app/option_checks.hpp),
+/// for the callers that do not come through it (the Python module, C++): a budget may be infinite.
+void checkRunChoice(const RunChoice& choice) {
+  const auto refuse = [](const std::string& name, const std::string& what, double value) {
+    throw std::invalid_argument(name + " must be " + what + ", got " + shortNumber(value));
+  };
+  if (choice.max_iterations < 1) refuse("max_iter", "a positive integer", choice.max_iterations);
+  if (!(choice.budget.simulation_equivalents > 0.0))
+    refuse("budget", "a positive number of simulation-equivalents", choice.budget.simulation_equivalents);
+  if (!(choice.budget.wall_time_s > 0.0)) refuse("wall_time", "a positive time in seconds", choice.budget.wall_time_s);
+  if (choice.gradient_cost && !(std::isfinite(*choice.gradient_cost) && *choice.gradient_cost > 0.0))
+    refuse("gradient_cost", "a positive finite number", *choice.gradient_cost);
+  if (choice.epsilon && !(std::isfinite(*choice.epsilon) && *choice.epsilon >= 0.0))
+    refuse("epsilon", "a finite number >= 0", *choice.epsilon);
+  if (choice.gradient_jobs < 1) refuse("jobs", "a positive integer", choice.gradient_jobs);
+}
+
+}  // namespace
+
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 const std::function<void(const IterationRecord&)>& on_iteration,
                                 std::shared_ptr<ThreadBudget> shared_threads) {
+  checkRunChoice(choice);
   OptimizationRun run;
   run.choice = resolvedChoice(problem, choice);
   DesignNlp nlp(formulatedProblem(std::move(problem), run.choice), run.choice.gradient, 1e-6, choice.gradient_jobs, std::move(shared_threads));
@@ -257,7 +279,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.response_units = nlohmann::json::object();
   run.responses = responses(nlp, final, run.response_units);
   run.verdicts = constraintVerdicts(nlp.problem(), final);
-  if (run.result.first_order) {
+  if (run.result.status == OptimizerStatus::Converged && run.result.first_order) {
     run.bound_worth = boundWorth(nlp.problem(), nlp.functionals(), final, run.result.first_order->multipliers);
     run.tolerance_worth = toleranceWorth(run.bound_worth);
   }

@@ -142,7 +142,9 @@ DesignProblem formulatedProblem(DesignProblem problem, const RunChoice& resolved
 
 /// Runs `choice` on `problem` (its transcription replaced by the choice's formulation). With
 /// `shared_threads`, the threads its evaluations use beyond their own are borrowed from it while idle
-/// (runs at once lend theirs to one another; thread_budget.hpp).
+/// (runs at once lend theirs to one another; thread_budget.hpp). A limit or number of the choice out
+/// of its range (max_iterations < 1, a budget ≤ 0 or NaN, a negative or non-finite ε, ...) is an
+/// std::invalid_argument that names it, before anything runs.
 OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
                                 const std::function<void(const IterationRecord&)>& on_iteration,
                                 std::shared_ptr<ThreadBudget> shared_threads = nullptr);

@@ -132,7 +132,7 @@ void printReportedPoint(const OptimizationRun& run) {
 
 /// What relaxing each active bound is worth at the reported point (a converged run's multipliers).
 void printBoundWorth(const OptimizationRun& run) {
-  if (!run.result.first_order) return;
+  if (run.result.status != OptimizerStatus::Converged || !run.result.first_order) return;
   if (run.bound_worth.empty()) {
     std::printf("no constraint or bound is active at the optimum: relaxing one is worth nothing\n");
     return;
@@ -260,7 +260,7 @@ void registerOptimizeCommand(CLI::App& app) {
                       "How each max-over-time constraint becomes one number: positive_part (the paper's ∫⟨φ⟩dt), "
                       "squared_positive_part (∫⟨φ⟩²dt), ks (Kreisselmeier-Steinhauser over the time mean) or "
                       "grid_max (the maximum over the time grid); default: the problem's own (the scene file's "
-                      "design.transcription)")
+                      "design.transcription; grid_max where it names none)")
       ->check(CLI::IsMember(formulationNames()));
   command
       ->add_option_function<double>(
@@ -286,11 +286,15 @@ void registerOptimizeCommand(CLI::App& app) {
                       "upper, scale, start, final}] (SI), variables_unit, artificial_variable{start, lower, upper, scale, final}, "
                       "budget{simulation_equivalents, wall_time_s (the limits, null: none), gradient_cost, gradient_cost_source, "
                       "spent, unit, max_iterations, max_iterations_counts}, settings, optimizer, gradient, formulation, epsilon, status, "
-                      "message, design (SI), responses, constraints[{name, unit, value, bound | equals, excess, tolerance, met}] "
+                      "message, design (SI), responses, response_units, constraints[{name, unit, value, bound | equals, excess, tolerance, met}] "
                       "(each constraint judged at the final design in its own units: angles in degrees; the "
                       "tolerance is its own or 1e-4 |bound|, at least 1e-6 in SI units), feasible (all met), initial_cost, cost (b_{k+1}), cost_functional{name, "
-                      "unit, start, final} (the cost sensor's own functional), reported_iterate{iteration, rule} (the "
-                      "history's record of the reported design), max_violation, iterations, simulations, "
+                      "unit, start, final} (the cost sensor's own functional), reported_iterate{iteration, point (final, "
+                      "cheapest_feasible or least_infeasible), rule, cheapest_feasible_cost, cheapest_feasible_iteration} "
+                      "(the history's record of the reported design and why it is reported), bound_worth[{name, kind, "
+                      "parameter, bound, unit, equality, d_cost_d_bound, relaxing_lowers_cost_by, relaxed_by, "
+                      "cost_unit_per_unit, tolerance}] (what relaxing each active bound is worth at a converged "
+                      "optimum, from the multipliers), kkt_residual, tolerance_worth, max_violation, iterations, simulations, "
                       "gradient_evaluations, simulation_equivalents (the budget's count), thread_time_simulations (the "
                       "evaluations' thread time, each one's wall time times the threads it held, over one simulation's, "
                       "simulation_s), simulations_ahead "
@@ -314,7 +318,7 @@ void registerOptimizeCommand(CLI::App& app) {
       ->check(positiveNumber());
   command->add_option("--out", options->out,
                       "Directory (created if missing) for result.json and two gnuplot figures like the paper's 6-8: "
-                      "history.png (the cost's own functional, max violation and design variables against iterations) and response.png "
+                      "history.png (the distance of the cost's own functional to the best on a logarithmic axis, the max violation and the design variables against iterations, the reported point ringed) and response.png "
                       "(the cost's sensor over time at the start and at the final design)");
   command->callback([options] { locatingRunFailures(options->problem, [&] { optimize(*options); }); });
 }

@@ -120,22 +120,35 @@ void EvaluationCache::record(double cost, double max_violation, double step, con
   if (options_.on_iteration) options_.on_iteration(record);
 }
 
+namespace {
+
+/// Sets a flag for its lifetime, however the scope ends.
+class FlagFor {
+ public:
+  explicit FlagFor(bool& flag) : flag_(flag) { flag_ = true; }
+  ~FlagFor() { flag_ = false; }
+  FlagFor(const FlagFor&) = delete;
+  FlagFor& operator=(const FlagFor&) = delete;
+
+ private:
+  bool& flag_;
+};
+
+}  // namespace
+
 EvaluationCache::Entry EvaluationCache::entryAt(const Eigen::VectorXd& x) {
   if (has_best_ && best_.x == x) return best_;
   const auto hit = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.x == x; });
   if (hit != entries_.end()) return *hit;
-  reviewing_ = true;
+  const FlagFor reviewing(reviewing_);
   at(x, false);
-  reviewing_ = false;
   return entries_.front();
 }
 
 FirstOrderCheck EvaluationCache::firstOrderAt(const Eigen::VectorXd& x) {
   const double active = std::max(100.0 * options_.feasibility_tolerance, 1e-6);
-  reviewing_ = true;  // the verdict's gradient is not the run's: no budget refuses it
-  const NlpEvaluation values = at(x, true);
-  reviewing_ = false;
-  return firstOrderCheck(problem_, x, values, active);
+  const FlagFor reviewing(reviewing_);  // the verdict's gradient is not the run's: no budget refuses it
+  return firstOrderCheck(problem_, x, at(x, true), active);
 }
 
 void EvaluationCache::report(const Entry& entry, ReportedPoint kind, OptimizerResult& result) {
@@ -148,57 +161,51 @@ void EvaluationCache::report(const Entry& entry, ReportedPoint kind, OptimizerRe
 }
 
 void EvaluationCache::conclude(OptimizerResult& result, const Eigen::VectorXd& final_point) {
-  const auto count = [&] {
-    result.value_evaluations = value_evaluations_;
-    result.gradient_evaluations = gradient_evaluations_;
-    result.simulation_equivalents = simulation_equivalents_;
-  };
-  count();
   result.iterations = static_cast<int>(result.history.size());
   if (!budget_spent_.empty() && result.status != OptimizerStatus::Unsupported) {
     result.status = OptimizerStatus::MaxIterations;
     if (result.message.find(budget_spent_) == std::string::npos) result.message += "; stopped: " + budget_spent_;
   }
-  if (!has_best_) return;
+  result.final_point = final_point;
+  if (has_best_) reportPoint(result, final_point);
+  result.value_evaluations = value_evaluations_;
+  result.gradient_evaluations = gradient_evaluations_;
+  result.simulation_equivalents = simulation_equivalents_;
+}
+
+void EvaluationCache::reportPoint(OptimizerResult& result, const Eigen::VectorXd& final_point) {
   const Entry cheapest = best_;
   report(cheapest, cheapest.feasible() ? ReportedPoint::CheapestFeasible : ReportedPoint::LeastInfeasible, result);
   if (cheapest.feasible()) {
     result.cheapest_x = cheapest.x;
     result.cheapest_cost = cheapest.cost;
   }
-  result.final_point = final_point;
-  if (result.status == OptimizerStatus::Converged && final_point.size() == cheapest.x.size()) {
-    const Entry final = entryAt(final_point);
-    if (final.feasible()) {
-      report(final, ReportedPoint::Final, result);
-    } else {
-      result.status = OptimizerStatus::Failed;
-      result.message += "; its own test passed at a point beyond the problem's tolerances (" +
-                        shortNumber(final.infeasibility) + " times the largest allowed excess)";
-    }
-  }
-  if (result.status == OptimizerStatus::Unsupported || result.status == OptimizerStatus::Failed) {
-    count();
-    return;
-  }
-  if (result.reported == ReportedPoint::LeastInfeasible) {
+  if (result.status == OptimizerStatus::Unsupported || result.status == OptimizerStatus::Failed) return;
+  if (!cheapest.feasible()) {
     result.status = OptimizerStatus::Failed;
-    result.message += "; no point it evaluated is feasible (the closest is " + shortNumber(best_.infeasibility) +
+    result.message += "; no point it evaluated is feasible (the closest is " + shortNumber(cheapest.infeasibility) +
                       " times the largest allowed excess)";
-    count();
     return;
   }
-  if (result.status != OptimizerStatus::Converged) {
-    count();
+  if (result.status != OptimizerStatus::Converged) return;
+  const bool said = final_point.size() == cheapest.x.size();
+  const Entry final = said ? entryAt(final_point) : cheapest;
+  if (!final.feasible()) {
+    result.status = OptimizerStatus::Failed;
+    result.message += "; its own test passed at a point beyond the problem's tolerances (" +
+                      shortNumber(final.infeasibility) + " times the largest allowed excess)";
     return;
   }
-  if (!result.first_order) result.first_order = firstOrderAt(result.x);
-  count();
-  const double residual = result.first_order->residual;
-  if (residual <= kFirstOrderTolerance) return;
-  result.status = OptimizerStatus::Failed;
-  result.message += "; but the point is not first-order optimal (KKT residual " + std::to_string(residual) +
-                    "): the algorithm could not move from it";
+  const FirstOrderCheck check = firstOrderAt(final.x);
+  if (check.residual > kFirstOrderTolerance) {
+    result.status = OptimizerStatus::Failed;
+    result.message += "; its own test passed at a point that is not first-order optimal (KKT residual " +
+                      shortNumber(check.residual) + ")";
+    if (final.x == cheapest.x) result.first_order = check;
+    return;
+  }
+  report(final, said ? ReportedPoint::Final : ReportedPoint::CheapestFeasible, result);
+  result.first_order = check;
 }
 
 }  // namespace mbsopt

@@ -49,15 +49,14 @@ class EvaluationCache {
   void recordIteration(double cost, double max_violation, double step, OptimizerResult& result);
 
   /// Ends a run whose algorithm has set result.status and result.message: fills the counts and the
-  /// reported point (ReportedPoint: the algorithm's final point `final_point` where it converged
-  /// there and that point is feasible, else the cheapest feasible point, else the least infeasible),
-  /// then checks the verdict. A run the budget stopped has status
-  /// MaxIterations, its message naming the limit (whatever the algorithm made of the refusal). A run
-  /// whose every point is infeasible, or that converged at an infeasible point, is a failure that says
-  /// so; a "converged" point that fails the first-order conditions (residual above
-  /// kFirstOrderTolerance, first_order_check.hpp) is a failure that says the algorithm could not move
-  /// from it. May cost a gradient evaluation at the final and at the reported point, outside the
-  /// budget. `final_point` empty: the algorithm did not say (the cheapest feasible point is reported).
+  /// reported point (ReportedPoint: the algorithm's final point `final_point` where its own test
+  /// passed there, the point is feasible and it meets the first-order conditions, else the cheapest
+  /// feasible point, else the least infeasible). A run the budget stopped has status MaxIterations,
+  /// its message naming the limit (whatever the algorithm made of the refusal). A run whose every
+  /// point is infeasible, or that converged at an infeasible point, is a failure that says so; so is
+  /// a "converged" point that fails the first-order conditions (residual above kFirstOrderTolerance,
+  /// first_order_check.hpp). May cost a gradient evaluation at the final point, outside the budget.
+  /// `final_point` empty: the algorithm did not say (the cheapest feasible point is checked).
   void conclude(OptimizerResult& result, const Eigen::VectorXd& final_point);
 
   /// The last iterate recorded (recordIteration) whose transcription held within the feasibility
@@ -86,6 +85,8 @@ class EvaluationCache {
   FirstOrderCheck firstOrderAt(const Eigen::VectorXd& x);
   /// Fills the result's point and values from an entry.
   static void report(const Entry& entry, ReportedPoint kind, OptimizerResult& result);
+  /// The reported point by ReportedPoint's rule, and the verdict on the run it ends (conclude()).
+  void reportPoint(OptimizerResult& result, const Eigen::VectorXd& final_point);
   /// Throws BudgetSpent when an evaluation costing `cost` simulation-equivalents would exceed the budget.
   void refuseBeyondBudget(double cost);
   void record(double cost, double max_violation, double step, const Eigen::VectorXd& x, double reported_cost,

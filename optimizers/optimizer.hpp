@@ -29,11 +29,12 @@ std::string toString(OptimizerStatus status);
 /// problem's own tolerances (NlpEvaluation::excess_over_tolerance ≤ 1, the bounds held), cheapest the
 /// least of the problem's own cost (NlpEvaluation::reported_cost).
 enum class ReportedPoint {
-  /// The algorithm's final point, where its own convergence test passed, feasible (the run's status
-  /// may still be failed, where the point fails the first-order check). An earlier point may be
-  /// cheaper by what the tolerances allow (OptimizerResult::cheapest_cost says).
+  /// The algorithm's final point, where its own convergence test passed, feasible and first-order
+  /// optimal. An earlier point may be cheaper by what the tolerances allow
+  /// (OptimizerResult::cheapest_cost says).
   Final,
-  /// The cheapest feasible point evaluated (the latest of equals): the run did not converge.
+  /// The cheapest feasible point evaluated (the latest of equals): the run did not converge, or its
+  /// final point failed the problem's tolerances or the first-order check.
   CheapestFeasible,
   /// No point evaluated is feasible: the closest one.
   LeastInfeasible
@@ -96,8 +97,9 @@ struct OptimizerResult {
   /// x itself unless the reported point is the converged one.
   Eigen::VectorXd cheapest_x;
   double cheapest_cost = std::numeric_limits<double>::quiet_NaN();
-  /// The first-order conditions at x where they were checked (a converged run): the residual and the
-  /// multipliers, what relaxing each constraint and bound is worth in f.
+  /// The first-order conditions at x where they were checked (a run whose own test passed at x): the
+  /// residual and, where the run converged, the multipliers, what relaxing each constraint and bound
+  /// is worth in f.
   std::optional<FirstOrderCheck> first_order;
   int iterations = 0;
   long value_evaluations = 0;

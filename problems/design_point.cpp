@@ -29,6 +29,9 @@ Eigen::VectorXd checkedDesignPoint(const SceneSource& source, const std::vector<
                formatNumber(v.lower) + ", " + formatNumber(v.upper) +
                "] (design.variables." + std::to_string(i) + "); evaluating it there must be asked for explicitly");
       x[static_cast<Eigen::Index>(i)] = value / v.scale;
+      if (!std::isfinite(x[static_cast<Eigen::Index>(i)]))
+        refuse("the design point's " + v.parameter + " = " + formatNumber(value) + " is beyond the range of its scale " +
+               formatNumber(v.scale));
       with_design.emplace_back(v.parameter, value);
       with_design.back().origin = "the design point";
       // Outside its bounds (allowed), the bounds widened to take it: the scene checks the value itself.
@@ -44,9 +47,17 @@ Eigen::VectorXd checkedDesignPoint(const SceneSource& source, const std::vector<
     }
   }
   if (request.artificial) {
-    if (!std::isfinite(*request.artificial))
-      refuse("the design point's b_{k+1} = " + formatNumber(*request.artificial) + " is not a finite number");
-    x[x.size() - 1] = *request.artificial / problem.design.artificial.scale;
+    const double value = *request.artificial;
+    const ArtificialVariable& b = problem.design.artificial;
+    if (!std::isfinite(value)) refuse("the design point's b_{k+1} = " + formatNumber(value) + " is not a finite number");
+    if (!request.outside_bounds && (value < b.lower || value > b.upper))
+      refuse("the design point's b_{k+1} = " + formatNumber(value) + " lies outside its bounds [" +
+             formatNumber(b.lower) + ", " + formatNumber(b.upper) +
+             "] (design.artificial); evaluating it there must be asked for explicitly");
+    x[x.size() - 1] = value / b.scale;
+    if (!std::isfinite(x[x.size() - 1]))
+      refuse("the design point's b_{k+1} = " + formatNumber(value) + " is beyond the range of its scale " +
+             formatNumber(b.scale));
   }
   return x;
 }
@@ -60,6 +71,10 @@ std::vector<std::string> outsideBounds(const DesignProblem& problem, const Eigen
     if (value < v.lower) out.push_back(v.parameter + " = " + formatNumber(value) + " below its lower bound " + formatNumber(v.lower));
     if (value > v.upper) out.push_back(v.parameter + " = " + formatNumber(value) + " above its upper bound " + formatNumber(v.upper));
   }
+  const ArtificialVariable& b = problem.design.artificial;
+  const double value = x[x.size() - 1] * b.scale;
+  if (value < b.lower) out.push_back("b_{k+1} = " + formatNumber(value) + " below its lower bound " + formatNumber(b.lower));
+  if (value > b.upper) out.push_back("b_{k+1} = " + formatNumber(value) + " above its upper bound " + formatNumber(b.upper));
   return out;
 }
 

@@ -21,13 +21,13 @@ struct DesignPointRequest {
 };
 
 /// The request as the optimizers' scaled point x (initialPoint with the given values). An
-/// std::invalid_argument naming the file when a value is missing, not finite, outside its bounds
-/// (unless allowed), or one that the scene file, loaded with it as `--set` loads it, refuses (at the
+/// std::invalid_argument naming the file when a value (b_{k+1}'s too) is missing, not finite, beyond
+/// what its scale can represent, outside its bounds (unless allowed), or one that the scene file, loaded with it as `--set` loads it, refuses (at the
 /// number's line, the scene's message, "(value from the design point PARAMETER=VALUE)").
 Eigen::VectorXd checkedDesignPoint(const SceneSource& source, const std::vector<ParameterOverride>& overrides,
                                    const DesignProblem& problem, const DesignPointRequest& request);
 
-/// "tmd.k = 1200 above its upper bound 1000", one per design variable of x outside its bounds.
+/// "tmd.k = 1200 above its upper bound 1000", one per variable of x (b_{k+1} last) outside its bounds.
 std::vector<std::string> outsideBounds(const DesignProblem& problem, const Eigen::VectorXd& x);
 
 }  // namespace mbsopt

@@ -37,14 +37,30 @@ TEST(DesignPoint, IsRefusedOutsideItsBoundsUnlessAskedFor) {
   EXPECT_EQ(outsideBounds(problem, x)[0], "tmd.k = 1200 above its upper bound 1000");
 }
 
+// b_{k+1} as the design variables: within its bounds [0, 1] m unless asked for, and never beyond what
+// x = b / scale can hold (scale 0.01: 1e308 would make x, and the cost x · scale, infinite).
+TEST(DesignPoint, TheArtificialVariableIsCheckedAsTheDesignVariablesAre) {
+  const SceneSource source = readSceneFile(kTunedMassDamper);
+  const DesignProblem problem = loadDesignProblem(source);
+  const std::string above = refusal([&] { checkedDesignPoint(source, {}, problem, {{}, 2.0, false}); });
+  EXPECT_NE(above.find("b_{k+1} = 2 lies outside its bounds [0, 1]"), std::string::npos) << above;
+  const Eigen::VectorXd x = checkedDesignPoint(source, {}, problem, {{}, 2.0, true});
+  EXPECT_EQ(x[2], 200.0);
+  ASSERT_EQ(outsideBounds(problem, x).size(), 1u);
+  EXPECT_EQ(outsideBounds(problem, x)[0], "b_{k+1} = 2 above its upper bound 1");
+  const std::string huge = refusal([&] { checkedDesignPoint(source, {}, problem, {{}, 1e308, true}); });
+  EXPECT_NE(huge.find("beyond the range of its scale"), std::string::npos) << huge;
+}
+
 TEST(DesignPoint, ANegativeStiffnessIsRefusedAsTheSceneRefusesIt) {
   const SceneSource source = readSceneFile(kTunedMassDamper);
   const DesignProblem problem = loadDesignProblem(source);
   for (const bool outside_bounds : {false, true}) {
     const std::string why = refusal([&] { checkedDesignPoint(source, {}, problem, {{-400, 5}, {}, outside_bounds}); });
     EXPECT_FALSE(why.empty());
-    if (outside_bounds)  // past the bounds, the scene's own check of k, at its line
+    if (outside_bounds) {  // past the bounds, the scene's own check of k, at its line
       EXPECT_NE(why.find("tuned_mass_damper.yaml:30:"), std::string::npos) << why;
+    }
     EXPECT_NE(why.find(outside_bounds ? "k must not be negative, got -400" : "outside its bounds"), std::string::npos) << why;
   }
   EXPECT_NE(refusal([&] { checkedDesignPoint(source, {}, problem, {{464.85, NAN}, {}, false}); }).find("not a finite number"),

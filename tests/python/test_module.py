@@ -3,7 +3,9 @@ directory on PYTHONPATH and MBSOPT_EXECUTABLE naming the program): the same reco
 and errors, and exact gradients that agree with each other."""
 import csv
 import json
+import math
 import os
+import random
 import subprocess
 import tempfile
 import threading
@@ -218,6 +220,85 @@ class PersistentObjects(unittest.TestCase):
         outside = problem.evaluate([1200.0, 5.0], gradients=False, outside_bounds=True)
         self.assertEqual(outside["outside_bounds"], ["tmd.k = 1200 above its upper bound 1000"])
         self.assertEqual(problem.evaluate([464.85, 10.58], gradients=False)["outside_bounds"], [])
+
+
+class RandomInputs(unittest.TestCase):
+    """The command line's fuzzing of designs and run options (tests/fuzz/, docs/fuzzing.md) for the
+    module, from a fixed seed: random design points, artificial variables and optimizer choices on
+    the tuned mass damper over its first 0.2 s. Every call either refuses its input with one line
+    (ValueError, or RuntimeError for what the simulation refuses) or returns finite numbers only:
+    no non-finite answer let through, no crash."""
+
+    SPECIAL = [float("nan"), float("inf"), -float("inf"), 0.0, -1.0, 1e308, -1e308, 5e-324, 1e-300]
+
+    def setUp(self):
+        self.random = random.Random(20261202)
+        self.problem = mbsopt.Problem(os.path.join(SOURCE, "problems", "suite", "tuned_mass_damper.yaml"),
+                                      set={"settings.end_time": 0.2})
+
+    def number(self, low, high):
+        """A special value one time in six, else uniform on [low, high] widened by half its width."""
+        if self.random.random() < 1 / 6:
+            return self.random.choice(self.SPECIAL)
+        width = high - low
+        return self.random.uniform(low - width / 2, high + width / 2)
+
+    def refused(self, call):
+        try:
+            return call()
+        except (ValueError, RuntimeError) as error:
+            self.assertNotIn("\n", str(error))
+            self.assertTrue(str(error))
+            return None
+
+    def assertFinite(self, values, what):
+        self.assertTrue(numpy.all(numpy.isfinite(numpy.asarray(values, dtype=float))), what)
+
+    def test_random_design_points_are_refused_or_evaluated_finite(self):
+        lower, upper = self.problem.lower, self.problem.upper
+        evaluated = 0
+        for _ in range(150):
+            size = self.random.choice([len(lower) - 1] * 8 + [len(lower) - 2, len(lower)])
+            design = [self.number(lower[i % len(lower)], upper[i % len(upper)]) for i in range(size)]
+            artificial = self.random.choice([None, None, self.number(lower[-1], upper[-1])])
+            outside = self.random.random() < 0.5
+            values = self.refused(lambda: self.problem.evaluate(design, artificial=artificial,
+                                                                gradients=self.random.random() < 0.5,
+                                                                outside_bounds=outside))
+            if values is None:
+                continue
+            evaluated += 1
+            for key in ("cost", "cost_functional", "constraints", "cost_gradient", "constraint_jacobian"):
+                if key in values:
+                    self.assertFinite(values[key], key)
+            if not outside:
+                self.assertEqual(values["outside_bounds"], [])
+            given = design if design else list(self.problem.start[:-1])  # none given: the start's
+            point = given + ([] if artificial is None else [artificial])  # b_{k+1} last, as in lower
+            inside = all(lo <= x <= hi for x, lo, hi in zip(point, lower, upper))
+            self.assertEqual(values["outside_bounds"] == [], inside, point)
+        self.assertGreater(evaluated, 20)  # the draws reach the evaluation, not only the refusals
+
+    def test_random_run_options_are_refused_or_end_with_a_finite_record(self):
+        optimizers = mbsopt.optimizers() + ["nope"]
+        formulations = mbsopt.formulations() + ["", "nope"]
+        ran = 0
+        for _ in range(30):
+            options = dict(optimizer=self.random.choice(optimizers), formulation=self.random.choice(formulations),
+                           epsilon=self.random.choice([None, None, self.number(0.0, 1e-6)]),
+                           budget=self.random.choice([None, self.number(1.0, 30.0)]),
+                           max_iter=self.random.choice([-1, 0, 1, 2, 3]),
+                           settings=self.random.choice([{}, {}, {"xtol_rel": self.number(0.0, 1e-3)}, {"nope": 1}]))
+            record = self.refused(lambda: self.problem.optimize(**options))
+            if record is None:
+                continue
+            ran += 1
+            self.assertIn(record["status"], ("converged", "failed", "max_iterations", "unsupported"), options)
+            self.assertFinite(record["design"], "design")
+            self.assertFinite(list(record["responses"].values()), "responses")
+            if record["status"] == "converged":
+                self.assertTrue(math.isfinite(record["cost_functional"]["final"]), options)
+        self.assertGreater(ran, 3)
 
 
 class Gradients(unittest.TestCase):
