@@ -349,8 +349,8 @@ void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& 
 }
 
 const char* const kReportedPointRule =
-    "final: the optimizer's final point, where its own convergence test passed and the point meets every constraint "
-    "within its tolerance in the problem's own units; otherwise cheapest_feasible: the point of least cost (the cost's own "
+    "final: the optimizer's final point, where its own convergence test passed, the point meets every constraint "
+    "within its tolerance in the problem's own units and it passes the first-order check; otherwise cheapest_feasible: the point of least cost (the cost's own "
     "functional, not b_{k+1}) among those it evaluated that meet them, the latest of equals; least_infeasible where none "
     "does";
 

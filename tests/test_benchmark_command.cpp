@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "mbsopt/problems/scene_file.hpp"
+#include "tests/plot_data.hpp"
 
 namespace mbsopt {
 namespace {
@@ -139,6 +140,28 @@ TEST(BenchmarkCommand, SweepsResumesAndGivesTheSameRecordsOverMpiRanks) {
   EXPECT_EQ(lines, 1 + 12);
   for (const char* figure : {"profiles.png", "convergence/quarter_car.png", "convergence/spring_floor.png"})
     EXPECT_TRUE(fs::exists(threaded / figure)) << figure;
+  // The convergence plots ring the same point: per start, the cost panel's curve of each solver, then
+  // its reported point, which is that curve's point at the reported iteration's simulation-equivalents
+  // (then the violation panel's curves and marks).
+  for (const std::string& problem : kProblems) {
+    const std::vector<test::PlotBlock> blocks = test::readPlotBlocks(threaded / "convergence" / (problem + ".dat"));
+    ASSERT_EQ(blocks.size(), static_cast<std::size_t>(kStarts) * 4 * kOptimizers.size()) << problem;
+    for (int s = 0; s < kStarts; ++s)
+      for (std::size_t o = 0; o < kOptimizers.size(); ++o) {
+        const std::size_t first = static_cast<std::size_t>(s) * 4 * kOptimizers.size();
+        const test::PlotBlock& curve = blocks[first + o];
+        const test::PlotBlock& mark = blocks[first + kOptimizers.size() + o];
+        ASSERT_EQ(mark.title, "(marks)");
+        ASSERT_EQ(mark.points.size(), 1u) << problem << " " << kOptimizers[o] << " start " << s;
+        const nlohmann::json r = record(threaded, problem, kOptimizers[o], s);
+        for (const nlohmann::json& h : r["history"])
+          if (h["iteration"] == r["reported_iterate"]["iteration"]) {
+            EXPECT_EQ(mark.points[0].first, h["simulation_equivalents"].get<double>());
+          }
+        EXPECT_NE(std::find(curve.points.begin(), curve.points.end(), mark.points[0]), curve.points.end())
+            << problem << " " << kOptimizers[o] << " start " << s;
+      }
+  }
 
   // Resumed: nothing runs again, no record changes.
   const auto written = fs::last_write_time(threaded / "runs" / "quarter_car" / "sdcc-adjoint-grid_max-s1.json");

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "tests/plot_data.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -84,16 +86,36 @@ TEST(CompareCommand, WritesOneRowAndOneJsonPerCombinationThatAgree) {
     EXPECT_LE(run["history"][1]["step"].get<double>(), 0.05 * (1 + 1e-12));
   }
   // Two panels (cost, violation) per (formulation, gradient), in each a curve per run and its reported
-  // point ringed (a block of its own, untitled).
-  std::ifstream data(out / "convergence.dat");
-  int blocks = 0, marks = 0;
-  while (std::getline(data, line))
-    if (line.starts_with("# ")) {
-      ++blocks;
-      marks += line == "# (marks)";
+  // point ringed (a block of its own, untitled): in the cost panel at the reported iteration's
+  // simulation-equivalents and at the distance of the reported cost to the best feasible one, the
+  // record's own figures (the data are written to 17 digits).
+  const std::vector<test::PlotBlock> blocks = test::readPlotBlocks(out / "convergence.dat");
+  ASSERT_EQ(blocks.size(), 2u * 4 * 2);  // per formulation: cost curves, their marks, violation curves, marks
+  for (std::size_t f = 0; f < 2; ++f) {
+    const std::string formulation = f == 0 ? "ks" : "grid_max";
+    std::vector<nlohmann::json> runs;
+    double best = INFINITY;
+    for (const char* optimizer : {"sdcc", "slsqp"}) {
+      runs.emplace_back();
+      std::ifstream(out / (std::string(optimizer) + "-adjoint-" + formulation + ".json")) >> runs.back();
+      if (runs.back()["feasible"].get<bool>()) best = std::min(best, runs.back()["cost_functional"]["final"].get<double>());
     }
-  EXPECT_EQ(blocks, 2 * 4 * 2);
-  EXPECT_EQ(marks, 2 * 4);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const auto& [title, marks] = blocks[8 * f + 2 + i];
+      EXPECT_EQ(title, "(marks)");
+      ASSERT_EQ(marks.size(), 1u);
+      const nlohmann::json& r = runs[i];
+      for (const nlohmann::json& h : r["history"])
+        if (h["iteration"] == r["reported_iterate"]["iteration"]) {
+          EXPECT_NEAR(marks[0].first, h["simulation_equivalents"].get<double>(), 1e-12 * marks[0].first);
+        }
+      const double distance = std::max(std::abs(r["cost_functional"]["final"].get<double>() - best), 1e-10 * best);
+      EXPECT_NEAR(marks[0].second, distance, 1e-15 * distance + 1e-15 * best) << formulation << " " << i;
+    }
+  }
+  std::stringstream script;
+  script << std::ifstream(out / "convergence.gp").rdbuf();
+  EXPECT_NE(script.str().find("set logscale y"), std::string::npos);
   std::filesystem::remove_all(directory);
 }
 

@@ -56,14 +56,14 @@ unset logscale x
 set format x
 set yrange [*:*]
 plot 'convergence.dat' index 30 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 31 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 32 with linespoints lt 3 title 'mma', 'convergence.dat' index 33 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 34 with linespoints lt 5 title 'ipopt', 'convergence.dat' index 35 with points pt 6 ps 2 lt 1 notitle, 'convergence.dat' index 36 with points pt 6 ps 2 lt 2 notitle, 'convergence.dat' index 37 with points pt 6 ps 2 lt 3 notitle, 'convergence.dat' index 38 with points pt 6 ps 2 lt 4 notitle, 'convergence.dat' index 39 with points pt 6 ps 2 lt 5 notitle
-set title 'grid_max, adjoint: best 2.1893939 (the best reported; 0 drawn at 1e-10 of it)'
+set title 'grid_max, adjoint: best 2.1893945 (the best reported; 0 drawn at 1e-10 of it)'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
 set ylabel '|max_abs_a_lat - best| [m/s²]'
 set logscale y
 set format y "%.0e"
 unset logscale x
 set format x
-set yrange [*:0.707274]
+set yrange [*:0.707273]
 plot 'convergence.dat' index 40 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 41 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 42 with linespoints lt 3 title 'mma', 'convergence.dat' index 43 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 44 with linespoints lt 5 title 'ipopt', 'convergence.dat' index 45 with points pt 6 ps 2 lt 1 notitle, 'convergence.dat' index 46 with points pt 6 ps 2 lt 2 notitle, 'convergence.dat' index 47 with points pt 6 ps 2 lt 3 notitle, 'convergence.dat' index 48 with points pt 6 ps 2 lt 4 notitle, 'convergence.dat' index 49 with points pt 6 ps 2 lt 5 notitle
 set title 'grid_max, adjoint'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'

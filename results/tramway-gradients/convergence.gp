@@ -20,14 +20,14 @@ set linetype 14 lc rgb '#D55E00' lw 1.5 dt 2
 set linetype 15 lc rgb '#CC79A7' lw 1.5 dt 2
 set linetype 16 lc rgb '#999999' lw 1.5 dt 2
 set linetype cycle 16
-set title 'grid_max, adjoint: best 2.1893939 (the best reported; 0 drawn at 1e-10 of it)'
+set title 'grid_max, adjoint: best 2.1893945 (the best reported; 0 drawn at 1e-10 of it)'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
 set ylabel '|max_abs_a_lat - best| [m/s²]'
 set logscale y
 set format y "%.0e"
 unset logscale x
 set format x
-set yrange [*:0.707274]
+set yrange [*:0.707273]
 plot 'convergence.dat' index 0 with linespoints lt 1 title 'sdcc', 'convergence.dat' index 1 with linespoints lt 2 title 'slsqp', 'convergence.dat' index 2 with linespoints lt 3 title 'mma', 'convergence.dat' index 3 with linespoints lt 4 title 'ccsaq', 'convergence.dat' index 4 with linespoints lt 5 title 'ipopt', 'convergence.dat' index 5 with points pt 6 ps 2 lt 1 notitle, 'convergence.dat' index 6 with points pt 6 ps 2 lt 2 notitle, 'convergence.dat' index 7 with points pt 6 ps 2 lt 3 notitle, 'convergence.dat' index 8 with points pt 6 ps 2 lt 4 notitle, 'convergence.dat' index 9 with points pt 6 ps 2 lt 5 notitle
 set title 'grid_max, adjoint'
 set xlabel 'simulation-equivalents (simulations + gradients at their cost)'
