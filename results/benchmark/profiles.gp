@@ -3,6 +3,23 @@ set output 'profiles.png'
 set multiplot layout 3,2 rowsfirst title 'Dolan–Moré performance and Moré–Wild data profiles'
 set key top right font ',8'
 set grid
+set linetype 1 lc rgb '#000000' lw 1.5
+set linetype 2 lc rgb '#E69F00' lw 1.5
+set linetype 3 lc rgb '#56B4E9' lw 1.5
+set linetype 4 lc rgb '#009E73' lw 1.5
+set linetype 5 lc rgb '#0072B2' lw 1.5
+set linetype 6 lc rgb '#D55E00' lw 1.5
+set linetype 7 lc rgb '#CC79A7' lw 1.5
+set linetype 8 lc rgb '#999999' lw 1.5
+set linetype 9 lc rgb '#000000' lw 1.5 dt 2
+set linetype 10 lc rgb '#E69F00' lw 1.5 dt 2
+set linetype 11 lc rgb '#56B4E9' lw 1.5 dt 2
+set linetype 12 lc rgb '#009E73' lw 1.5 dt 2
+set linetype 13 lc rgb '#0072B2' lw 1.5 dt 2
+set linetype 14 lc rgb '#D55E00' lw 1.5 dt 2
+set linetype 15 lc rgb '#CC79A7' lw 1.5 dt 2
+set linetype 16 lc rgb '#999999' lw 1.5 dt 2
+set linetype cycle 16
 set title 'performance profile, τ = 0.1'
 set xlabel 'α: within α times the best solver''s cost'
 set ylabel 'fraction of instances'
