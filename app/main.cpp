@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "app/benchmark_command.hpp"
 #include "app/command_line.hpp"
@@ -34,7 +36,17 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // One line in the program's own words, and the documented exit status of an error.
     const std::vector<CLI::App*> chosen = app.get_subcommands();
-    std::cerr << "mbsopt: error: " << e.what() << " (mbsopt " << (chosen.empty() ? "" : chosen.front()->get_name() + " ")
+    const std::string command = chosen.empty() ? "" : chosen.front()->get_name();
+    std::string message = e.what();
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {  // CLI11 lists them in reverse order
+      std::vector<std::string> extras = chosen.empty() ? app.remaining() : chosen.front()->remaining();
+      if (extras.empty()) extras = app.remaining();
+      if (!extras.empty())
+        message = extras.front().starts_with('-') ? (command.empty() ? "mbsopt" : command) + " has no option " + extras.front()
+                                                  : (command.empty() ? "mbsopt" : command) + " takes no argument '" +
+                                                        extras.front() + "'";
+    }
+    std::cerr << "mbsopt: error: " << message << " (mbsopt " << (command.empty() ? "" : command + " ")
               << "--help lists the options)\n";
     return 1;
   } catch (const mbsopt::NotConverged& e) {  // the outputs are written; the summary said why

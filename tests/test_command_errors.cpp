@@ -35,7 +35,9 @@ TEST_F(CommandErrors, BadNumbersExitOneWithTheOptionAndTheValue) {
   expectRefused("optimize tramway --epsilon -1", "--epsilon: must be a number of at least 0, got -1");
   expectRefused("optimize tramway --max-iter 0", "--max-iter: must be a positive integer, got 0");
   expectRefused("precision pendulum --repeat 0", "--repeat: must be a whole number from 1 to 1000, got 0");
-  expectRefused("simulate pendulum --nope", "--nope");
+  expectRefused("simulate pendulum --nope", "simulate has no option --nope");
+  expectRefused("compare tramway --every 0", "compare has no option --every");  // not CLI11's "0 --every"
+  expectRefused("optimize tramway extra", "optimize takes no argument 'extra'");
   expectRefused("optimize tramway --optimizer foo", "foo not in {sdcc,slsqp,mma,ccsaq,ipopt}");
 }
 
