@@ -14,6 +14,7 @@
 #include <sstream>
 #include <variant>
 
+#include "mbsopt/dynamics/units.hpp"
 #include "mbsopt/problems/design_nlp.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
@@ -256,6 +257,8 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   }
   run.result = minimize(choice.optimizer, nlp, options);
   run.variables = nlp.problem().design.variables;
+  for (const DesignVariable& v : run.variables)
+    run.variable_units.push_back(parameterUnit(nlp.problem().scene.model, nlp.problem().scene.model.parameterIndex(v.parameter)));
   run.artificial = nlp.problem().design.artificial;
   run.start = designInSi(nlp.problem(), nlp.start());
   if (run.result.x.size() == 0) run.result.x = nlp.start();  // nothing was evaluated (its error follows below)
@@ -405,8 +408,8 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
   nlohmann::json variables = nlohmann::json::array();
   for (std::size_t i = 0; i < run.variables.size(); ++i) {
     const DesignVariable& v = run.variables[i];
-    variables.push_back({{"parameter", v.parameter}, {"lower", v.lower}, {"upper", v.upper}, {"scale", v.scale},
-                         {"start", run.start[i]}, {"final", run.design[i]}});
+    variables.push_back({{"parameter", v.parameter}, {"unit", run.variable_units[i]}, {"lower", v.lower},
+                         {"upper", v.upper}, {"scale", v.scale}, {"start", run.start[i]}, {"final", run.design[i]}});
   }
   nlohmann::json settings = nlohmann::json::array();
   for (const std::string& setting : run.choice.settings) settings.push_back(setting);
@@ -414,7 +417,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"mbsopt_version", MBSOPT_VERSION},
           {"command_line", commandLine()},
           {"variables", variables},
-          {"variables_unit", "SI (m, kg, s, N, rad) of each parameter"},
+          {"variables_unit", "SI (m, kg, s, N, rad) of each parameter, variables[].unit its own"},
           {"artificial_variable", {{"start", run.artificial.initial}, {"lower", run.artificial.lower},
                                    {"upper", run.artificial.upper}, {"scale", run.artificial.scale},
                                    {"final", r.cost}}},
@@ -511,7 +514,9 @@ std::vector<std::string> gradientChoices() {
 PlotPanel designPanel(const OptimizationRun& run) {
   PlotPanel panel{.xlabel = "iteration", .ylabel = "design variables (SI)", .log_y = true};
   for (std::size_t i = 0; i < run.variables.size(); ++i) {
-    PlotSeries series{run.variables[i].parameter, {}};
+    PlotSeries series{run.variable_units[i].empty() ? run.variables[i].parameter
+                                                    : withUnit(run.variables[i].parameter, run.variable_units[i]),
+                      {}};
     for (std::size_t k = 0; k < run.iterate_designs.size(); ++k)
       if (!run.iterate_designs[k].empty())
         series.points.emplace_back(run.result.history[k].iteration, run.iterate_designs[k][i]);

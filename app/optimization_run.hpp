@@ -54,6 +54,7 @@ struct OptimizationRun {
   RunChoice choice;
   OptimizerResult result;
   std::vector<DesignVariable> variables;  ///< the design variables: parameter names, bounds and scales (SI)
+  std::vector<std::string> variable_units;  ///< each one's SI unit (parameterUnit; "" where it has none)
   ArtificialVariable artificial;         ///< b_{k+1}'s start, bounds and scale
   std::vector<double> start;  ///< the design variables at the start in SI units, without b_{k+1}
   /// The history's record of the reported point (result.x, OptimizerResult::reported says which), or

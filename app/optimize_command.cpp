@@ -198,13 +198,18 @@ void optimize(const OptimizeOptions& options) {
     std::printf("%ld of the simulations ran ahead on a spare core, while another point was evaluated (%ld more ran "
                 "ahead for a point not asked for after all)\n",
                 run.simulations_ahead_used, run.simulations_ahead - run.simulations_ahead_used);
+  const auto spaced = [](const std::string& unit) { return unit.empty() ? unit : " " + unit; };
   for (std::size_t i = 0; i < run.design.size(); ++i)
-    std::printf("  %s = %.8g\n", problem.design.variables[i].parameter.c_str(), run.design[i]);
-  for (const auto& [name, value] : run.responses.items()) std::printf("  %s = %.6g\n", name.c_str(), value.get<double>());
+    std::printf("  %s = %.8g%s\n", problem.design.variables[i].parameter.c_str(), run.design[i],
+                spaced(run.variable_units[i]).c_str());
+  for (const auto& [name, value] : run.responses.items())
+    std::printf("  %s = %.6g%s\n", name.c_str(), value.get<double>(),
+                spaced(run.response_units.value(name, std::string())).c_str());
   const double final_cost = run.responses[run.cost_response].get<double>();
-  std::printf("%s = %.8g, %s by %.4g %% from %.8g at the start", run.cost_response.c_str(), final_cost,
+  const std::string unit = spaced(run.cost_unit);
+  std::printf("%s = %.8g%s, %s by %.4g %% from %.8g%s at the start", run.cost_response.c_str(), final_cost, unit.c_str(),
               final_cost <= run.initial_cost ? "lowered" : "RAISED",
-              100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost, run.initial_cost);
+              100.0 * std::abs(run.initial_cost - final_cost) / run.initial_cost, run.initial_cost, unit.c_str());
   std::printf("\n");
   if (accurate) {
     const DiscretisationError& e = accurate->at_optimum.back();
@@ -282,7 +287,7 @@ void registerOptimizeCommand(CLI::App& app) {
       ->check(positiveInteger())
       ->capture_default_str();
   command->add_option("--json", options->json,
-                      "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, lower, "
+                      "Write the result as JSON: problem, mbsopt_version, command_line, variables[{parameter, unit, lower, "
                       "upper, scale, start, final}] (SI), variables_unit, artificial_variable{start, lower, upper, scale, final}, "
                       "budget{simulation_equivalents, wall_time_s (the limits, null: none), gradient_cost, gradient_cost_source, "
                       "spent, unit, max_iterations, max_iterations_counts}, settings, optimizer, gradient, formulation, epsilon, status, "

@@ -13,6 +13,13 @@ namespace mbsopt {
 /// prismatic joint or a curve slider's arc length.
 std::string coordinateUnit(const Model& model, int coordinate);
 
+/// The SI unit of a model parameter by what it is: "kg", "m", "kg·m²" for a body's mass, centre and
+/// moments; "m" or "rad" for an offset's translation or turn; "N/m", "N·m/rad", "N·s/m", "N·m·s/rad"
+/// for a spring's stiffness and damping (by its joint's kind); a time input's coefficient c_k in its
+/// value's unit per s^k, a harmonic's amplitude, angular frequency (rad/s) and phase (rad); "m/s²"
+/// for gravity. Empty for a parameter of another kind (a track's numbers), which the reports call SI.
+std::string parameterUnit(const Model& model, ParameterIndex parameter);
+
 /// "name [unit]": how the CSV headers name a column.
 std::string withUnit(const std::string& name, const std::string& unit);
 

@@ -25,7 +25,7 @@ struct BoundWorth {
   /// Its place in DesignDescription::constraints or ::variables: the dotted name
   /// design.constraints.INDEX.bound, or design.variables.INDEX.lower / .upper, moves it.
   int index = 0;
-  std::string unit;  ///< the bound's: the constraint's reported unit (deg for an angle), "" for a parameter's SI unit
+  std::string unit;  ///< the bound's: the constraint's reported unit (deg for an angle), a parameter's (parameterUnit; "" where it has none)
   double bound = 0.0;  ///< in `unit`
   bool equality = false;
   /// Whether raising the bound relaxes it (a maximum's, an integral's, a final value's, an RMS's bound,

@@ -182,7 +182,7 @@ def main():
              "| bound | kind | value | stated | its accuracy | measured | its accuracy | agrees |",
              "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        value = "%.8g" % r["value"] + ("" if r["unit"] == "SI" else " " + r["unit"])
+        value = "%.8g" % r["value"] + ("" if r["unit"] in ("", "SI") else " " + r["unit"])
         lines.append("| %s | %s | %s | %.6g | %.2g | %.6g | %.2g | %s |" % (
             r["bound"], r["kind"].replace("_", " "), value, r["stated"], r["stated_accuracy"], r["measured"],
             r["measurement_accuracy"], "yes" if r["agrees"] else "NO"))

@@ -82,6 +82,10 @@ TEST(OptimizeCommand, WritesTheDocumentedKeysAndLowersTheCost) {
     EXPECT_EQ(written["start"].get<double>(), history[0]["design"][i].get<double>());
     EXPECT_EQ(written["final"].get<double>(), design[i]);
   }
+  // Each variable's unit by what it is: the elbow spring's (a revolute joint) and a body's mass.
+  EXPECT_EQ(r["variables"][0]["unit"], "N·m/rad");
+  EXPECT_EQ(r["variables"][1]["unit"], "N·m·s/rad");
+  EXPECT_EQ(r["variables"][2]["unit"], "kg");
   EXPECT_EQ(r["artificial_variable"]["start"].get<double>(), problem.design.artificial.initial);
   EXPECT_EQ(r["artificial_variable"]["final"].get<double>(), r["cost"].get<double>());
   EXPECT_EQ(r["budget"]["max_iterations"], 15);
