@@ -354,7 +354,8 @@ void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& 
 const char* const kReportedPointRule =
     "final: the optimizer's final point, where its own convergence test passed, the point meets every constraint "
     "within its tolerance in the problem's own units and it passes the first-order check; otherwise cheapest_feasible: the point of least cost (the cost's own "
-    "functional, not b_{k+1}) among those it evaluated that meet them, the latest of equals; least_infeasible where none "
+    "functional, not b_{k+1}) among its iterates (the history's records; NLopt's: every point it evaluated) that meet "
+    "them, the latest of equals; least_infeasible where none "
     "does";
 
 nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::string& cost_unit) {

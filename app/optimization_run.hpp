@@ -60,7 +60,7 @@ struct OptimizationRun {
   /// The history's record of the reported point (result.x, OptimizerResult::reported says which), or
   /// −1 where no record holds it.
   int reported_iteration = -1;
-  /// Where the reported point is the converged one: the cheapest feasible point evaluated, its own cost
+  /// Where the reported point is the converged one: the cheapest feasible iterate, its own cost
   /// (cost_response's unit) and its record (−1: none holds it), when it is another point; NaN and −1
   /// otherwise.
   double cheapest_cost = std::numeric_limits<double>::quiet_NaN();

@@ -108,7 +108,7 @@ void printReportedPoint(const OptimizationRun& run) {
                   "within its tolerance\n", iteration.c_str());
       if (!std::isnan(run.cheapest_cost)) {
         const double below = run.responses[run.cost_response].get<double>() - run.cheapest_cost;
-        std::printf("  the cheapest feasible point evaluated (%s) has %s %.3g %s lower",
+        std::printf("  the cheapest feasible iterate (%s) has %s %.3g %s lower",
                     run.cheapest_iteration >= 0 ? ("iteration " + std::to_string(run.cheapest_iteration)).c_str()
                                                 : "a trial point",
                     run.cost_response.c_str(), below, run.cost_unit.c_str());
@@ -119,7 +119,7 @@ void printReportedPoint(const OptimizationRun& run) {
       }
       return;
     case ReportedPoint::CheapestFeasible:
-      std::printf("reported: the cheapest feasible point evaluated%s (least %s among the points that meet every "
+      std::printf("reported: the cheapest feasible iterate%s (least %s among the points that meet every "
                   "constraint within its tolerance; the run did not converge)\n",
                   iteration.c_str(), run.cost_response.c_str());
       return;

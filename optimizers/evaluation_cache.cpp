@@ -81,20 +81,29 @@ void EvaluationCache::anticipate(const Eigen::VectorXd& x) {
   if (!known) problem_.anticipate(x);
 }
 
-void EvaluationCache::consider(const Entry& entry) {
+bool EvaluationCache::Entry::betterThan(const Entry& best) const {
   // The cheapest feasible point, the latest of equals; before any is feasible, the least infeasible.
-  const bool better = !has_best_ || (entry.feasible() && (!best_.feasible() || entry.cost <= best_.cost)) ||
-                      (!entry.feasible() && !best_.feasible() && entry.infeasibility < best_.infeasibility) ||
-                      (entry.x == best_.x && entry.has_gradients);  // the best point, now with gradients
-  if (better) {
-    best_ = entry;
-    has_best_ = true;
-  }
+  return (feasible() && (!best.feasible() || cost <= best.cost)) ||
+         (!feasible() && !best.feasible() && infeasibility < best.infeasibility) ||
+         (x == best.x && has_gradients);  // the best point, now with gradients
+}
+
+void EvaluationCache::consider(const Entry& entry) {
+  if (has_best_ && !entry.betterThan(best_)) return;
+  best_ = entry;
+  has_best_ = true;
+}
+
+void EvaluationCache::considerIterate(const Entry& entry) {
+  if (has_best_iterate_ && !entry.betterThan(best_iterate_)) return;
+  best_iterate_ = entry;
+  has_best_iterate_ = true;
 }
 
 void EvaluationCache::recordIteration(const Eigen::VectorXd& x, OptimizerResult& result) {
   if (previous_iterate_.size() == x.size() && previous_iterate_ == x) return;  // asked again for the same point
   const NlpEvaluation& values = at(x, false);
+  considerIterate(entryAt(x));  // cached by at(): no evaluation
   const double step = previous_iterate_.size() == x.size() ? (x - previous_iterate_).cwiseAbs().maxCoeff() : 0.0;
   previous_iterate_ = x;
   const double violation = maxViolation(problem_, x, values);
@@ -107,6 +116,7 @@ void EvaluationCache::recordIteration(double cost, double max_violation, double 
     return std::abs(e.values.cost - cost) <= 1e-14 * std::max(1.0, std::abs(cost));  // Ipopt's unscaling
   });
   const bool known = iterate != entries_.end();
+  if (known) considerIterate(*iterate);
   record(cost, max_violation, step, known ? iterate->x : Eigen::VectorXd(),
          known ? iterate->values.reported_cost : std::numeric_limits<double>::quiet_NaN(), result);
 }
@@ -174,7 +184,9 @@ void EvaluationCache::conclude(OptimizerResult& result, const Eigen::VectorXd& f
 }
 
 void EvaluationCache::reportPoint(OptimizerResult& result, const Eigen::VectorXd& final_point) {
-  const Entry cheapest = best_;
+  // Among the iterates, which the history records and the plots show; the points evaluated only
+  // where the algorithm recorded none.
+  const Entry cheapest = has_best_iterate_ ? best_iterate_ : best_;
   report(cheapest, cheapest.feasible() ? ReportedPoint::CheapestFeasible : ReportedPoint::LeastInfeasible, result);
   if (cheapest.feasible()) {
     result.cheapest_x = cheapest.x;

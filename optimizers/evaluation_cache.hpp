@@ -77,8 +77,12 @@ class EvaluationCache {
     double infeasibility = 0.0;
     double cost = 0.0;  ///< the problem's own cost (reported_cost, or f)
     bool feasible() const { return infeasibility <= 1.0; }
+    /// Whether this entry is to be reported rather than `best` (ReportedPoint's order).
+    bool betterThan(const Entry& best) const;
   };
+  /// Keeps the best point evaluated, and the best iterate (a point recordIteration recorded).
   void consider(const Entry& entry);
+  void considerIterate(const Entry& entry);
   /// The entry at x: the cached one, or x evaluated now (outside the budget).
   Entry entryAt(const Eigen::VectorXd& x);
   /// The first-order check at x with its gradients (evaluated outside the budget when not cached).
@@ -100,8 +104,8 @@ class EvaluationCache {
   double simulation_equivalents_ = 0.0;
   std::string budget_spent_;
   bool reviewing_ = false;  ///< conclude() evaluates: outside the budget
-  bool has_best_ = false;
-  Entry best_;
+  bool has_best_ = false, has_best_iterate_ = false;
+  Entry best_, best_iterate_;
   Eigen::VectorXd previous_iterate_, last_feasible_iterate_;
 };
 

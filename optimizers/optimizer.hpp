@@ -33,7 +33,8 @@ enum class ReportedPoint {
   /// optimal. An earlier point may be cheaper by what the tolerances allow
   /// (OptimizerResult::cheapest_cost says).
   Final,
-  /// The cheapest feasible point evaluated (the latest of equals): the run did not converge, or its
+  /// The cheapest feasible iterate (a point the history records; the latest of equals; the cheapest
+  /// point evaluated where the algorithm recorded none): the run did not converge, or its
   /// final point failed the problem's tolerances or the first-order check.
   CheapestFeasible,
   /// No point evaluated is feasible: the closest one.
@@ -93,7 +94,7 @@ struct OptimizerResult {
   ReportedPoint reported = ReportedPoint::CheapestFeasible;
   /// The algorithm's final point, as it says (empty where it does not).
   Eigen::VectorXd final_point;
-  /// The cheapest feasible point evaluated and its own cost (empty and NaN where none is feasible):
+  /// The cheapest feasible iterate and its own cost (empty and NaN where none is feasible):
   /// x itself unless the reported point is the converged one.
   Eigen::VectorXd cheapest_x;
   double cheapest_cost = std::numeric_limits<double>::quiet_NaN();

@@ -77,6 +77,19 @@ TEST_F(ReportedPointRule, AStoppedRunReportsTheCheapestFeasiblePhysicalCostTheLa
   EXPECT_NEAR(result.reported_cost, 1.01, 1e-15);
 }
 
+// A trial the algorithm evaluated and rejected (SDCC's, Ipopt's line search) is no iterate: however
+// cheap, it is not reported, for the history, the CSV and the plots could not show it.
+TEST_F(ReportedPointRule, AnEvaluatedTrialThatIsNoIterateIsNotReported) {
+  EvaluationCache cache(problem, options);
+  const Eigen::Vector2d iterate_point(0.5, 1.25), trial(0.1, 1.01);
+  iterate(cache, {problem.start(), iterate_point});
+  cache.at(trial, false);
+  result.status = OptimizerStatus::MaxIterations;
+  cache.conclude(result, iterate_point);
+  EXPECT_EQ(result.reported, ReportedPoint::CheapestFeasible);
+  EXPECT_EQ(result.x, iterate_point);
+}
+
 // A point below φ by more than the tolerance is infeasible, however low its b: it is never the
 // reported point while a feasible one exists.
 TEST_F(ReportedPointRule, APointBeyondTheToleranceIsNotReportedHoweverCheap) {
@@ -91,8 +104,8 @@ TEST_F(ReportedPointRule, APointBeyondTheToleranceIsNotReportedHoweverCheap) {
 
 // An algorithm whose own test passed at a point that is not first-order optimal ((1, 2): the
 // constraint is active, but ∂b = 1 and ∂φ/∂y = 2 cannot both be balanced by one multiplier) or is
-// infeasible ((0, 0.9): φ − b = 0.1) fails, and the report is the cheapest feasible point it
-// evaluated, not the point where it stopped.
+// infeasible ((0, 0.9): φ − b = 0.1) fails, and the report is the cheapest feasible iterate,
+// not the point where it stopped.
 TEST_F(ReportedPointRule, AConvergenceClaimAtANonOptimalOrInfeasiblePointReportsTheCheapestFeasibleOne) {
   const Eigen::Vector2d cheaper(0.5, 1.25);
   for (const auto& [stopped, why] : {std::pair{Eigen::Vector2d(1.0, 2.0), "not first-order optimal"},

@@ -263,7 +263,7 @@ constexpr const char* kRmsAboveMinusHalf = R"(design:
 // ω_h = (2/h) atan(ωh/2) = ω(1 − ω²h²/12 + …), so k* = (2π/3)² (1 + (2π/3)² h²/6) = 4.386493. The
 // KS aggregate over the time mean under-estimates the extreme: SLSQP's own test passes at a point
 // where min x is far below −0.5, and the run is a failure that says which constraint and by how much
-// there; what it reports is the cheapest point it evaluated that meets the constraint.
+// there; what it reports is its cheapest iterate that meets the constraint.
 TEST(OptimizeCommand, AConvergedRunThatBreaksALimitInItsOwnUnitsFails) {
   const std::string text = std::string(test::kOscillator) + kRmsAboveMinusHalf;
   const nlohmann::json grid = optimizeScene("grid", text, "--set spring.k=2 --optimizer slsqp --formulation grid_max");
