@@ -154,19 +154,23 @@ TEST(ProblemSuite, TheQuickReferencesAreWhatTheirScriptsPrint) {
 // entry; they take the same solves in another order). Central differences of the simulation agree
 // with them at their best step to 1e-6: O(δ²) truncation, and the Newton tolerance (1e-10
 // relative) over δ, meet near δ = 1e-4 at about 1e-8 to 1e-7 relative (test_exact_gradients.cpp).
-TEST(ProblemSuite, ExactGradientsAgreeWithEachOtherAndWithCentralDifferences) {
-  for (const fs::path& scene : suiteScenes()) {
-    SCOPED_TRACE(scene.filename().string());
-    const DesignProblem problem = loadDesignProblem(readSceneFile(scene.string()));
-    const std::vector<ConstraintFunctional> functionals = transcribe(problem);
-    const Eigen::VectorXd x = initialPoint(problem);
-    const DesignGradient direct = directGradient(problem, functionals, x);
-    const DesignGradient adjoint = adjointGradient(problem, functionals, x);
-    const auto variables = static_cast<Eigen::Index>(problem.design.variables.size());
-    EXPECT_GT(direct.constraints.leftCols(variables).cwiseAbs().maxCoeff(), 0.0);
-    EXPECT_LE(test::relativeGap(adjoint.constraints, direct.constraints), 1e-12);
-    test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
-  }
+/// Each suite problem on its own, so that ctest spreads the long ones over the cores.
+class SuiteProblem : public testing::TestWithParam<std::string> {
+ protected:
+  fs::path scene() const { return kSuite / (GetParam() + ".yaml"); }
+};
+
+TEST_P(SuiteProblem, ExactGradientsAgreeWithEachOtherAndWithCentralDifferences) {
+  const fs::path scene = this->scene();
+  const DesignProblem problem = loadDesignProblem(readSceneFile(scene.string()));
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient direct = directGradient(problem, functionals, x);
+  const DesignGradient adjoint = adjointGradient(problem, functionals, x);
+  const auto variables = static_cast<Eigen::Index>(problem.design.variables.size());
+  EXPECT_GT(direct.constraints.leftCols(variables).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LE(test::relativeGap(adjoint.constraints, direct.constraints), 1e-12);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
 }
 
 // The reference is the continuous-time optimum, or that of the problem on mbsopt's grid; mbsopt's is
@@ -178,44 +182,52 @@ TEST(ProblemSuite, ExactGradientsAgreeWithEachOtherAndWithCentralDifferences) {
 // and the design lies (to 1e-6) in the reference's "design_range", which each reference derives from
 // its own problem: the designs whose cost is within "design_cost_band" of the optimum (wider than the
 // estimate where the cost is flat near its minimum), or the grid's shift of an equality's solution.
-TEST(ProblemSuite, TheOptimizersReachTheReferenceOptimum) {
+TEST_P(SuiteProblem, TheOptimizersReachTheReferenceOptimum) {
   const fs::path directory = scratch();
-  for (const fs::path& scene : suiteScenes()) {
-    const std::string name = scene.stem().string();
-    const DesignProblem problem = loadDesignProblem(readSceneFile(scene.string()));
-    const nlohmann::json reference = referenceOf(scene);
-    const nlohmann::json& optimum = reference["optimum"];
-    const double tolerance = 10.0 * reference["accuracy"]["cost_relative"].get<double>();
-    ASSERT_GT(tolerance, 0.0);
-    for (const std::string& optimizer : kReachedBy.at(name)) {
-      SCOPED_TRACE(name + " with " + optimizer);
-      const fs::path json = directory / (name + "-" + optimizer + ".json");
-      ASSERT_EQ(mbsopt("optimize " + scene.string() + " --optimizer " + optimizer + " --json " + json.string(),
-                       directory / "stdout"),
-                0);
-      nlohmann::json result;
-      std::ifstream(json) >> result;
-      EXPECT_EQ(result["status"], "converged") << result["message"];
-      EXPECT_EQ(result["reported_iterate"]["point"], "final");  // where it converged, not an earlier point
-      const nlohmann::json& allowance = reference["accuracy"].value("feasibility_allowance", nlohmann::json::object());
-      for (const auto& [response, value] : optimum["responses"].items()) {
-        const double expected = value.get<double>();
-        EXPECT_NEAR(result["responses"][response].get<double>(), expected,
-                    tolerance * std::abs(expected) + allowance.value(response, 0.0))
-            << response;
-      }
-      const auto design = result["design"].get<std::vector<double>>();
-      ASSERT_EQ(design.size(), problem.design.variables.size());
-      for (std::size_t i = 0; i < design.size(); ++i) {
-        const std::string& parameter = problem.design.variables[i].parameter;
-        const nlohmann::json& range = reference["accuracy"]["design_range"][parameter];
-        const double slack = 1e-6 * std::abs(design[i]);  // the optimizers' relative tolerance on x
-        EXPECT_GE(design[i], range[0].get<double>() - slack) << parameter;
-        EXPECT_LE(design[i], range[1].get<double>() + slack) << parameter;
-      }
+  const fs::path scene = this->scene();
+  const std::string name = GetParam();
+  const DesignProblem problem = loadDesignProblem(readSceneFile(scene.string()));
+  const nlohmann::json reference = referenceOf(scene);
+  const nlohmann::json& optimum = reference["optimum"];
+  const double tolerance = 10.0 * reference["accuracy"]["cost_relative"].get<double>();
+  ASSERT_GT(tolerance, 0.0);
+  for (const std::string& optimizer : kReachedBy.at(name)) {
+    SCOPED_TRACE(name + " with " + optimizer);
+    const fs::path json = directory / (name + "-" + optimizer + ".json");
+    ASSERT_EQ(mbsopt("optimize " + scene.string() + " --optimizer " + optimizer + " --json " + json.string(),
+                     directory / "stdout"),
+              0);
+    nlohmann::json result;
+    std::ifstream(json) >> result;
+    EXPECT_EQ(result["status"], "converged") << result["message"];
+    EXPECT_EQ(result["reported_iterate"]["point"], "final");  // where it converged, not an earlier point
+    const nlohmann::json& allowance = reference["accuracy"].value("feasibility_allowance", nlohmann::json::object());
+    for (const auto& [response, value] : optimum["responses"].items()) {
+      const double expected = value.get<double>();
+      EXPECT_NEAR(result["responses"][response].get<double>(), expected,
+                  tolerance * std::abs(expected) + allowance.value(response, 0.0))
+          << response;
+    }
+    const auto design = result["design"].get<std::vector<double>>();
+    ASSERT_EQ(design.size(), problem.design.variables.size());
+    for (std::size_t i = 0; i < design.size(); ++i) {
+      const std::string& parameter = problem.design.variables[i].parameter;
+      const nlohmann::json& range = reference["accuracy"]["design_range"][parameter];
+      const double slack = 1e-6 * std::abs(design[i]);  // the optimizers' relative tolerance on x
+      EXPECT_GE(design[i], range[0].get<double>() - slack) << parameter;
+      EXPECT_LE(design[i], range[1].get<double>() + slack) << parameter;
     }
   }
 }
+
+std::vector<std::string> suiteNames() {
+  std::vector<std::string> names;
+  for (const fs::path& scene : suiteScenes()) names.push_back(scene.stem().string());
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(ProblemSuite, SuiteProblem, testing::ValuesIn(suiteNames()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace mbsopt
