@@ -53,7 +53,7 @@ std::vector<Cell> row(const OptimizationRun& run, const std::string& cost_key) {
   const auto unit = [&](const std::string& key) { return " [" + run.response_units.value(key, std::string("SI")) + "]"; };
   std::vector<Cell> cells{word("optimizer", run.choice.optimizer), word("gradient", run.choice.gradient),
                           word("formulation", formulationLabel(run.choice)), word("status", toString(r.status)),
-                          word("reported point", toString(r.reported)),
+                          word("reported point", reportedPointName(r)),
                           number(cost_key + unit(cost_key), final_cost, "%.8g"),
                           number("lowered by [%]", 100.0 * (run.initial_cost - final_cost) / run.initial_cost, "%.2f")};
   for (const auto& [name, value] : run.responses.items())

@@ -356,7 +356,7 @@ const char* const kReportedPointRule =
     "within its tolerance in the problem's own units and it passes the first-order check; otherwise cheapest_feasible: the point of least cost (the cost's own "
     "functional, not b_{k+1}) among its iterates (the history's records; NLopt's: every point it evaluated) that meet "
     "them, the latest of equals; least_infeasible where none "
-    "does";
+    "does; start where the optimizer cannot take the problem and evaluated nothing";
 
 nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::string& cost_unit) {
   nlohmann::json out = nlohmann::json::array();
@@ -448,7 +448,7 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
                                {"final", run.responses[run.cost_response]}}},
           {"reported_iterate", {{"iteration", run.reported_iteration < 0 ? nlohmann::json(nullptr)
                                                                          : nlohmann::json(run.reported_iteration)},
-                                {"point", toString(r.reported)},
+                                {"point", reportedPointName(r)},
                                 {"rule", kReportedPointRule},
                                 {"cheapest_feasible_cost", finiteOrNull(run.cheapest_cost)},
                                 {"cheapest_feasible_iteration", run.cheapest_iteration < 0 ? nlohmann::json(nullptr)
@@ -467,6 +467,10 @@ nlohmann::json toJson(const OptimizationRun& run, const std::string& problem) {
           {"simulations_ahead_used", run.simulations_ahead_used},
           {"wall_time_s", r.wall_time_s},
           {"history", history}};
+}
+
+std::string reportedPointName(const OptimizerResult& result) {
+  return result.status == OptimizerStatus::Unsupported ? "start" : toString(result.reported);
 }
 
 void addBudgetOptions(CLI::App& command, RunChoice& choice) {

@@ -40,6 +40,10 @@ struct RunChoice {
   int gradient_jobs = 1;
 };
 
+/// The reported point's name as the outputs give it: toString(ReportedPoint), or "start" for a run
+/// whose optimizer cannot take the problem (it evaluated nothing; the start is what it reports).
+std::string reportedPointName(const OptimizerResult& result);
+
 /// Adds the limits of a run to a command: --budget (simulation-equivalents), --wall-time, --gradient-cost
 /// (alike for every optimizer) and --max-iter (each optimizer's own count).
 void addBudgetOptions(CLI::App& command, RunChoice& choice);

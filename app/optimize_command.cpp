@@ -102,6 +102,10 @@ void printVerdicts(const std::vector<ConstraintVerdict>& verdicts) {
 /// Which point the summary reports, and why (OptimizerResult::reported).
 void printReportedPoint(const OptimizationRun& run) {
   const std::string iteration = run.reported_iteration >= 0 ? ", iteration " + std::to_string(run.reported_iteration) : "";
+  if (run.result.status == OptimizerStatus::Unsupported) {
+    std::printf("reported: the start (the optimizer cannot take this problem and evaluated nothing)\n");
+    return;
+  }
   switch (run.result.reported) {
     case ReportedPoint::Final:
       std::printf("reported: the optimizer's final point%s, where its own test passed and every constraint holds "

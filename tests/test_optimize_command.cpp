@@ -17,6 +17,7 @@
 #include "mbsopt/dynamics/track_breaks.hpp"
 #include "mbsopt/problems/scene_file.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "tests/command_directory.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {
@@ -146,6 +147,19 @@ nlohmann::json optimizeScene(const std::string& name, const std::string& text, c
 // RMS values under rms_position, the closed form √(1/2 + sin(2ωτ)/(4ωτ)) at the final k within the
 // trapezoidal Newmark's phase error (a relative ω²h²/12 · ωτ, bounded by 2e-4 with a tenfold margin
 // for k ≤ 100), and the RMS constraint's verdict is RMS − bound.
+// MMA cannot take an equality: the run is "unsupported", evaluates nothing, and says that what it
+// reports is the start, not a "cheapest feasible" point it never looked for.
+using OptimizeCommandLine = test::CommandDirectory;
+
+TEST_F(OptimizeCommandLine, AnUnsupportedRunReportsTheStartAsTheStart) {
+  EXPECT_EQ(mbsopt("optimize problems/suite/spring_return.yaml --optimizer mma --json " + path("r.json")), 2);
+  const nlohmann::json r = json("r.json");
+  EXPECT_EQ(r["status"], "unsupported");
+  EXPECT_EQ(r["reported_iterate"]["point"], "start");
+  EXPECT_EQ(r["simulations"], 0);
+  EXPECT_NE(read("stdout").find("reported: the start"), std::string::npos) << read("stdout");
+}
+
 TEST(OptimizeCommand, ReportsAnRmsCostAndCountsAnRmsConstraint) {
   const nlohmann::json r = optimizeScene("rms", std::string(test::kOscillator) + R"(design:
   variables: [{parameter: spring.k, lower: 1, upper: 100, scale: 10}]
