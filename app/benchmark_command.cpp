@@ -51,7 +51,7 @@ void benchmark(const BenchmarkOptions& options) {
   if (root)
     for (std::size_t i = 0; i < plan.runs.size(); ++i)
       if (!runFinished(options.out, plan.runs[i])) todo.push_back(i);
-  std::stable_partition(todo.begin(), todo.end(), [&](std::size_t i) { return runsOneAtATime(plan.runs[i].choice.optimizer); });
+  std::stable_partition(todo.begin(), todo.end(), [&](std::size_t i) { return optimizerInfo(plan.runs[i].choice.optimizer).runs_one_at_a_time; });
   if (root)
     std::printf("benchmark: %zu problems, %zu runs, %zu finished before, %zu to run %s\n", plan.problems.size(),
                 plan.runs.size(), plan.runs.size() - todo.size(), todo.size(),
@@ -79,7 +79,7 @@ void benchmark(const BenchmarkOptions& options) {
     const auto idle_threads = std::make_shared<ThreadBudget>();
     std::mutex lock_queue, output;
     std::deque<std::size_t> in_turn, free_runs;
-    for (const std::size_t i : todo) (runsOneAtATime(plan.runs[i].choice.optimizer) ? in_turn : free_runs).push_back(i);
+    for (const std::size_t i : todo) (optimizerInfo(plan.runs[i].choice.optimizer).runs_one_at_a_time ? in_turn : free_runs).push_back(i);
     int turns_running = 0;
     runInParallel(todo.size(), options.jobs, [&](std::size_t) {
       std::size_t i = 0;

@@ -9,6 +9,7 @@
 #include "app/scene_argument.hpp"
 #include "mbsopt/optimizers/latin_hypercube.hpp"
 #include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 
@@ -55,7 +56,7 @@ std::vector<std::vector<double>> startsOf(const BenchmarkProblem& p, int count, 
   return starts;
 }
 
-bool isExact(const std::string& gradient) { return gradient != "fd_forward" && gradient != "fd_central"; }
+bool costIsMeasured(const std::string& gradient) { return gradientMethod(gradient).simulations_per_variable == 0; }
 
 }  // namespace
 
@@ -92,7 +93,7 @@ nlohmann::json sweepGradientCosts(const BenchmarkOptions& options, const Benchma
     // This problem's runs of an exact method whose cost is neither given nor in the file.
     std::vector<RunChoice> pending;
     for (const BenchmarkRun& run : plan.runs)
-      if (run.problem == i && !run.choice.gradient_cost && isExact(run.choice.gradient) &&
+      if (run.problem == i && !run.choice.gradient_cost && costIsMeasured(run.choice.gradient) &&
           !(costs.contains(p.name) && costs[p.name].contains(run.choice.gradient)))
         pending.push_back(run.choice);
     measureGradientCosts(p.problem, pending);  // once per method; none where the start cannot be simulated

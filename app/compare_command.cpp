@@ -137,7 +137,7 @@ void compare(const CompareOptions& options) {
   for (RunChoice& choice : choices) choice.gradient_jobs = options.jobs;
   std::vector<std::size_t> order(choices.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return runsOneAtATime(choices[i].optimizer); });
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return optimizerInfo(choices[i].optimizer).runs_one_at_a_time; });
   const auto idle_threads = std::make_shared<ThreadBudget>();
   std::vector<OptimizationRun> runs(choices.size());
   std::mutex output;

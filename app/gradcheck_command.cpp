@@ -137,7 +137,7 @@ void gradcheck(const GradcheckOptions& options) {
   if (!options.json.empty()) {
     nlohmann::json timings = {{"simulation", simulation}};
     for (const MethodResult& m : methods)
-      if (m.gradient && m.name != "fd_forward") timings[m.name] = m.seconds;
+      if (m.gradient) timings[m.name] = m.seconds;
     const nlohmann::json document = {{"problem", source.path},
                                      {"variables", json_variables},
                                      {"design_point", toVector(x)},

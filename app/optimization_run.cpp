@@ -30,23 +30,6 @@ std::string shortNumber(double value) {
   return out.str();
 }
 
-/// The transcription measures in the order of formulationNames().
-constexpr TimeMeasure kFormulationMeasures[] = {TimeMeasure::PositivePart, TimeMeasure::SquaredPositivePart,
-                                                TimeMeasure::KsAggregate, TimeMeasure::GridMax};
-
-TimeMeasure formulationMeasure(const std::string& name) {
-  const auto& names = formulationNames();
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return kFormulationMeasures[i];
-  throw std::invalid_argument("unknown formulation '" + name + "'");
-}
-
-std::string formulationName(TimeMeasure measure) {
-  for (std::size_t i = 0; i < formulationNames().size(); ++i)
-    if (kFormulationMeasures[i] == measure) return formulationNames()[i];
-  throw std::invalid_argument("the problem's transcription is not one of the formulations");
-}
-
 /// The key of a sensor's response: `max_abs_NAME`, or `max_abs_NAME_deg` for angles (in degrees).
 std::string responseKey(const Sensor& sensor) { return "max_abs_" + sensor.name + (isAngle(sensor) ? "_deg" : ""); }
 
@@ -118,21 +101,16 @@ std::vector<double> designInSi(const DesignProblem& problem, const Eigen::Vector
 
 }  // namespace
 
-const std::vector<std::string>& formulationNames() {
-  static const std::vector<std::string> names{"positive_part", "squared_positive_part", "ks", "grid_max"};
-  return names;
-}
-
 RunChoice resolvedChoice(const DesignProblem& problem, RunChoice choice) {
-  if (choice.formulation.empty()) choice.formulation = formulationName(problem.design.transcription.measure);
-  else formulationMeasure(choice.formulation);  // an unknown name throws
+  if (choice.formulation.empty()) choice.formulation = formulationOf(problem.design.transcription.measure).name;
+  else formulation(choice.formulation);  // an unknown name throws
   if (!choice.epsilon) choice.epsilon = problem.design.transcription.tolerance;
-  if (choice.gradient == "fd") choice.gradient = "fd_central";
+  choice.gradient = gradientMethod(choice.gradient).name;  // an alias (fd) becomes the name it stands for
   return choice;
 }
 
 DesignProblem formulatedProblem(DesignProblem problem, const RunChoice& resolved) {
-  problem.design.transcription.measure = formulationMeasure(resolved.formulation);
+  problem.design.transcription.measure = formulation(resolved.formulation).measure;
   problem.design.transcription.tolerance = *resolved.epsilon;
   return problem;
 }
@@ -144,7 +122,7 @@ void addSweepOptions(CLI::App& command, SweepAxes& axes, RunChoice& shared) {
       ->capture_default_str();
   command.add_option("--gradients", axes.gradients, "Gradient methods (fd = fd_central)")
       ->delimiter(',')
-      ->check(CLI::IsMember(gradientChoices()))
+      ->check(CLI::IsMember(gradientMethodChoices()))
       ->capture_default_str();
   command.add_option("--formulations", axes.formulations,
                      "Formulations (see `mbsopt optimize --help`); default: each problem's own")
@@ -225,7 +203,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   if (choice.gradient_cost) {
     nlp.setGradientCost(*choice.gradient_cost);
     run.gradient_cost_source = "given";
-  } else if (run.choice.gradient == "fd_forward" || run.choice.gradient == "fd_central") {
+  } else if (gradientMethod(run.choice.gradient).simulations_per_variable > 0) {
     run.gradient_cost_source = "counted";
   } else {
     try {
@@ -337,8 +315,9 @@ nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohma
 void measureGradientCosts(const DesignProblem& problem, std::vector<RunChoice>& choices) {
   std::map<std::string, std::optional<double>> measured;  // empty where the start cannot be simulated
   for (RunChoice& choice : choices) {
-    const std::string method = choice.gradient == "fd" ? "fd_central" : choice.gradient;
-    if (choice.gradient_cost || method == "fd_forward" || method == "fd_central") continue;
+    const GradientMethodInfo& info = gradientMethod(choice.gradient);
+    const std::string& method = info.name;
+    if (choice.gradient_cost || info.simulations_per_variable > 0) continue;
     if (!measured.contains(method)) {
       const DesignNlp nlp(problem, method, 1e-6, choice.gradient_jobs);
       try {
@@ -508,12 +487,6 @@ void addSettingOption(CLI::App& command, std::vector<std::string>& settings) {
                      "b_{k+1} stays put while feasibility is restored), ftol_abs, stopval, maxtime [s]; mma, ccsaq "
                      "also inner_maxeval, dual_ftol_rel, verbosity. An unknown name is an error")
       ->allow_extra_args(false);
-}
-
-std::vector<std::string> gradientChoices() {
-  std::vector<std::string> choices = gradientMethodNames();
-  choices.push_back("fd");
-  return choices;
 }
 
 PlotPanel designPanel(const OptimizationRun& run) {

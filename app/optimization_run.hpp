@@ -14,6 +14,7 @@
 
 #include "app/gnuplot.hpp"
 #include "mbsopt/optimizers/optimizer.hpp"
+#include "mbsopt/sensitivity/formulation.hpp"
 #include "mbsopt/problems/bound_worth.hpp"
 #include "mbsopt/sensitivity/constraint_verdicts.hpp"
 #include "mbsopt/sensitivity/design_problem.hpp"
@@ -23,7 +24,7 @@ namespace mbsopt {
 
 struct RunChoice {
   std::string optimizer = "sdcc";
-  std::string gradient = "adjoint";  ///< a gradientMethodNames() entry, or "fd" (= fd_central)
+  std::string gradient = "adjoint";  ///< a gradientMethodChoices() entry
   /// positive_part | squared_positive_part | ks | grid_max; empty: the problem's own measure, as
   /// its scene file or C++ description says.
   std::string formulation;
@@ -51,8 +52,6 @@ void addBudgetOptions(CLI::App& command, RunChoice& choice);
 /// Adds --setting (repeatable NAME=VALUE, the optimizer's own settings) to a command.
 void addSettingOption(CLI::App& command, std::vector<std::string>& settings);
 
-/// The formulation names, in the order of --help.
-const std::vector<std::string>& formulationNames();
 
 struct OptimizationRun {
   RunChoice choice;
@@ -118,7 +117,7 @@ inline bool feasible(const OptimizationRun& run) {
 /// The combinations a sweep runs (`mbsopt compare`, `mbsopt benchmark`): formulations outermost,
 /// then gradient methods, then optimizers.
 struct SweepAxes {
-  std::vector<std::string> optimizers = optimizerNames();
+  std::vector<std::string> optimizers = defaultComparisonOptimizers();
   std::vector<std::string> gradients{"adjoint"};
   std::vector<std::string> formulations{""};  ///< "": the problem's own
 };
@@ -171,8 +170,6 @@ nlohmann::json boundWorthJson(const std::vector<BoundWorth>& worth, const std::s
 /// The verdicts as JSON: [{name, unit, value, bound | equals, excess, tolerance, met}].
 nlohmann::json verdictsJson(const std::vector<ConstraintVerdict>& verdicts);
 
-/// What the commands accept as a gradient method: gradientMethodNames() and "fd" (= fd_central).
-std::vector<std::string> gradientChoices();
 
 /// The design variables (SI) against iterations on a logarithmic axis, one curve per variable
 /// (the paper's figure 7).

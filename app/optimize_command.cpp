@@ -14,6 +14,8 @@
 #include "app/exit_status.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_run.hpp"
+#include "app/registry_choices.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 #include "app/scene_argument.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
 
@@ -259,17 +261,15 @@ void registerOptimizeCommand(CLI::App& app) {
       "converged, 2 when it did not (failed, stopped by its budget, or cannot take the problem; the outputs are "
       "written all the same), 1 on an error");
   addSceneArgument(*command, options->problem, true);
-  command->add_option("--optimizer", options->choice.optimizer, "The optimizer")
+  command->add_option("--optimizer", options->choice.optimizer, "The optimizer: " + describedChoices(optimizers()))
       ->check(CLI::IsMember(optimizerNames()))
       ->capture_default_str();
-  command->add_option("--gradient", options->choice.gradient, "The gradient method (fd = fd_central)")
-      ->check(CLI::IsMember(gradientChoices()))
+  command->add_option("--gradient", options->choice.gradient, "The gradient method: " + describedChoices(gradientMethods()))
+      ->check(CLI::IsMember(gradientMethodChoices()))
       ->capture_default_str();
   command->add_option("--formulation", options->choice.formulation,
-                      "How each max-over-time constraint becomes one number: positive_part (the paper's ∫⟨φ⟩dt), "
-                      "squared_positive_part (∫⟨φ⟩²dt), ks (Kreisselmeier-Steinhauser over the time mean) or "
-                      "grid_max (the maximum over the time grid); default: the problem's own (the scene file's "
-                      "design.transcription; grid_max where it names none)")
+                      "How each max-over-time constraint becomes one number (default: the problem's own, the scene "
+                      "file's design.transcription; grid_max where it names none): " + describedChoices(formulations()))
       ->check(CLI::IsMember(formulationNames()));
   command
       ->add_option_function<double>(

@@ -153,7 +153,7 @@ void integratorStudy(const PrecisionOptions& options, const SceneSource& source,
     const double step = uniformStep(options.reference_step.value_or(steps.back() / 16), end_time);
     // Beside the extrapolation, a plain run at h/16 is no reference (the four-bar's at 1e-4 s is 6e-7
     // off, the extrapolation's error at 1e-3 s is 1e-8): it is then an extrapolation of 3 runs itself.
-    const bool extrapolated = std::find(variants.begin(), variants.end(), "extrapolation") != variants.end() &&
+    const bool extrapolated = std::any_of(variants.begin(), variants.end(), runsExtrapolation) &&
                               extrapolationDefect(scene.settings).empty();
     const int reference_runs = extrapolated ? 3 : 1;
     std::vector<double> grids = steps;
@@ -214,7 +214,7 @@ void gradientStudy(const PrecisionOptions& options, const SceneSource& source,
   const Eigen::VectorXd x = checkedDesignPoint(source, overrides, problem, options.point);
   const std::vector<double> steps = ladder(options.steps.empty() ? kGradientSteps : options.steps);
   const std::vector<std::string> methods = options.variants.empty() ? gradientMethodNames() : options.variants;
-  for (const std::string& method : methods) requireGradientMethod(method);
+  for (const std::string& method : methods) gradientMethod(method);  // an unknown name throws
   const int repeat = options.repeat.value_or(kGradientRepeat);
   StudyProgress progress(methods.size() * steps.size());
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "mbsopt/dynamics/extrapolation.hpp"
+#include "mbsopt/dynamics/integration.hpp"
 #include "mbsopt/dynamics/sensors.hpp"
 #include "mbsopt/problems/scene_file.hpp"
 #include "mbsopt/problems/scene_text.hpp"
@@ -118,28 +119,66 @@ Quantity findQuantity(const Model& model, const std::string& name) {
                               suggestion(name, names) + " (they are: " + listed(names) + ")");
 }
 
+namespace {
+
+/// A variant of the scheme: the integrator it runs and how it changes the scene's settings.
+struct IntegratorVariant {
+  std::string name;
+  std::string integrator;  ///< a name of the integrators' registry (dynamics/integration.cpp)
+  NewmarkSettings (*settings)(NewmarkSettings settings, double alpha);
+};
+
+const std::vector<IntegratorVariant>& integratorVariants() {
+  static const std::vector<IntegratorVariant> variants{
+      {"newmark", "newmark", [](NewmarkSettings s, double) { return s; }},
+      {"damped", "newmark",
+       [](NewmarkSettings s, double alpha) {
+         s.gamma = 0.5 + alpha;
+         s.beta = 0.25 * (s.gamma + 0.5) * (s.gamma + 0.5);
+         return s;
+       }},
+      {"fast-newton", "newmark",
+       [](NewmarkSettings s, double) {
+         s.accept_by_contraction_rate = true;
+         return s;
+       }},
+      {"fast-steps", "newmark", [](NewmarkSettings s, double) { return withFastSteps(s); }},
+      {"acceleration-closure", "newmark",
+       [](NewmarkSettings s, double) {
+         s.closure = ClosureLevel::Acceleration;
+         return s;
+       }},
+      {"extrapolation", "extrapolation", [](NewmarkSettings s, double) { return s; }},
+  };
+  return variants;
+}
+
+const IntegratorVariant& integratorVariant(const std::string& name) {
+  for (const IntegratorVariant& variant : integratorVariants())
+    if (variant.name == name) return variant;
+  throw std::invalid_argument("unknown variant " + quoted(name) + suggestion(name, integratorVariantNames()) +
+                              " (the variants: " + listed(integratorVariantNames()) + ")");
+}
+
+}  // namespace
+
+bool runsExtrapolation(const std::string& variant) {
+  return integratorInfo(integratorVariant(variant).integrator).extrapolated;
+}
+
 const std::vector<std::string>& integratorVariantNames() {
-  static const std::vector<std::string> names{"newmark", "damped", "fast-newton", "fast-steps",
-                                              "acceleration-closure", "extrapolation"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const IntegratorVariant& variant : integratorVariants()) out.push_back(variant.name);
+    return out;
+  }();
   return names;
 }
 
 NewmarkSettings variantSettings(NewmarkSettings settings, const std::string& variant, double alpha) {
-  if (variant == "damped") {
-    settings.gamma = 0.5 + alpha;
-    settings.beta = 0.25 * (settings.gamma + 0.5) * (settings.gamma + 0.5);
-  } else if (variant == "fast-newton") {
-    settings.accept_by_contraction_rate = true;
-  } else if (variant == "fast-steps") {
-    settings = withFastSteps(settings);
-  } else if (variant == "acceleration-closure") {
-    settings.closure = ClosureLevel::Acceleration;
-  } else if (variant == "extrapolation") {
+  settings = integratorVariant(variant).settings(settings, alpha);
+  if (runsExtrapolation(variant))
     if (const std::string defect = extrapolationDefect(settings); !defect.empty()) throw std::invalid_argument(defect);
-  } else if (variant != "newmark") {
-    throw std::invalid_argument("unknown variant " + quoted(variant) + suggestion(variant, integratorVariantNames()) +
-                                " (the variants: " + listed(integratorVariantNames()) + ")");
-  }
   return settings;
 }
 
@@ -313,7 +352,7 @@ PrecisionRun measureIntegratorRun(const Scene& scene, const std::string& variant
     NewmarkSettings settings = variantSettings(scene.settings, variant, alpha);
     settings.step = step;
     const std::vector<long> at = gridIndices(reference.times, step);
-    if (variant == "extrapolation") {
+    if (runsExtrapolation(variant)) {
       double estimate = 0.0;
       timeMedian(repeat, [&] { run = extrapolatedSamples(scene, settings, runs, at, reference.quantities, estimate); },
                  result.seconds);

@@ -34,6 +34,9 @@ struct ReferenceSolution {
 
 /// newmark, damped, fast-newton, fast-steps, acceleration-closure, extrapolation.
 const std::vector<std::string>& integratorVariantNames();
+/// Whether the variant runs the extrapolation (the integrators' registry says which that is);
+/// std::invalid_argument for an unknown name.
+bool runsExtrapolation(const std::string& variant);
 
 /// The scene's settings changed as `variant` says: newmark keeps β and γ; damped takes γ = ½ + α,
 /// β = (γ + ½)²/4; fast-newton accepts by contraction rate; fast-steps solves each step to a fraction of its

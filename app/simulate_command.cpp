@@ -11,6 +11,7 @@
 
 #include "app/atomic_file.hpp"
 #include "app/output_paths.hpp"
+#include "app/registry_choices.hpp"
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
 #include "app/simulation_summary.hpp"
@@ -61,7 +62,7 @@ IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene)
   request.estimate_error =
       options.error_estimate == "on" ||
       (options.error_estimate == "auto" &&
-       (request.integrator == "adaptive" || steps <= static_cast<double>(kEstimateByDefaultUpTo)) &&
+       (integratorInfo(request.integrator).variable_steps || steps <= static_cast<double>(kEstimateByDefaultUpTo)) &&
        halvingDefect(settings, "the global error estimate").empty());
   return request;
 }
@@ -88,7 +89,7 @@ void run(const SimulateOptions& options) {
   if (options.fast_steps) scene.settings = withFastSteps(scene.settings);
 
   const IntegrationRequest request = requestOf(options, scene);
-  if (!request.accuracy && request.integrator == "extrapolation")
+  if (!request.accuracy && integratorInfo(request.integrator).extrapolated)
     if (const std::string defect = extrapolationDefect(scene.settings); !defect.empty())
       throw SceneError(source.path, 0, 0, defect);
   const auto start = std::chrono::steady_clock::now();
@@ -181,17 +182,8 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--integrator", options->integrator,
                    "The integrator (default: the scene's settings.integrator, newmark unless it says; extrapolation with "
-                   "--accuracy): " + [] {
-                     std::string text;
-                     for (const IntegratorInfo& info : integrators())
-                       text += (text.empty() ? "" : "; ") + info.name + ": " + info.description;
-                     return text;
-                   }())
-      ->check(CLI::IsMember([] {
-        std::vector<std::string> names;
-        for (const IntegratorInfo& info : integrators()) names.push_back(info.name);
-        return names;
-      }()));
+                   "--accuracy): " + describedChoices(integrators()))
+      ->check(CLI::IsMember(choiceNames(integrators())));
   CLI::Option* accuracy =
       command
           ->add_option("--accuracy", options->accuracy,

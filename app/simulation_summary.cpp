@@ -19,14 +19,16 @@ std::string format(const char* pattern, double value) {
 std::string stepsText(const Integration& integration, const IntegrationRequest& request) {
   const EstimatedRun& run = integration.run;
   const long steps = run.trajectory.statistics.steps;
-  if (request.integrator == "newmark" && !request.accuracy) {
+  const IntegratorInfo& integrator = integratorInfo(request.integrator);
+  const bool newmark = !integrator.extrapolated && !integrator.variable_steps;
+  if (newmark && !request.accuracy) {
     // With the estimate, a run at h and one at h/2 (twice as many steps).
     const long own = integration.estimated ? steps / 3 : steps;
     std::string text = std::to_string(own) + " steps of " + format("%.6g", run.steps.front()) + " s";
     if (integration.estimated) text += " (and " + std::to_string(steps - own) + " of h/2 for the error estimate)";
     return text;
   }
-  if (request.integrator == "adaptive") {
+  if (integrator.variable_steps) {
     std::string text = "adaptive Newmark (order 2, local error control), steps up to " + format("%g", run.steps.front()) +
                        " s, " + std::to_string(steps) + " steps in all";
     if (integration.estimated && !request.accuracy) text += " (a third of them the run's, the rest its halved steps' for the error estimate)";
@@ -34,7 +36,7 @@ std::string stepsText(const Integration& integration, const IntegrationRequest& 
   }
   const std::string runs = std::to_string(run.steps.size()) + " runs at H/1 ... H/" + std::to_string(run.steps.size()) +
                            ", H = " + format("%g", run.steps.front()) + " s";
-  if (request.integrator == "newmark")  // driven by accuracy: the result is the run at H/2
+  if (newmark)  // driven by accuracy: the result is the run at H/2
     return "Newmark at h = " + format("%g", run.steps.back()) + " s (order 2, its error estimated from the run at " +
            format("%g", run.steps.front()) + " s), " + std::to_string(steps) + " steps in all";
   return "extrapolation of " + runs + " (order " + std::to_string(run.order) + "), " + std::to_string(steps) +
@@ -136,7 +138,8 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
     line += ", no error estimate";
     out.json["estimated_global_error"] = nullptr;
   }
-  if (request.accuracy || request.integrator != "newmark" || request.output_step > 0.0)  // the peaks' points
+  const IntegratorInfo& integrator = integratorInfo(request.integrator);
+  if (request.accuracy || integrator.extrapolated || integrator.variable_steps || request.output_step > 0.0)  // the peaks' points
     line += ", " + std::to_string(trajectory.time.size()) + " output times";
   line += ", wall time " + format("%.3g", wall) + " s";
   out.json["warnings"] = out.warnings;

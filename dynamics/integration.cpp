@@ -1,6 +1,7 @@
 #include "mbsopt/dynamics/integration.hpp"
 
 #include "mbsopt/dynamics/adaptive_newmark.hpp"
+#include "mbsopt/dynamics/integrator_choice.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -12,17 +13,17 @@ const std::vector<IntegratorInfo>& integrators() {
       {"newmark",
        "the paper's implicit Newmark scheme (trapezoidal rule, beta = 1/4, gamma = 1/2) at a fixed step, order 2; "
        "driven by accuracy, its step comes from the difference of runs at h and h/2",
-       2},
+       2, false, false},
       {"extrapolation",
        "global extrapolation of Newmark runs at H, H/2, H/3, ... (Aitken-Neville on the error's expansion in "
        "powers of h), order up to 10 when driven by accuracy (6 runs), 14 with --runs 8; driven by accuracy, it "
        "chooses H and the number of runs",
-       6},
+       6, true, false},
       {"adaptive",
        "the same Newmark scheme at variable steps, each step's local error (1/12 h^2 times the change of the "
        "accelerations, Zienkiewicz-Xie) held to the tolerance; order 2; driven by accuracy, the local tolerance is "
        "tightened until the global estimate (the same steps halved) meets it",
-       2},
+       2, false, true},
   };
   return registry;
 }
@@ -38,6 +39,9 @@ const IntegratorInfo& integratorInfo(const std::string& name) {
     if (info.name == name) return info;
   throw std::invalid_argument("unknown integrator '" + name + "' (known: " + integratorNameList() + ")");
 }
+
+bool IntegratorChoice::extrapolated() const { return integratorInfo(name).extrapolated; }
+bool IntegratorChoice::adaptive() const { return integratorInfo(name).variable_steps; }
 
 namespace {
 
@@ -107,7 +111,7 @@ Integration integrate(const Model& model, const NewmarkSettings& scene_settings,
     goal.tolerance = *request.accuracy;
     goal.output_step = request.output_step;
     goal.max_runs = info.max_runs;
-    const bool adaptive = info.name == "adaptive";
+    const bool adaptive = info.variable_steps;
     AccurateRun accurate = adaptive ? adaptiveToAccuracy(model, settings, q0, v0, goal, progress)
                                     : simulateToAccuracy(model, settings, q0, v0, goal, progress);
     out.run = std::move(accurate.run);
@@ -119,13 +123,13 @@ Integration integrate(const Model& model, const NewmarkSettings& scene_settings,
     return out;
   }
   const long stride = request.output_step > 0.0 ? stepsPerOutput(request.output_step, settings.step) : 1;
-  if (info.name == "extrapolation") {
+  if (info.extrapolated) {
     out.run = extrapolatedNewmark(model, settings, request.runs, q0, v0, progress);
     keepEvery(out.run, stride);
     out.estimated = true;
     return out;
   }
-  if (info.name == "adaptive") return adaptiveIntegration(model, settings, q0, v0, request, progress);
+  if (info.variable_steps) return adaptiveIntegration(model, settings, q0, v0, request, progress);
   Trajectory trajectory = NewmarkIntegrator(model, settings).simulate(q0, v0, progress);
   if (request.estimate_error) {
     out.run = estimateGlobalError(model, settings, std::move(trajectory), q0, v0, progress);

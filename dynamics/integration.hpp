@@ -20,6 +20,11 @@ struct IntegratorInfo {
   /// Newmark runs per attempt at most when driven by accuracy (AccuracyGoal::max_runs): 2 for plain
   /// Newmark (a run at h/2 with the estimate from h), more for extrapolation.
   int max_runs = 2;
+  /// Runs at H/1 … H/k combined (Aitken-Neville): an error estimate with every run, `runs` to choose.
+  bool extrapolated = false;
+  /// Steps chosen by each step's local error (a local tolerance; a design problem freezes the grid
+  /// its initial design takes): the steps end at the output times.
+  bool variable_steps = false;
 };
 
 /// newmark (the paper's; the default), extrapolation, adaptive.

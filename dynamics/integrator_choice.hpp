@@ -14,8 +14,9 @@ struct IntegratorChoice {
   /// problem runs on the steps such a run takes at its initial design, frozen (NewmarkSettings::time_grid).
   double local_tolerance = 1e-6;
 
-  bool extrapolated() const { return name == "extrapolation"; }
-  bool adaptive() const { return name == "adaptive"; }
+  /// The registry's properties of `name` (IntegratorInfo, integration.cpp).
+  bool extrapolated() const;
+  bool adaptive() const;
 };
 
 }  // namespace mbsopt

@@ -104,16 +104,16 @@ void setParameters(nlopt::algorithm algorithm, const NamedSettings& settings, nl
 
 }  // namespace
 
-OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& problem, const OptimizerOptions& options) {
+OptimizerResult minimizeWithNlopt(const NloptAlgorithm& algorithm, NlpProblem& problem, const OptimizerOptions& options) {
   OptimizerResult result;
   const auto n = static_cast<unsigned>(problem.variableCount());
-  nlopt::opt opt(algorithm, n);
+  nlopt::opt opt(algorithm.algorithm, n);
   result.optimizer = opt.get_algorithm_name();
-  if (problem.equalityCount() > 0 && algorithm != nlopt::LD_SLSQP) {
-    result.status = OptimizerStatus::Unsupported;
-    result.message = result.optimizer + " takes inequality constraints only; this problem has " +
-                     std::to_string(problem.equalityCount()) + " equalities";
-    return result;
+  if (algorithm.local) {
+    nlopt::opt local(*algorithm.local, n);
+    local.set_xtol_rel(options.tolerance);
+    opt.set_local_optimizer(local);
+    result.optimizer += " around " + std::string(local.get_algorithm_name());
   }
   EvaluationCache cache(problem, options);
   NloptContext context{cache, result, ""};
@@ -135,7 +135,7 @@ OptimizerResult minimizeWithNlopt(nlopt::algorithm algorithm, NlpProblem& proble
   // equality (tests/test_design_problem.cpp). They stop on x. The settings may change either (below).
   opt.set_ftol_rel(0.0);
   opt.set_maxeval(options.max_iterations);
-  setParameters(algorithm, options.settings, opt);
+  setParameters(algorithm.algorithm, options.settings, opt);
 
   std::vector<double> x = toStd(problem.start());
   double cost = 0.0;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "mbsopt/optimizers/auglag_lbfgs.hpp"
 #include "mbsopt/optimizers/ipopt_optimizer.hpp"
 #include "mbsopt/optimizers/nlopt_optimizer.hpp"
 #include "mbsopt/optimizers/sdcc.hpp"
@@ -35,31 +36,73 @@ std::string toString(ReportedPoint point) {
   return "cheapest_feasible";
 }
 
-const std::vector<std::string>& optimizerNames() {
-  static const std::vector<std::string> names{"sdcc", "slsqp", "mma", "ccsaq", "ipopt"};
-  return names;
-}
-
-bool runsOneAtATime(const std::string& optimizer) { return optimizer == "ipopt"; }
-
 namespace {
 
-OptimizerResult dispatch(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
-  if (optimizer == "sdcc") return minimizeWithSdcc(problem, options, sdccSettings(options.settings));
-  if (optimizer == "slsqp") return minimizeWithNlopt(nlopt::LD_SLSQP, problem, options);
-  if (optimizer == "mma") return minimizeWithNlopt(nlopt::LD_MMA, problem, options);
-  if (optimizer == "ccsaq") return minimizeWithNlopt(nlopt::LD_CCSAQ, problem, options);
-  if (optimizer == "ipopt") return minimizeWithIpopt(problem, options);
-  std::string known;
-  for (const std::string& name : optimizerNames()) known += (known.empty() ? "" : ", ") + name;
-  throw std::invalid_argument("unknown optimizer '" + optimizer + "' (known: " + known + ")");
+OptimizerResult sdcc(NlpProblem& problem, const OptimizerOptions& options) {
+  return minimizeWithSdcc(problem, options, sdccSettings(options.settings));
+}
+OptimizerResult slsqp(NlpProblem& problem, const OptimizerOptions& options) {
+  return minimizeWithNlopt({nlopt::LD_SLSQP}, problem, options);
+}
+OptimizerResult mma(NlpProblem& problem, const OptimizerOptions& options) {
+  return minimizeWithNlopt({nlopt::LD_MMA}, problem, options);
+}
+OptimizerResult ccsaq(NlpProblem& problem, const OptimizerOptions& options) {
+  return minimizeWithNlopt({nlopt::LD_CCSAQ}, problem, options);
 }
 
 }  // namespace
 
+const std::vector<OptimizerInfo>& optimizers() {
+  static const std::vector<OptimizerInfo> registry{
+      {"sdcc", "the paper's steepest descent with constraint compensation (its equations (7)-(11))", true, false, true,
+       &sdcc},
+      {"slsqp", "NLopt's sequential quadratic programming with a BFGS Hessian (Kraft's SLSQP)", true, false, true,
+       &slsqp},
+      {"mma", "NLopt's method of moving asymptotes (Svanberg 2002); inequality constraints only", false, false, true,
+       &mma},
+      {"ccsaq", "NLopt's conservative convex separable quadratic approximations (Svanberg 2002); inequalities only",
+       false, false, true, &ccsaq},
+      {"ipopt", "Ipopt's interior-point method with a limited-memory quasi-Newton Hessian; its runs take turns", true,
+       true, true, &minimizeWithIpopt},
+      {"auglag_lbfgs", kAuglagLbfgsDescription, true, false, false, &minimizeWithAuglagLbfgs},
+  };
+  return registry;
+}
+
+std::vector<std::string> optimizerNames() {
+  std::vector<std::string> names;
+  for (const OptimizerInfo& info : optimizers()) names.push_back(info.name);
+  return names;
+}
+
+std::vector<std::string> defaultComparisonOptimizers() {
+  std::vector<std::string> names;
+  for (const OptimizerInfo& info : optimizers())
+    if (info.compared_by_default) names.push_back(info.name);
+  return names;
+}
+
+const OptimizerInfo& optimizerInfo(const std::string& name) {
+  for (const OptimizerInfo& info : optimizers())
+    if (info.name == name) return info;
+  std::string known;
+  for (const OptimizerInfo& info : optimizers()) known += (known.empty() ? "" : ", ") + info.name;
+  throw std::invalid_argument("unknown optimizer '" + name + "' (known: " + known + ")");
+}
+
 OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options) {
+  const OptimizerInfo& info = optimizerInfo(optimizer);
+  if (problem.equalityCount() > 0 && !info.takes_equalities) {
+    OptimizerResult result;
+    result.optimizer = info.name;
+    result.status = OptimizerStatus::Unsupported;
+    result.message = info.name + " takes inequality constraints only; this problem has " +
+                     std::to_string(problem.equalityCount()) + " equalities";
+    return result;
+  }
   const auto start_time = std::chrono::steady_clock::now();
-  OptimizerResult result = dispatch(optimizer, problem, options);
+  OptimizerResult result = info.run(problem, options);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }

@@ -110,12 +110,29 @@ struct OptimizerResult {
   std::vector<IterationRecord> history;
 };
 
-/// The optimizers by name: "sdcc", "slsqp", "mma", "ccsaq", "ipopt".
-const std::vector<std::string>& optimizerNames();
+/// One optimizer in the registry (optimizer.cpp): everything the rest of mbsopt knows of it by name.
+struct OptimizerInfo {
+  std::string name;         ///< what --optimizer, the records and the Python module call it
+  std::string description;  ///< one sentence, for --help and the docs
+  /// Whether it takes equality constraints; minimize() reports a problem with equalities as
+  /// OptimizerStatus::Unsupported for one that does not, before anything is evaluated.
+  bool takes_equalities = true;
+  /// Whether its runs in one process take turns (Ipopt: its linear solver MUMPS is not thread-safe).
+  bool runs_one_at_a_time = false;
+  /// Whether `compare` and `benchmark` run it when no --optimizers is given (the set the suite's
+  /// published results hold).
+  bool compared_by_default = true;
+  OptimizerResult (*run)(NlpProblem& problem, const OptimizerOptions& options) = nullptr;
+};
 
-/// Whether the named optimizer's runs in one process take turns (Ipopt: its linear solver MUMPS is
-/// not thread-safe, so minimize() runs one Ipopt at a time).
-bool runsOneAtATime(const std::string& optimizer);
+/// The registered optimizers, in the order of the tables: sdcc, slsqp, mma, ccsaq, ipopt, auglag_lbfgs.
+const std::vector<OptimizerInfo>& optimizers();
+/// The registered optimizer `name`; std::invalid_argument listing the names otherwise.
+const OptimizerInfo& optimizerInfo(const std::string& name);
+/// Every registered name.
+std::vector<std::string> optimizerNames();
+/// The names with OptimizerInfo::compared_by_default.
+std::vector<std::string> defaultComparisonOptimizers();
 
 /// Runs the named optimizer; throws std::invalid_argument for an unknown name.
 OptimizerResult minimize(const std::string& optimizer, NlpProblem& problem, const OptimizerOptions& options);

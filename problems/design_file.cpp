@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mbsopt/dynamics/units.hpp"
+#include "mbsopt/sensitivity/formulation.hpp"
 #include "mbsopt/problems/scene_text.hpp"
 
 namespace mbsopt {
@@ -11,7 +12,7 @@ namespace mbsopt {
 namespace {
 
 /// `of:` among `choices` (max_abs, max, integral, rms, and for constraints min, final).
-ResponseMeasure readMeasure(const MapReader& entry, std::initializer_list<const char*> choices) {
+ResponseMeasure readMeasure(const MapReader& entry, const std::vector<std::string>& choices) {
   const std::string of = entry.choice("of", choices, "max_abs");
   return of == "max"        ? ResponseMeasure::Max
          : of == "min"      ? ResponseMeasure::Min
@@ -124,12 +125,7 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   if (design.has("transcription")) {
     const MapReader t(context, design.node()["transcription"], "design.transcription");
     t.allowKeys({"measure", "tolerance", "rho", "windows"});
-    const std::string measure = t.choice("measure", {"positive_part", "squared_positive_part", "ks", "grid_max"},
-                                         "grid_max");
-    out.transcription.measure = measure == "positive_part"           ? TimeMeasure::PositivePart
-                                : measure == "squared_positive_part" ? TimeMeasure::SquaredPositivePart
-                                : measure == "ks"                    ? TimeMeasure::KsAggregate
-                                                                     : TimeMeasure::GridMax;
+    out.transcription.measure = formulation(t.choice("measure", formulationNames(), "grid_max")).measure;
     out.transcription.tolerance = t.nonNegative("tolerance", 0.0);
     if (t.has("rho")) out.transcription.rho = t.positive("rho");
     out.transcription.windows = t.positiveInteger("windows", 1);

@@ -37,7 +37,7 @@ DesignNlp::DesignNlp(DesignProblem problem, std::string gradient_method, double 
       gradient_jobs_(std::max(gradient_jobs, 1)),
       simulate_ahead_(gradient_jobs_ >= 2 && !shared_threads),
       spare_threads_(shared_threads ? std::move(shared_threads) : std::make_shared<ThreadBudget>(gradient_jobs_ - 1)) {
-  requireGradientMethod(gradient_method_);
+  gradient_method_ = gradientMethod(gradient_method_).name;  // an alias resolved; an unknown name throws
 }
 
 Eigen::VectorXd DesignNlp::scaledBounds(double DesignVariable::*variable_bound,
@@ -144,13 +144,13 @@ void DesignNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpEvaluation
 
 double DesignNlp::gradientCost() const {
   const double variables = static_cast<double>(problem_.design.variables.size());
-  if (gradient_method_ == "fd_forward") return variables;
-  if (gradient_method_ == "fd_central") return 2.0 * variables;
+  if (const int per_variable = gradientMethod(gradient_method_).simulations_per_variable; per_variable > 0)
+    return per_variable * variables;
   return gradient_cost_.value_or(1.0);
 }
 
 double DesignNlp::measureGradientCost(const Eigen::VectorXd& x, int repetitions) const {
-  if (gradient_method_ == "fd_forward" || gradient_method_ == "fd_central") return gradientCost();
+  if (gradientMethod(gradient_method_).simulations_per_variable > 0) return gradientCost();
   const auto seconds_since = [](std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };

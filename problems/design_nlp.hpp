@@ -24,7 +24,7 @@ namespace mbsopt {
 
 class DesignNlp : public NlpProblem {
  public:
-  /// `gradient_method`: one of gradientMethodNames(); `fd_step` for the finite differences;
+  /// `gradient_method`: one of gradientMethodChoices() (an alias becomes the name it stands for); `fd_step` for the finite differences;
   /// `gradient_jobs`: the most threads a gradient takes (designGradient; the values do not depend on
   /// it). The threads beyond the caller's own are this problem's, or, with `shared_threads`, borrowed
   /// from it whenever they are idle (the runs of `mbsopt compare` lend theirs to one another).

@@ -16,9 +16,10 @@ std::string describe(const YamlNode& node) {
   return quoted(node.text());
 }
 
-std::string listOf(std::initializer_list<const char*> words) {
+template <class Words>
+std::string listOf(const Words& words) {
   std::string text;
-  for (const char* word : words) text += (text.empty() ? "" : ", ") + std::string(word);
+  for (const auto& word : words) text += (text.empty() ? "" : ", ") + std::string(word);
   return text;
 }
 
@@ -162,12 +163,12 @@ std::string MapReader::name(const std::string& key) const {
   return text;
 }
 
-std::string MapReader::choice(const std::string& key, std::initializer_list<const char*> choices,
-                              const char* fallback) const {
-  if (!has(key) && *fallback) return fallback;
+std::string MapReader::choice(const std::string& key, const std::vector<std::string>& choices,
+                              const std::string& fallback) const {
+  if (!has(key) && !fallback.empty()) return fallback;
   const YamlNode& value = required(key);
   if (value.isScalar())
-    for (const char* choice : choices)
+    for (const std::string& choice : choices)
       if (value.text() == choice) return choice;
   fail(key, key + ": expected one of " + listOf(choices) + ", got " + describe(value));
 }

@@ -64,8 +64,8 @@ class MapReader {
   /// A name: letters, digits and '_', starting with a letter or '_'.
   std::string name(const std::string& key) const;
   /// One of `choices`; `fallback` when absent (empty: required).
-  std::string choice(const std::string& key, std::initializer_list<const char*> choices,
-                     const char* fallback = "") const;
+  std::string choice(const std::string& key, const std::vector<std::string>& choices,
+                     const std::string& fallback = "") const;
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 

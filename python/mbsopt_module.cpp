@@ -170,7 +170,7 @@ class PythonProblem {
   PythonProblem(const std::string& problem, const std::string& gradient, const py::dict& set, int jobs)
       : source_(resolveScene(problem)),
         overrides_(overridesOf(source_, set)),
-        nlp_(loadDesignProblem(source_, overrides_), gradient == "fd" ? "fd_central" : gradient, 1e-6, checkedJobs(jobs)),
+        nlp_(loadDesignProblem(source_, overrides_), gradient, 1e-6, checkedJobs(jobs)),
         gradient_(gradient),
         jobs_(jobs) {}
 

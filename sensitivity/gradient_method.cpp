@@ -9,11 +9,6 @@
 
 namespace mbsopt {
 
-const std::vector<std::string>& gradientMethodNames() {
-  static const std::vector<std::string> names{"adjoint", "continuous-adjoint", "direct", "fd_forward", "fd_central"};
-  return names;
-}
-
 namespace {
 
 /// An exact method on a problem with load cases: each case's gradient on its own simulation, its rows
@@ -72,27 +67,85 @@ DesignGradient perExtrapolationRun(const std::string& method, const DesignProble
 
 }  // namespace
 
+namespace {
+
+DesignGradient adjoint(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                       const Eigen::VectorXd& x, double, const DesignResponse* simulated, int jobs) {
+  return adjointGradient(problem, functionals, x, simulated, jobs);
+}
+DesignGradient continuousAdjoint(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                                 const Eigen::VectorXd& x, double, const DesignResponse* simulated, int) {
+  return continuousAdjointGradient(problem, functionals, x, simulated);
+}
+DesignGradient direct(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                      const Eigen::VectorXd& x, double, const DesignResponse* simulated, int jobs) {
+  return directGradient(problem, functionals, x, simulated, jobs);
+}
+DesignGradient forwardDifferences(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                                  const Eigen::VectorXd& x, double fd_step, const DesignResponse* simulated, int jobs) {
+  return finiteDifferenceGradient(problem, functionals, x, fd_step, false, simulated, jobs);
+}
+DesignGradient centralDifferences(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
+                                  const Eigen::VectorXd& x, double fd_step, const DesignResponse* simulated, int jobs) {
+  return finiteDifferenceGradient(problem, functionals, x, fd_step, true, simulated, jobs);
+}
+
+/// Other names a command line accepts for a registered method.
+const std::vector<std::pair<std::string, std::string>>& aliases() {
+  static const std::vector<std::pair<std::string, std::string>> table{{"fd", "fd_central"}};
+  return table;
+}
+
+}  // namespace
+
+const std::vector<GradientMethodInfo>& gradientMethods() {
+  static const std::vector<GradientMethodInfo> registry{
+      {"adjoint", "the discrete adjoint of the Newmark recursion, one backward sweep for all functionals", true, 0,
+       &adjoint},
+      {"continuous-adjoint", "the adjoint ODE of the equations of motion integrated backwards; its error falls with h",
+       true, 0, &continuousAdjoint},
+      {"direct", "direct differentiation: the sensitivities of q, v, a to each variable carried forward", true, 0,
+       &direct},
+      {"fd_forward", "forward differences of the whole problem, one simulation per variable", false, 1,
+       &forwardDifferences},
+      {"fd_central", "central differences of the whole problem, two simulations per variable (alias: fd)", false, 2,
+       &centralDifferences},
+  };
+  return registry;
+}
+
+std::vector<std::string> gradientMethodNames() {
+  std::vector<std::string> names;
+  for (const GradientMethodInfo& info : gradientMethods()) names.push_back(info.name);
+  return names;
+}
+
+std::vector<std::string> gradientMethodChoices() {
+  std::vector<std::string> choices = gradientMethodNames();
+  for (const auto& alias : aliases()) choices.push_back(alias.first);
+  return choices;
+}
+
+const GradientMethodInfo& gradientMethod(const std::string& name) {
+  std::string canonical = name;
+  for (const auto& [alias, method] : aliases())
+    if (alias == name) canonical = method;
+  for (const GradientMethodInfo& info : gradientMethods())
+    if (info.name == canonical) return info;
+  std::string known;
+  for (const std::string& choice : gradientMethodChoices()) known += (known.empty() ? "" : ", ") + choice;
+  throw std::invalid_argument("unknown gradient method '" + name + "' (known: " + known + ")");
+}
+
 DesignGradient designGradient(const std::string& method, const DesignProblem& problem,
                               const std::vector<ConstraintFunctional>& functionals, const Eigen::VectorXd& x,
                               double fd_step, const DesignResponse* simulated, int jobs) {
-  const bool exact = method == "adjoint" || method == "continuous-adjoint" || method == "direct";
-  if (exact && extrapolationRuns(problem) > 1)
+  const GradientMethodInfo& info = gradientMethod(method);
+  if (info.differentiates_each_simulation && extrapolationRuns(problem) > 1)
     return perExtrapolationRun(method, problem, functionals, x, fd_step, simulated, jobs);
-  if (exact && !problem.load_cases.empty()) return perLoadCase(method, problem, functionals, x, fd_step, simulated, jobs);
-  if (method == "adjoint") return adjointGradient(problem, functionals, x, simulated, jobs);
-  if (method == "continuous-adjoint") return continuousAdjointGradient(problem, functionals, x, simulated);
-  if (method == "direct") return directGradient(problem, functionals, x, simulated, jobs);
-  if (method == "fd_forward") return finiteDifferenceGradient(problem, functionals, x, fd_step, false, simulated, jobs);
-  requireGradientMethod(method);
-  return finiteDifferenceGradient(problem, functionals, x, fd_step, true, simulated, jobs);  // fd_central
-}
-
-void requireGradientMethod(const std::string& method) {
-  const auto& names = gradientMethodNames();
-  if (std::find(names.begin(), names.end(), method) != names.end()) return;
-  std::string known;
-  for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
-  throw std::invalid_argument("unknown gradient method '" + method + "' (known: " + known + ")");
+  if (info.differentiates_each_simulation && !problem.load_cases.empty())
+    return perLoadCase(method, problem, functionals, x, fd_step, simulated, jobs);
+  return info.gradient(problem, functionals, x, fd_step, simulated, jobs);
 }
 
 }  // namespace mbsopt

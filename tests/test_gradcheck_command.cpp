@@ -60,7 +60,7 @@ TEST(GradcheckCommand, WritesEveryMethodUnderTheDocumentedKeys) {
   const auto cost = document["functionals"][0]["gradients"]["adjoint"].get<std::vector<double>>();
   EXPECT_EQ(cost.back(), document["variables"].back()["scale"].get<double>());
   EXPECT_EQ(cost.front(), 0.0);
-  for (const char* key : {"simulation", "adjoint", "continuous-adjoint", "direct", "fd_central"})
+  for (const char* key : {"simulation", "adjoint", "continuous-adjoint", "direct", "fd_forward", "fd_central"})
     EXPECT_GT(document["timings_s"][key].get<double>(), 0.0) << key;
   std::filesystem::remove_all(directory);
 }

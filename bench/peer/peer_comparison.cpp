@@ -717,7 +717,7 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     for (double tolerance : accuracies) {
       // The adaptive Newmark is of order 2: below 1e-7 a run takes seconds (four-bar, Andrews) and stays
       // off the front by two orders of magnitude.
-      if (integrator == "adaptive" && tolerance < kAdaptiveDownTo) continue;
+      if (mbsopt::integratorInfo(integrator).variable_steps && tolerance < kAdaptiveDownTo) continue;
       Run run;
       run.engine = "mbsopt";
       run.integrator = integrator;

@@ -86,7 +86,7 @@ void run(const std::string& text) {
   mbsopt::addSceneArgument(app, arguments.scene, true);
   mbsopt::addDesignPointOptions(app, arguments.point);
   app.add_option("--optimizer", arguments.choice.optimizer)->check(CLI::IsMember(mbsopt::optimizerNames()));
-  app.add_option("--gradient", arguments.choice.gradient)->check(CLI::IsMember(mbsopt::gradientChoices()));
+  app.add_option("--gradient", arguments.choice.gradient)->check(CLI::IsMember(mbsopt::gradientMethodChoices()));
   app.add_option("--formulation", arguments.choice.formulation)->check(CLI::IsMember(mbsopt::formulationNames()));
   std::vector<std::string> words = mbsopt::fuzz::inputArguments(text);
   words.emplace_back(kPath);
