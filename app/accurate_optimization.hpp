@@ -1,4 +1,4 @@
-// `mbsopt optimize --accuracy TOL` (issue 18; docs/integrators.md §8): the optimizer runs on a fixed
+// `mbsopt optimize --accuracy TOL` (docs/integrators.md §8): the optimizer runs on a fixed
 // grid, so that the objective stays smooth in the design, chosen at the start so that the cost's and
 // the constraints' discretisation errors are within the tolerance there and graded at the times the
 // accelerations jump (dynamics/track_breaks.hpp); at the optimum the errors are estimated again, and

@@ -1,5 +1,5 @@
-// The discretisation error of a design problem's cost and constraints at one point (issue 18,
-// `mbsopt optimize --accuracy`; docs/integrators.md §8): the problem's values on its grid h and on
+// The discretisation error of a design problem's cost and constraints at one point
+// (`mbsopt optimize --accuracy`; docs/integrators.md §8): the problem's values on its grid h and on
 // h/2 and h/4, the error of the values at h from their differences and the order they show.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The work-precision study of design gradients (`mbsopt precision SCENE --gradients`, issue 11): each
+// The work-precision study of design gradients (`mbsopt precision SCENE --gradients`): each
 // gradient method at several steps h, against a reference gradient (the direct method at a tiny step).
 #pragma once
 

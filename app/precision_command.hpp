@@ -1,4 +1,4 @@
-// `mbsopt precision`: work-precision studies (issue 11): the integrator's error against its wall time
+// `mbsopt precision`: work-precision studies: the integrator's error against its wall time
 // over a ladder of steps and variants, or, with --gradients, that of every design-gradient method.
 #pragma once
 

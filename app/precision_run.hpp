@@ -1,4 +1,4 @@
-// One run of a work-precision study (`mbsopt precision`, issue 11): what was run, how far its result
+// One run of a work-precision study (`mbsopt precision`): what was run, how far its result
 // is from the reference and how long it took; shared by the integrator and the gradient studies.
 #pragma once
 

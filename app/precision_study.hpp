@@ -1,4 +1,4 @@
-// The integrator's work-precision study (`mbsopt precision SCENE`, issue 11): runs of a scene at
+// The integrator's work-precision study (`mbsopt precision SCENE`): runs of a scene at
 // several steps and with several variants of the Newmark integrator, each compared with a reference
 // solution (a CSV file, or a run at a tiny step) at time points that lie on every run's grid.
 #pragma once

@@ -1,4 +1,4 @@
-// Runs driven by accuracy (issue 18; docs/integrators.md): the macro step H and the number of
+// Runs driven by accuracy (docs/integrators.md): the macro step H and the number of
 // extrapolated runs are chosen so that the estimated global error of the coordinates meets a
 // tolerance, weighted per entry as IDA weights it (|e| ≤ absolute + relative·|q|).
 //

@@ -1,5 +1,5 @@
-// The trapezoidal Newmark scheme at variable steps with local error control (issue 18;
-// docs/integrators.md §4).
+// The trapezoidal Newmark scheme at variable steps with local error control
+// (docs/integrators.md §4).
 //
 // Each step's local error in the coordinates is estimated as Zienkiewicz and Xie do for the Newmark
 // family ("A simple error estimator and adaptive time stepping procedure for dynamic analysis",

@@ -1,5 +1,5 @@
 // Global extrapolation of the trapezoidal Newmark scheme, and the global error estimates it gives
-// (issue 18; docs/integrators.md §2-3).
+// (docs/integrators.md §2-3).
 //
 // The global error of a run at step h expands in powers of h at every point of its grid:
 //     y_h(t) = y(t) + e_{p₁}(t) h^{p₁} + e_{p₂}(t) h^{p₂} + …

@@ -1,4 +1,4 @@
-// The integrators by name (`--integrator`, one registry, issue 18) and the one entry point that runs
+// The integrators by name (`--integrator`, one registry) and the one entry point that runs
 // a scene with any of them: a fixed step, a fixed macro step with extrapolation, or a run driven by
 // accuracy; with or without an estimate of its global error (docs/integrators.md).
 #pragma once

@@ -1,4 +1,4 @@
-// Design problems on a variable step sequence (NewmarkSettings::time_grid, issue 18): the steps an
+// Design problems on a variable step sequence (NewmarkSettings::time_grid): the steps an
 // adaptive run chose at the initial design, frozen, so that the values stay smooth in the design; the
 // exact gradients are those of that sequence.
 //

@@ -1,4 +1,4 @@
-// Design problems run with the extrapolation (settings.integrator: extrapolation, issue 18): their
+// Design problems run with the extrapolation (settings.integrator: extrapolation): their
 // values are the combination of the Newmark runs at h/1 … h/k, and every gradient method differentiates
 // that combination exactly (the exact methods run by run, with the same weights).
 //

@@ -345,7 +345,7 @@ TEST(OptimizeCommand, AnAccuracyRunOnAdaptiveStepsRefinesThemAndKnowsItsError) {
   EXPECT_LT(error, 2.0 * estimate);
 }
 
-// The tramway to 1e-5 (issue 18): its grid graded at the four times a bogie passes an end of the arc
+// The tramway to 1e-5: its grid graded at the four times a bogie passes an end of the arc
 // (the front bogie's at 2/3.7 s and (2 + 7π)/3.7 s exactly), the paper's ∫⟨φ⟩dt replaced by the
 // exact grid maximum, and the reported cost's error against the cost at the same design on a grid of
 // an eighth of the step: within a factor of 2 of the estimate, which is below the tolerance; the grid

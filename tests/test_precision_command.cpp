@@ -1,4 +1,4 @@
-// `mbsopt precision` and `mbsopt simulate --every` end to end (issue 11): the JSON carries the
+// `mbsopt precision` and `mbsopt simulate --every` end to end: the JSON carries the
 // documented keys, Newmark's error on the pendulum falls at second order, failed runs are reported,
 // bad reference files give one clean error line, and decimated CSVs keep the first and last rows.
 // The sweeps are tiny (short end times, few steps, one repeat) so that each test stays well under

@@ -1,4 +1,4 @@
-// `mbsopt simulate` with its integrators (issue 18): the summary line and the JSON name the integrator
+// `mbsopt simulate` with its integrators: the summary line and the JSON name the integrator
 // and the estimated global error, a fixed-step run warns when its estimate is large, the output step
 // sets the CSV's rows, and bad combinations are refused with a message.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Where the accelerations jump (a curve slider passing a jump of its track's curvature) and the time
-// grids graded there (dynamics/track_breaks.hpp, issue 18).
+// grids graded there (dynamics/track_breaks.hpp).
 //
 // Independent references: the crossing times of a slider whose arc length is a quadratic in time (closed
 // form; the cubic through two time points reproduces a quadratic exactly), the grid's defining

@@ -1,4 +1,4 @@
-// Side by side with a peer (issue 11): the same mechanisms in Simbody and in mbsopt, an agreement
+// Side by side with a peer: the same mechanisms in Simbody and in mbsopt, an agreement
 // check at tight accuracy, and both engines' work-precision curves.
 //
 //   peer_comparison --out DIR [--quick] [--mechanisms four_bar,chain8,nfourbar4,andrews,nfourbar16,a02_singular]

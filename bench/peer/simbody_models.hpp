@@ -1,4 +1,4 @@
-// The Simbody side of the peer comparison (issue 11): the benchmark mechanisms built with Simbody's
+// The Simbody side of the peer comparison: the benchmark mechanisms built with Simbody's
 // MobilizedBody::Pin and Constraint::PointInPlane (springs and torques as Simbody's force elements),
 // and one timed run with a Simbody integrator.
 //
