@@ -278,6 +278,11 @@ PYBIND11_MODULE(mbsopt, m) {
   m.def("gradient_methods", [] { return gradientMethodNames(); }, "The gradient methods' names.");
   m.def("optimizers", [] { return optimizerNames(); }, "The optimizers' names.");
   m.def("formulations", [] { return formulationNames(); }, "The formulations' names.");
+  m.def("integrators", [] {
+    std::vector<std::string> names;
+    for (const IntegratorInfo& info : integrators()) names.push_back(info.name);
+    return names;
+  }, "The integrators' names.");
 
   py::class_<PythonScene>(m, "Scene",
                           "A scene (a built-in name or a YAML file), loaded once, with overrides {name: value} as "

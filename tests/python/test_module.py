@@ -6,6 +6,7 @@ import json
 import math
 import os
 import random
+import re
 import subprocess
 import tempfile
 import threading
@@ -108,6 +109,19 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
     def test_parameters_and_overrides(self):
         self.assertEqual(mbsopt.parameters("tramway")["front_secondary.k"], 246000.0)
         self.assertEqual(mbsopt.parameters("tramway", set={"front_secondary.k": 1.5e5})["front_secondary.k"], 1.5e5)
+
+    def test_the_lists_of_choices_are_those_the_command_line_accepts(self):
+        def accepted(subcommand, flag):  # CLI11's "--flag TEXT:{a,b,c}" in --help
+            text = command(subcommand, "--help").stdout
+            match = re.search(re.escape(flag) + r" TEXT:\{([^}]*)\}", text)
+            self.assertIsNotNone(match, f"{subcommand} --help has no choices for {flag}")
+            return match.group(1).split(",")
+
+        self.assertEqual(accepted("optimize", "--optimizer"), mbsopt.optimizers())
+        self.assertEqual(accepted("optimize", "--formulation"), mbsopt.formulations())
+        gradients = accepted("optimize", "--gradient")
+        self.assertEqual(gradients[:len(mbsopt.gradient_methods())], mbsopt.gradient_methods())
+        self.assertEqual(accepted("simulate", "--integrator"), mbsopt.integrators())
 
     def test_errors_are_exceptions_with_the_command_lines_words(self):
         result = command("simulate", "no_such_scene")
