@@ -112,6 +112,7 @@ OptimizerResult minimizeWithNlopt(const NloptAlgorithm& algorithm, NlpProblem& p
   if (algorithm.local) {
     nlopt::opt local(*algorithm.local, n);
     local.set_xtol_rel(options.tolerance);
+    local.set_ftol_rel(options.tolerance);
     opt.set_local_optimizer(local);
     result.optimizer += " around " + std::string(local.get_algorithm_name());
   }

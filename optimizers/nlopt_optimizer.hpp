@@ -20,7 +20,10 @@ struct NloptAlgorithm {
 
 /// One NLopt run. An "iteration" is one objective evaluation the algorithm asks for (NLopt has no
 /// iteration callback), so `max_iterations` is NLopt's evaluation budget. A local algorithm stops on
-/// the same relative change of x as the outer one.
+/// the options' relative change of x and of its own f: the augmented Lagrangian it minimises holds the
+/// constraints' penalty, so its f moves while feasibility is restored (unlike b_{k+1}, whose test is
+/// off). Without the f test, L-BFGS ran on into round-off and ended Hock-Schittkowski 71 as an NLopt
+/// failure at a violation of 3e-8 in the sanitizer build's arithmetic.
 OptimizerResult minimizeWithNlopt(const NloptAlgorithm& algorithm, NlpProblem& problem, const OptimizerOptions& options);
 
 }  // namespace mbsopt
