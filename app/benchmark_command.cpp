@@ -15,6 +15,7 @@
 #include "app/benchmark_report.hpp"
 #include "app/mpi_sweep.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
+#include "app/optimization_options.hpp"
 
 namespace mbsopt {
 

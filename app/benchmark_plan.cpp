@@ -8,7 +8,7 @@
 #include "app/atomic_file.hpp"
 #include "app/scene_argument.hpp"
 #include "mbsopt/optimizers/latin_hypercube.hpp"
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {

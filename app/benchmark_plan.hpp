@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "app/optimization_run.hpp"
+#include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/design/run_record.hpp"
 
 namespace mbsopt {
 

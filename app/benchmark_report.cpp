@@ -11,6 +11,7 @@
 
 #include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
+#include "app/optimization_plots.hpp"
 
 namespace mbsopt {
 

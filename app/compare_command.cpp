@@ -12,9 +12,12 @@
 
 #include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
-#include "app/optimization_run.hpp"
+#include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "app/scene_argument.hpp"
+#include "mbsopt/design/run_record.hpp"
+#include "app/optimization_plots.hpp"
+#include "app/optimization_options.hpp"
 
 namespace mbsopt {
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "mbsopt/dynamics/newmark.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 
 namespace mbsopt {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/problems/design_point.hpp"
+#include "mbsopt/io/design_point.hpp"
 
 namespace mbsopt {
 

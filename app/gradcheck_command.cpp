@@ -11,9 +11,9 @@
 
 #include "app/atomic_file.hpp"
 #include "app/design_point.hpp"
-#include "app/gradient_difference.hpp"
+#include "mbsopt/design/gradient_difference.hpp"
 #include "app/scene_argument.hpp"
-#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/io/scene_text.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {

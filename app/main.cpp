@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "app/benchmark_command.hpp"
-#include "app/command_line.hpp"
+#include "mbsopt/design/provenance.hpp"
 #include "app/compare_command.hpp"
 #include "app/exit_status.hpp"
 #include "app/gradcheck_command.hpp"
@@ -14,13 +14,13 @@
 #include "app/parameters_command.hpp"
 #include "app/precision_command.hpp"
 #include "app/simulate_command.hpp"
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/io/scene_file.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "mbsopt - simulate multibody systems described in scene files (Newmark, relative coordinates, closed loops by "
       "SVD), compute exact design gradients and optimise designs"};
-  app.set_version_flag("--version", std::string("mbsopt ") + MBSOPT_VERSION);
+  app.set_version_flag("--version", std::string("mbsopt ") + mbsopt::version());
   app.require_subcommand(1);
   mbsopt::recordCommandLine(argc, argv);
   mbsopt::registerSimulateCommand(app);

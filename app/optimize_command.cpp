@@ -9,15 +9,18 @@
 #include <memory>
 #include <optional>
 
-#include "app/accurate_optimization.hpp"
+#include "mbsopt/design/accurate_optimization.hpp"
 #include "app/atomic_file.hpp"
 #include "app/exit_status.hpp"
 #include "app/gnuplot.hpp"
-#include "app/optimization_run.hpp"
+#include "mbsopt/design/optimization_run.hpp"
 #include "app/registry_choices.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 #include "app/scene_argument.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
+#include "mbsopt/design/run_record.hpp"
+#include "app/optimization_plots.hpp"
+#include "app/optimization_options.hpp"
 
 namespace mbsopt {
 

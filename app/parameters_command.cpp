@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "app/scene_argument.hpp"
-#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/io/scene_text.hpp"
 
 namespace mbsopt {
 

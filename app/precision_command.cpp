@@ -13,12 +13,12 @@
 
 #include "app/atomic_file.hpp"
 #include "app/design_point.hpp"
-#include "app/gradient_precision.hpp"
+#include "mbsopt/design/gradient_precision.hpp"
 #include "app/precision_report.hpp"
-#include "app/precision_study.hpp"
+#include "mbsopt/design/precision_study.hpp"
 #include "app/scene_argument.hpp"
-#include "mbsopt/dynamics/extrapolation.hpp"
-#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/integrators/extrapolation.hpp"
+#include "mbsopt/io/scene_text.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {

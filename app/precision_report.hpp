@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/precision_run.hpp"
+#include "mbsopt/design/precision_run.hpp"
 
 namespace mbsopt {
 

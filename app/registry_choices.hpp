@@ -1,10 +1,9 @@
 // A registry's entries (integrators, gradient methods, optimizers, formulations: each a list of
-// records with a name and a one-sentence description) as a flag's --help text and its accepted
-// names, so that neither is written a second time beside the registry.
+// records with a name and a one-sentence description) as a flag's --help text, so that it is not
+// written a second time beside the registry (each registry gives its names for CLI::IsMember).
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace mbsopt {
 
@@ -14,14 +13,6 @@ std::string describedChoices(const Registry& entries) {
   std::string text;
   for (const auto& entry : entries) text += (text.empty() ? "" : "; ") + entry.name + ": " + entry.description;
   return text;
-}
-
-/// The names, for CLI::IsMember.
-template <class Registry>
-std::vector<std::string> choiceNames(const Registry& entries) {
-  std::vector<std::string> names;
-  for (const auto& entry : entries) names.push_back(entry.name);
-  return names;
 }
 
 }  // namespace mbsopt

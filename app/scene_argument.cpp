@@ -1,25 +1,12 @@
 #include "app/scene_argument.hpp"
 
-#include <filesystem>
-
-#include "mbsopt/dynamics/newmark.hpp"
-#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 
 namespace mbsopt {
 
-namespace {
-
-std::string builtinList() {
-  std::string names;
-  for (const std::string& name : builtinSceneNames()) names += (names.empty() ? "" : ", ") + name;
-  return names;
-}
-
-}  // namespace
-
 void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_overrides) {
   command.add_option("scene", argument.scene,
-                     "A scene file (YAML, see problems/scenes/README.md) or a built-in scene: " + builtinList() +
+                     "A scene file (YAML, see problems/scenes/README.md) or a built-in scene: " + builtinSceneList() +
                          " (a file of that name in the working directory comes first)")
       ->required();
   if (!with_overrides) return;
@@ -29,39 +16,6 @@ void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_over
                   "--set hinge.q0='45 deg', or the word of settings.closure (position | acceleration); repeat for several "
                   "('mbsopt parameters SCENE' lists the numbers)")
       ->allow_extra_args(false);
-}
-
-SceneSource resolveScene(const std::string& scene) {
-  const bool looks_like_file = scene.ends_with(".yaml") || scene.ends_with(".yml") ||
-                               scene.find('/') != std::string::npos;
-  if (!looks_like_file && !std::filesystem::exists(scene)) {
-    if (auto builtin = builtinScene(scene)) return *builtin;
-    throw SceneError(scene, 0, 0,
-                     "no such scene file, nor a built-in scene of that name (built-in: " + builtinList() + ")");
-  }
-  return readSceneFile(scene);
-}
-
-ParameterOverride parseOverride(const SceneSource& source, const std::string& name, const std::string& text) {
-  if (isWordSetting(name)) {  // the loader checks the word against the setting's choices
-    if (text.empty()) throw SceneError(source.path, 0, 0, "--set " + name + "=: the value is empty");
-    return ParameterOverride::ofWord(name, text);
-  }
-  double value = 0.0;
-  std::string why;
-  if (!parseNumber(text, value, why)) throw SceneError(source.path, 0, 0, name + "=" + text + ": " + why);
-  return {name, value};
-}
-
-std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets) {
-  std::vector<ParameterOverride> overrides;
-  for (const std::string& set : sets) {
-    const std::size_t equals = set.find('=');
-    if (equals == std::string::npos || equals == 0)
-      throw SceneError(source.path, 0, 0, "--set " + quoted(set) + ": expected name=value");
-    overrides.push_back(parseOverride(source, set.substr(0, equals), set.substr(equals + 1)));
-  }
-  return overrides;
 }
 
 void locatingRunFailures(const SceneArgument& argument, const std::function<void()>& work) {

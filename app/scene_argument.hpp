@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/io/scene_lookup.hpp"
 
 namespace mbsopt {
 
@@ -18,16 +18,6 @@ struct SceneArgument {
 
 /// Adds the positional scene argument (and `--set` when `with_overrides`) to a subcommand.
 void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_overrides);
-
-/// The file, or the built-in scene of that name; a SceneError when neither exists.
-SceneSource resolveScene(const std::string& scene);
-
-/// One override from its name and the value as typed (a number, optionally with `deg`; a word for a
-/// word setting such as settings.closure).
-ParameterOverride parseOverride(const SceneSource& source, const std::string& name, const std::string& text);
-
-/// Parses "name=value" (value a number, optionally with `deg`, or a word setting's word); errors name the scene.
-std::vector<ParameterOverride> parseOverrides(const SceneSource& source, const std::vector<std::string>& sets);
 
 /// Runs a command's work on the scene: a run's failure that escapes it (a SimulationError: a loop
 /// that cannot close, Newton on a step too large) becomes the scene's error at the line of the element

@@ -15,8 +15,8 @@
 #include "app/csv_output.hpp"
 #include "app/scene_argument.hpp"
 #include "app/simulation_summary.hpp"
-#include "mbsopt/dynamics/integration.hpp"
-#include "mbsopt/problems/scene_text.hpp"
+#include "mbsopt/integrators/integration.hpp"
+#include "mbsopt/io/scene_text.hpp"
 
 namespace mbsopt {
 
@@ -46,23 +46,20 @@ struct SimulateOptions {
 
 IntegrationRequest requestOf(const SimulateOptions& options, const Scene& scene) {
   const NewmarkSettings& settings = scene.settings;
-  IntegrationRequest request;
-  request.integrator = !options.integrator.empty() ? options.integrator
-                       : options.accuracy > 0.0   ? "extrapolation"
-                                                  : scene.integrator.name;
-  if (options.accuracy > 0.0)
-    request.accuracy = ErrorTolerance{options.accuracy, options.relative_accuracy};
-  request.local_tolerance = ErrorTolerance{
-      options.local_tolerance > 0.0 ? options.local_tolerance : scene.integrator.local_tolerance, 0.0};
+  IntegrationRequest request = sceneIntegration(
+      scene, options.integrator.empty() ? std::nullopt : std::optional<std::string>(options.integrator),
+      options.accuracy > 0.0 ? std::optional<ErrorTolerance>(ErrorTolerance{options.accuracy, options.relative_accuracy})
+                             : std::nullopt);
+  if (options.local_tolerance > 0.0) request.integrator.local_tolerance = options.local_tolerance;
+  if (options.runs > 0) request.integrator.extrapolation_runs = options.runs;
   request.output_step = options.output_step;
-  request.runs = options.runs > 0 ? options.runs : scene.integrator.extrapolation_runs;
   const double steps = static_cast<double>(stepsToCover(settings.end_time, settings.step));
   // auto: not for a scheme whose error is not even in h (damped β, γ; --fast-newton), where "on" is refused;
   // an adaptive run's steps are not known before it, so auto estimates it.
   request.estimate_error =
       options.error_estimate == "on" ||
       (options.error_estimate == "auto" &&
-       (integratorInfo(request.integrator).variable_steps || steps <= static_cast<double>(kEstimateByDefaultUpTo)) &&
+       (request.integrator.adaptive() || steps <= static_cast<double>(kEstimateByDefaultUpTo)) &&
        halvingDefect(settings, "the global error estimate").empty());
   return request;
 }
@@ -89,7 +86,7 @@ void run(const SimulateOptions& options) {
   if (options.fast_steps) scene.settings = withFastSteps(scene.settings);
 
   const IntegrationRequest request = requestOf(options, scene);
-  if (!request.accuracy && integratorInfo(request.integrator).extrapolated)
+  if (!request.accuracy && request.integrator.extrapolated())
     if (const std::string defect = extrapolationDefect(scene.settings); !defect.empty())
       throw SceneError(source.path, 0, 0, defect);
   const auto start = std::chrono::steady_clock::now();
@@ -183,7 +180,7 @@ void registerSimulateCommand(CLI::App& app) {
       ->add_option("--integrator", options->integrator,
                    "The integrator (default: the scene's settings.integrator, newmark unless it says; extrapolation with "
                    "--accuracy): " + describedChoices(integrators()))
-      ->check(CLI::IsMember(choiceNames(integrators())));
+      ->check(CLI::IsMember(integratorNames()));
   CLI::Option* accuracy =
       command
           ->add_option("--accuracy", options->accuracy,

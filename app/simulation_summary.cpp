@@ -1,6 +1,6 @@
 #include "app/simulation_summary.hpp"
 
-#include "mbsopt/dynamics/units.hpp"
+#include "mbsopt/model/units.hpp"
 
 #include <cstdio>
 #include <sstream>
@@ -19,7 +19,7 @@ std::string format(const char* pattern, double value) {
 std::string stepsText(const Integration& integration, const IntegrationRequest& request) {
   const EstimatedRun& run = integration.run;
   const long steps = run.trajectory.statistics.steps;
-  const IntegratorInfo& integrator = integratorInfo(request.integrator);
+  const IntegratorInfo& integrator = integratorInfo(request.integrator.name);
   const bool newmark = !integrator.extrapolated && !integrator.variable_steps;
   if (newmark && !request.accuracy) {
     // With the estimate, a run at h and one at h/2 (twice as many steps).
@@ -71,7 +71,7 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
   }
 
   out.json = {{"scene", path},
-              {"integrator", request.integrator},
+              {"integrator", request.integrator.name},
               {"end_time", settings.end_time},
               {"output_points", trajectory.time.size()},
               {"runs", run.steps},
@@ -138,7 +138,7 @@ SimulationSummary summarize(const Model& model, const std::string& path, const I
     line += ", no error estimate";
     out.json["estimated_global_error"] = nullptr;
   }
-  const IntegratorInfo& integrator = integratorInfo(request.integrator);
+  const IntegratorInfo& integrator = integratorInfo(request.integrator.name);
   if (request.accuracy || integrator.extrapolated || integrator.variable_steps || request.output_step > 0.0)  // the peaks' points
     line += ", " + std::to_string(trajectory.time.size()) + " output times";
   line += ", wall time " + format("%.3g", wall) + " s";

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/dynamics/integration.hpp"
+#include "mbsopt/integrators/integration.hpp"
 
 namespace mbsopt {
 

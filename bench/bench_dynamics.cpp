@@ -13,14 +13,14 @@
 #include <map>
 #include <string>
 
-#include "mbsopt/dynamics/model.hpp"
-#include "mbsopt/dynamics/newmark.hpp"
-#include "mbsopt/dynamics/residual.hpp"
-#include "mbsopt/dynamics/tangent.hpp"
-#include "mbsopt/dynamics/workspace.hpp"
-#include "mbsopt/dynamics/scene.hpp"
-#include "mbsopt/problems/chain_scenes.hpp"
-#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/model/model.hpp"
+#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/algorithms/residual.hpp"
+#include "mbsopt/algorithms/tangent.hpp"
+#include "mbsopt/model/workspace.hpp"
+#include "mbsopt/integrators/scene.hpp"
+#include "mbsopt/design/chain_scenes.hpp"
+#include "mbsopt/design/tramway.hpp"
 
 namespace mbsopt {
 namespace {

@@ -17,7 +17,7 @@
 #include <chrono>
 #include <vector>
 
-#include "mbsopt/problems/tramway.hpp"
+#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"

@@ -1,22 +1,24 @@
-# `cmake --install`: the libraries as the CMake package mbsopt (find_package(mbsopt CONFIG) gives
-# mbsopt::dynamics, mbsopt::sensitivity, mbsopt::optimizers, mbsopt::problems, and mbsopt::mbsopt for
-# all four), their headers under include/mbsopt/, the `mbsopt` program, and the shipped scenes and
+# `cmake --install`: the libraries as the CMake package mbsopt (find_package(mbsopt CONFIG) gives each
+# layer, mbsopt::linalg … mbsopt::design, and mbsopt::mbsopt for all of them), their headers under
+# include/mbsopt/LAYER/, the `mbsopt` program, and the shipped scenes and
 # design problems under share/mbsopt/. tests/consumer builds a program against the installed package.
 include(CMakePackageConfigHelpers)
 
+get_property(mbsopt_layers GLOBAL PROPERTY MBSOPT_LAYERS)
+list(TRANSFORM mbsopt_layers PREPEND mbsopt_ OUTPUT_VARIABLE mbsopt_layer_targets)
 add_library(mbsopt_all INTERFACE)
-target_link_libraries(mbsopt_all INTERFACE mbsopt_problems mbsopt_optimizers mbsopt_sensitivity mbsopt_dynamics)
+target_link_libraries(mbsopt_all INTERFACE ${mbsopt_layer_targets})
 set_target_properties(mbsopt_all PROPERTIES EXPORT_NAME mbsopt)
 add_library(mbsopt::mbsopt ALIAS mbsopt_all)
 
-install(TARGETS mbsopt_eigen mbsopt_dynamics mbsopt_sensitivity mbsopt_optimizers mbsopt_problems mbsopt_all
+install(TARGETS mbsopt_eigen ${mbsopt_layer_targets} mbsopt_all
         EXPORT mbsoptTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS mbsopt RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(layer dynamics sensitivity optimizers problems)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${layer}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/mbsopt/${layer}
-          FILES_MATCHING PATTERN "*.hpp")
+foreach(layer ${mbsopt_layers})
+  get_target_property(layer_folder mbsopt_${layer} SOURCE_DIR)
+  install(DIRECTORY ${layer_folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/mbsopt/${layer} FILES_MATCHING PATTERN "*.hpp")
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/problems/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mbsopt/scenes
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.md")

@@ -12,15 +12,17 @@
 #include <string>
 #include <vector>
 
-#include "app/optimization_run.hpp"
-#include "app/scene_argument.hpp"
-#include "mbsopt/dynamics/integration.hpp"
-#include "mbsopt/dynamics/newmark.hpp"
-#include "mbsopt/dynamics/units.hpp"
-#include "mbsopt/problems/design_nlp.hpp"
-#include "mbsopt/problems/design_point.hpp"
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/design/optimization_run.hpp"
+#include "mbsopt/io/scene_lookup.hpp"
+#include "mbsopt/integrators/integration.hpp"
+#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/model/units.hpp"
+#include "mbsopt/design/design_nlp.hpp"
+#include "mbsopt/io/design_point.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/design/provenance.hpp"
+#include "mbsopt/design/run_record.hpp"
 
 namespace py = pybind11;
 
@@ -111,12 +113,9 @@ class PythonScene {
   py::dict simulate(const std::optional<std::string>& integrator, const std::optional<double>& accuracy,
                     double output_step, bool estimate_error, bool fast_steps) const {
     const Scene& s = loaded_.scene;
-    IntegrationRequest request;
-    request.integrator = integrator ? *integrator : accuracy ? "extrapolation" : s.integrator.name;
-    if (accuracy) request.accuracy = ErrorTolerance{*accuracy, 0.0};
+    IntegrationRequest request =
+        sceneIntegration(s, integrator, accuracy ? std::optional<ErrorTolerance>(ErrorTolerance{*accuracy, 0.0}) : std::nullopt);
     request.output_step = output_step;
-    request.runs = s.integrator.extrapolation_runs;
-    request.local_tolerance = ErrorTolerance{s.integrator.local_tolerance, 0.0};
     request.estimate_error = estimate_error;
     Integration integration;
     {
@@ -136,7 +135,7 @@ class PythonScene {
     out["sensor_units"] = sensorUnits();
     out["sensors"] = array(t.sensors);
     out["newton_iterations"] = array(Eigen::VectorXd(t.newton_iterations.cast<double>()));
-    out["integrator"] = request.integrator;
+    out["integrator"] = request.integrator.name;
     out["steps"] = integration.run.steps;  // the step of every Newmark run made
     out["order"] = integration.run.order;
     if (integration.estimated) {  // the estimated global error of q and of the sensors, same shapes
@@ -274,15 +273,11 @@ class PythonProblem {
 PYBIND11_MODULE(mbsopt, m) {
   using namespace mbsopt;
   m.doc() = "mbsopt: simulation, exact design gradients and optimisation of multibody systems";
-  m.attr("__version__") = MBSOPT_VERSION;
+  m.attr("__version__") = version();
   m.def("gradient_methods", [] { return gradientMethodNames(); }, "The gradient methods' names.");
   m.def("optimizers", [] { return optimizerNames(); }, "The optimizers' names.");
   m.def("formulations", [] { return formulationNames(); }, "The formulations' names.");
-  m.def("integrators", [] {
-    std::vector<std::string> names;
-    for (const IntegratorInfo& info : integrators()) names.push_back(info.name);
-    return names;
-  }, "The integrators' names.");
+  m.def("integrators", [] { return integratorNames(); }, "The integrators' names.");
 
   py::class_<PythonScene>(m, "Scene",
                           "A scene (a built-in name or a YAML file), loaded once, with overrides {name: value} as "

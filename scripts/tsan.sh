@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs the concurrency test (tests/test_parallel_runs.cpp: design evaluations, finite differences,
+# Runs the concurrency test (tests/5-sensitivity/test_parallel_runs.cpp: design evaluations, finite differences,
 # exact gradients and whole SDCC, SLSQP and Ipopt optimisations on the thread pool of
-# sensitivity/parallel_runs.hpp) under ThreadSanitizer (docs/thread-sanitizer.md). Configures the
+# 5-sensitivity/parallel_runs.hpp) under ThreadSanitizer (docs/thread-sanitizer.md). Configures the
 # tsan preset (clang, -fsanitize=thread, -O1 -g, build/tsan), builds only test_parallel_runs and
 # what it links, runs it; any ThreadSanitizer report, any failed test, exits non-zero. The run's
 # output is kept in build/tsan/tsan.log.

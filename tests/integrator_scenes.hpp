@@ -12,9 +12,9 @@
 
 #include <gtest/gtest.h>
 
-#include "mbsopt/dynamics/integration.hpp"
-#include "mbsopt/dynamics/newmark.hpp"
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/integrators/integration.hpp"
+#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt::test {
@@ -59,7 +59,7 @@ inline void expectAndrewsMeetsThePublishedAngles(const std::string& integrator, 
   for (const double tolerance : tolerances) {
     IntegrationRequest request;
     request.accuracy = ErrorTolerance{tolerance, 0.0};
-    request.integrator = integrator;
+    request.integrator.name = integrator;
     request.output_step = 0.03;
     const Integration integration = integrate(scene.model, scene.settings, scene.q0, scene.v0, request);
     const Trajectory& t = integration.run.trajectory;

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "mbsopt/dynamics/kinematics.hpp"
+#include "mbsopt/algorithms/kinematics.hpp"
 
 namespace mbsopt::test {
 

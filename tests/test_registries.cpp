@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/dynamics/integration.hpp"
+#include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/optimizers/optimizer.hpp"
 #include "mbsopt/sensitivity/formulation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
@@ -26,12 +26,10 @@ struct Registry {
 };
 
 std::vector<Registry> registries() {
-  std::vector<std::string> integrator_names;
-  for (const IntegratorInfo& info : integrators()) integrator_names.push_back(info.name);
-  return {{"dynamics/integration.cpp", integrator_names},
-          {"sensitivity/gradient_method.cpp", gradientMethodChoices()},
-          {"optimizers/optimizer.cpp", optimizerNames()},
-          {"sensitivity/formulation.cpp", formulationNames()}};
+  return {{"4-integrators/integration.cpp", integratorNames()},
+          {"5-sensitivity/gradient_method.cpp", gradientMethodChoices()},
+          {"6-optimizers/optimizer.cpp", optimizerNames()},
+          {"5-sensitivity/formulation.cpp", formulationNames()}};
 }
 
 std::string escaped(const std::string& name) { return std::regex_replace(name, std::regex(R"([-.])"), R"(\$&)"); }
@@ -43,7 +41,8 @@ TEST(Registries, NoRegisteredNameIsComparedAsAStringOutsideItsRegistry) {
     for (const std::string& name : registry.names) {
       // `x == "name"`, `"name" == x`, `!=` likewise.
       const std::regex compared("(==|!=)\\s*\"" + escaped(name) + "\"|\"" + escaped(name) + "\"\\s*(==|!=)");
-      for (const char* folder : {"dynamics", "sensitivity", "optimizers", "problems", "app", "python", "bench"}) {
+      for (const char* folder : {"1-linalg", "2-model", "3-algorithms", "4-integrators", "5-sensitivity", "6-optimizers",
+                                 "7-io", "8-design", "app", "python", "bench"}) {
         for (const auto& entry : std::filesystem::recursive_directory_iterator(std::string(MBSOPT_SOURCE_DIR) + "/" + folder)) {
           const std::string extension = entry.path().extension().string();
           if (extension != ".hpp" && extension != ".cpp") continue;

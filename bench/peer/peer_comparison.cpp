@@ -52,11 +52,11 @@
 #include <vector>
 
 #include "bench/peer/simbody_models.hpp"
-#include "mbsopt/dynamics/integration.hpp"
-#include "mbsopt/dynamics/model.hpp"
-#include "mbsopt/dynamics/newmark.hpp"
-#include "mbsopt/dynamics/scene.hpp"
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/integrators/integration.hpp"
+#include "mbsopt/model/model.hpp"
+#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/integrators/scene.hpp"
+#include "mbsopt/io/scene_file.hpp"
 
 // Which Simbody this was built against (bench/peer/CMakeLists.txt: Debian's package or a Release build).
 #ifndef MBSOPT_PEER_SIMBODY_BUILD
@@ -405,7 +405,7 @@ MbsoptRun runMbsoptToAccuracy(const mbsopt::Scene& scene, const std::vector<int>
   mbsopt::NewmarkSettings settings = scene.settings;
   settings.end_time = output_interval * outputs;
   mbsopt::IntegrationRequest request;
-  request.integrator = integrator;
+  request.integrator.name = integrator;
   request.accuracy = mbsopt::ErrorTolerance{tolerance, 0.0};
   request.output_step = output_interval;
   const auto start = std::chrono::steady_clock::now();

@@ -44,7 +44,7 @@ K_START, C_START = 20.0e3, 1000.0
 # The designs whose cost is within this of the optimum: the optimizers stop on x (xtol_rel 1e-6), and
 # along this flat minimum that leaves their cost up to a few 1e-8 above it.
 DESIGN_COST_BAND = 1e-7
-FEASIBILITY = 1e-6      # m   the optimizers' feasibility tolerance (optimizers/optimizer.hpp)
+FEASIBILITY = 1e-6      # m   the optimizers' feasibility tolerance (6-optimizers/optimizer.hpp)
 
 
 def simulate(k, c, step=STEP):

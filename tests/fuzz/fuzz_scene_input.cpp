@@ -25,11 +25,11 @@
 #include <vector>
 
 #include "app/design_point.hpp"
-#include "app/optimization_run.hpp"
+#include "mbsopt/design/optimization_run.hpp"
 #include "app/scene_argument.hpp"
-#include "mbsopt/dynamics/newmark.hpp"
-#include "mbsopt/problems/design_nlp.hpp"
-#include "mbsopt/problems/scene_file.hpp"
+#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/design/design_nlp.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 #include "tests/fuzz/input_arguments.hpp"
 

@@ -89,7 +89,7 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
 
     def test_fast_steps_are_those_of_the_command_line(self):
         # fast_steps=True runs what `mbsopt simulate --fast-steps` runs: the same rows to the bit, in fewer
-        # Newton iterations than the default run (tests/test_fast_steps.cpp for their accuracy).
+        # Newton iterations than the default run (tests/4-integrators/test_fast_steps.cpp for their accuracy).
         overrides = {"settings.step": 5e-3}
         trajectory = mbsopt.simulate("four_bar", set=overrides, fast_steps=True)
         default = mbsopt.simulate("four_bar", set=overrides)

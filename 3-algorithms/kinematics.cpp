@@ -1,0 +1,196 @@
+#include "mbsopt/algorithms/kinematics.hpp"
+#include "mbsopt/model/overloaded.hpp"
+#include "mbsopt/algorithms/planar_recursions.hpp"
+#include "mbsopt/algorithms/track_state.hpp"
+
+#include <cmath>
+
+namespace mbsopt {
+
+namespace {
+
+/// The exit frame of element k from its entry frame (rotation R_e, position p_e) at coordinate q,
+/// into ws: its rotation and position, a curve slider's track at s, and with `axes` its joint axes
+/// and biases in ground axes (∂ω_rel/∂q̇, ∂v_rel/∂q̇ and (α_rel − ∂ω_rel/∂q̇ q̈)/q̇², (a_rel −
+/// ∂v_rel/∂q̇ q̈)/q̇²). Only what an element kind can make non-zero is written: the rest stays the
+/// zeros the workspace starts with (an element keeps its kind), and costs no product.
+template <class Scalar>
+void placeExit(const Model& model, const ElementKind& kind, std::size_t k, std::size_t e, std::size_t s,
+               const Scalar& q, bool axes, Workspace<Scalar>& ws) {
+  const Matrix3<Scalar>& Re = ws.rotation[e];
+  std::visit(Overloaded{
+                 [&](const Offset& o) {
+                   // The translation carries derivatives only in a pass seeded in it.
+                   const Vector3<Scalar> translation = seedsAny(ws, o.translation)
+                                                           ? Vector3<Scalar>(Re * parameter(model, ws, o.translation))
+                                                           : Vector3<Scalar>(Re * model.vector(o.translation));
+                   if (o.turn && seeds(ws, o.turn->angle))  // R(axis, angle) with its derivative
+                     ws.rotation[s] = turnedAbout(Re, o.turn->axis, parameter(model, ws, o.turn->angle));
+                   else
+                     ws.rotation[s] = o.rotates ? Matrix3<Scalar>(Re * o.rotation) : Re;
+                   ws.position[s] = ws.position[e] + translation;
+                 },
+                 [&](const RevoluteJoint& j) {
+                   ws.rotation[s] = turnedAbout(Re, j.axis, q);
+                   ws.position[s] = ws.position[e];
+                   if (axes) ws.motion_angular[k] = Re * j.axis;
+                 },
+                 [&](const PrismaticJoint& j) {
+                   const Vector3<Scalar> translation = Re * (j.axis * q);
+                   ws.rotation[s] = Re;
+                   ws.position[s] = ws.position[e] + translation;
+                   if (axes) ws.motion_linear[k] = Re * j.axis;
+                 },
+                 [&](const CurveSliderJoint& j) {
+                   // dr/ds = t to first order, as the heading and curvature (trackAt).
+                   const TrackPointTpl<Scalar> track = trackAt(model, ws, j.track, q);
+                   const Scalar& curvature = track.curvature;
+                   const Scalar& cos_heading = track.cos_heading;
+                   const Scalar& sin_heading = track.sin_heading;
+                   ws.slider_track[k] = {cos_heading, sin_heading, curvature};
+                   ws.position[s] = ws.position[e] + Re * track.position;
+                   const bool turns = j.orientation != SliderOrientation::Translate;
+                   if (axes) {
+                     ws.motion_linear[k] = Re * Vector3<Scalar>(cos_heading, sin_heading, Scalar(0));
+                     ws.bias_linear[k] = Re * (curvature * Vector3<Scalar>(-sin_heading, cos_heading, Scalar(0)));  // a = t s̈ + κ ṡ² n
+                     if (turns) {
+                       ws.motion_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), curvature);
+                       // α = (κ s̈ + κ' ṡ²) z
+                       ws.bias_angular[k] = Re * Vector3<Scalar>(Scalar(0), Scalar(0), track.curvature_derivative);
+                     }
+                   }
+                   ws.rotation[s] = turns ? turnedAbout(Re, Eigen::Vector3d::UnitZ(), cos_heading, sin_heading) : Re;
+                 }},
+             kind);
+}
+
+template <class Scalar>
+void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q, bool axes) {
+  ws.body_axes_current = false;
+  if (model.planar()) return planarGeometry(model, ws, q, axes);
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const Scalar qi = element.coordinate >= 0 ? q[element.coordinate] : Scalar(0);
+    placeExit(model, element.kind, k, static_cast<std::size_t>(element.entry), static_cast<std::size_t>(element.exit), qi, axes,
+              ws);
+  }
+}
+
+}  // namespace
+
+template <class Scalar>
+void spatialFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                       KinematicsLevel level) {
+  const bool accelerations = level == KinematicsLevel::Acceleration;
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    const Vector3<Scalar> r = ws.position[s] - ws.position[e];  // r_s/e in ground axes
+    const Vector3<Scalar>& we = ws.angular_velocity[e];
+    if (element.coordinate < 0) {  // (20)-(21) of a rigid offset: no relative rate, no term in it
+      ws.angular_velocity[s] = we;
+      ws.velocity[s] = ws.velocity[e] + we.cross(r);
+      if (!accelerations) continue;
+      ws.angular_acceleration[s] = ws.angular_acceleration[e];
+      ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r));
+      continue;
+    }
+    const Scalar& vi = v[element.coordinate];
+    const Vector3<Scalar>& Sw = ws.motion_angular[k];
+    const Vector3<Scalar>& Sv = ws.motion_linear[k];
+    const Vector3<Scalar> w_rel = Sw * vi;
+    const Vector3<Scalar> v_rel = Sv * vi;
+    ws.angular_velocity[s] = we + w_rel;                    // (21)
+    ws.velocity[s] = ws.velocity[e] + we.cross(r) + v_rel;  // (20)
+    if (!accelerations) continue;
+    const Scalar& ai = a[element.coordinate];
+    const Scalar vi2 = vi * vi;
+    ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
+    ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
+                         Scalar(2) * we.cross(v_rel) + Sv * ai + ws.bias_linear[k] * vi2;
+  }
+}
+
+template <class Scalar>
+void spatialFrameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a) {
+  const auto& elements = model.elements();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const KinematicElement& element = elements[k];
+    const auto e = static_cast<std::size_t>(element.entry);
+    const auto s = static_cast<std::size_t>(element.exit);
+    ws.angular_velocity[s].setZero();
+    ws.velocity[s].setZero();
+    const Vector3<Scalar>& alpha_e = ws.angular_acceleration[e];
+    const Vector3<Scalar> r = ws.position[s] - ws.position[e];
+    if (element.coordinate < 0) {  // (20)-(21) with q̇ = 0 and no joint rate
+      ws.angular_acceleration[s] = alpha_e;
+      ws.acceleration[s] = ws.acceleration[e] + alpha_e.cross(r);
+      continue;
+    }
+    const Scalar& ai = a[element.coordinate];
+    ws.angular_acceleration[s] = alpha_e + ws.motion_angular[k] * ai;
+    ws.acceleration[s] = ws.acceleration[e] + alpha_e.cross(r) + ws.motion_linear[k] * ai;
+  }
+}
+
+template <class Scalar>
+void frameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& v, const VectorX<Scalar>& a,
+                KinematicsLevel level) {
+  if (model.planar()) planarFrameRates(model, ws, v, a, level);
+  else spatialFrameRates(model, ws, v, a, level);
+}
+
+template <class Scalar>
+void frameAccelerationsAtRest(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a) {
+  if (model.planar()) planarFrameAccelerationsAtRest(model, ws, a);
+  else spatialFrameAccelerationsAtRest(model, ws, a);
+}
+
+template <class Scalar>
+void forwardKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
+                       const VectorX<Scalar>& v, const VectorX<Scalar>& a, KinematicsLevel level) {
+  const bool rates = level != KinematicsLevel::Position;
+  geometry(model, ws, q, rates);
+  if (rates) frameRates(model, ws, v, a, level);
+}
+
+template <class Scalar>
+void frameGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q) {
+  geometry(model, ws, q, true);
+}
+
+void unitRateTwist(const Model& model, Workspace<double>& ws, int coordinate, FrameIndex frame, bool moved) {
+  const auto f = static_cast<std::size_t>(frame);
+  if (!moved) {
+    ws.angular_velocity[f].setZero();
+    ws.velocity[f].setZero();
+    return;
+  }
+  const auto k = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(coordinate)].element);
+  const auto exit = static_cast<std::size_t>(model.elements()[k].exit);
+  ws.angular_velocity[f] = ws.motion_angular[k];                                                      // (21)
+  ws.velocity[f] = ws.motion_linear[k] + ws.motion_angular[k].cross(ws.position[f] - ws.position[exit]);  // (20)
+}
+
+template void spatialFrameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&,
+                                        const VectorX<double>&, KinematicsLevel);
+template void spatialFrameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                          const VectorX<AdScalar>&, KinematicsLevel);
+template void spatialFrameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+template void spatialFrameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
+template void frameRates<double>(const Model&, Workspace<double>&, const VectorX<double>&, const VectorX<double>&,
+                                 KinematicsLevel);
+template void frameRates<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                  const VectorX<AdScalar>&, KinematicsLevel);
+template void frameAccelerationsAtRest<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+template void frameAccelerationsAtRest<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&);
+template void frameGeometry<double>(const Model&, Workspace<double>&, const VectorX<double>&);
+template void forwardKinematics<double>(const Model&, Workspace<double>&, const VectorX<double>&,
+                                        const VectorX<double>&, const VectorX<double>&, KinematicsLevel);
+template void forwardKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
+                                          const VectorX<AdScalar>&, const VectorX<AdScalar>&, KinematicsLevel);
+
+}  // namespace mbsopt

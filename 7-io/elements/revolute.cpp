@@ -1,0 +1,15 @@
+// `revolute`: a rotation q [rad] about a unit axis of the parent frame.
+#include "mbsopt/io/element_type.hpp"
+
+namespace mbsopt {
+
+ElementType revoluteElement() {
+  return {"revolute", "a rotation q [rad] about `axis` of the parent frame; q0, v0 (deg allowed) or a driven `motion`",
+          {"axis", "q0", "v0", "motion"}, [](ElementEntry& e) {
+            const Eigen::Vector3d axis = readAxis(e.map(), "axis");
+            e.guarded([&] { e.model().addRevolute(e.name(), e.parent(), axis); });
+            e.motionOrInitialValues(e.name(), true);
+          }};
+}
+
+}  // namespace mbsopt
