@@ -1,11 +1,12 @@
 #include "mbsopt/model/model.hpp"
-#include "mbsopt/model/overloaded.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+
+#include "mbsopt/model/overloaded.hpp"
 
 namespace mbsopt {
 

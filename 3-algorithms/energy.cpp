@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/model/overloaded.hpp"
+#include "mbsopt/algorithms/kinematics.hpp"
 
 namespace mbsopt {
 

@@ -1,9 +1,10 @@
 #include "mbsopt/algorithms/kinematics.hpp"
+
+#include <cmath>
+
 #include "mbsopt/model/overloaded.hpp"
 #include "mbsopt/algorithms/planar_recursions.hpp"
 #include "mbsopt/algorithms/track_state.hpp"
-
-#include <cmath>
 
 namespace mbsopt {
 

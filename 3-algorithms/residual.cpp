@@ -6,8 +6,8 @@
 #include <utility>
 #include <variant>
 
-#include "mbsopt/algorithms/closure.hpp"
 #include "mbsopt/model/overloaded.hpp"
+#include "mbsopt/algorithms/closure.hpp"
 #include "mbsopt/algorithms/planar_recursions.hpp"
 
 namespace mbsopt {

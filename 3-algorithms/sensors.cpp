@@ -3,9 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mbsopt/model/overloaded.hpp"
 #include "mbsopt/algorithms/closure.hpp"
 #include "mbsopt/algorithms/energy.hpp"
-#include "mbsopt/model/overloaded.hpp"
 
 namespace mbsopt {
 

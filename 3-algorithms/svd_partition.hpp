@@ -20,10 +20,10 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "mbsopt/algorithms/articulated_body.hpp"
 #include "mbsopt/linalg/condition_estimate.hpp"
 #include "mbsopt/linalg/householder_basis.hpp"
 #include "mbsopt/linalg/one_sided_jacobi.hpp"
+#include "mbsopt/algorithms/articulated_body.hpp"
 
 namespace mbsopt {
 

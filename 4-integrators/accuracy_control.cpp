@@ -103,6 +103,7 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
       try {
         tableau.add(sampledNewmarkRun(model, run, q0, v0, j, outputs, progress), run.step);
       } catch (const SimulationError& e) {
+        if (!smallerStepMayHelp(e.status)) throw;  // a check or a loop no step size is at fault for
         record.failure = e.what();
         break;
       }
@@ -118,6 +119,7 @@ AccurateRun simulateToAccuracy(const Model& model, const NewmarkSettings& settin
         try {
           tableau.addRoundOffProbe(roundOffProbe(model, macro, j, q0, v0, outputs, progress));
         } catch (const SimulationError& e) {
+          if (!smallerStepMayHelp(e.status)) throw;
           record.failure = e.what();
           break;
         }

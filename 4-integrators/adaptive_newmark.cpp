@@ -94,18 +94,11 @@ AdaptiveRun adaptiveNewmarkRun(const Model& model, const NewmarkSettings& settin
     const bool lands = t + h >= stop - 1e-12 * end;
     const double h_try = lands ? stop - t : (t + 2.0 * h > stop ? 0.5 * (stop - t) : h);
     if (!(h_try >= smallest))
-      throw SimulationError("the step controller's step fell below " + threeDigits(smallest) +
+      throw SimulationError(StepStatus::StepTooLarge, "the step controller's step fell below " + threeDigits(smallest) +
                                 " s (the local error or Newton asks for ever smaller steps here)",
                             t, integrator.stepCount(), std::numeric_limits<double>::quiet_NaN(), "");
-    bool solved = false;
-    std::string failure;
-    try {
-      solved = integrator.attemptStep(lands ? stop : t + h_try);
-    } catch (const SimulationError& e) {  // a non-finite residual or a singular matrix: also a step too large
-      failure = e.what();
-    }
-    if (!solved) {
-      integrator.rejectStep();
+    if (const StepOutcome attempted = integrator.attemptStep(lands ? stop : t + h_try); !attempted.converged()) {
+      if (!smallerStepMayHelp(attempted.status)) throw SimulationError(attempted);  // a loop that cannot close
       h = kAfterFailure * h_try;
       continue;
     }
@@ -117,7 +110,7 @@ AdaptiveRun adaptiveNewmarkRun(const Model& model, const NewmarkSettings& settin
       h = std::min(factor, kSafety) * h_try;
       continue;
     }
-    integrator.acceptStep();
+    if (const StepOutcome accepted = integrator.acceptStep(); !accepted.converged()) throw SimulationError(accepted);
     if (static_cast<double>(kept.time.size()) >= most_points)
       throw std::length_error("the adaptive run has taken " + std::to_string(kept.time.size()) + " steps by t = " +
                               threeDigits(integrator.time()) + " s of " + threeDigits(end) +
@@ -193,6 +186,7 @@ AccurateRun adaptiveToAccuracy(const Model& model, const NewmarkSettings& settin
       control.tolerance.absolute *= shrink;
       control.tolerance.relative *= shrink;
     } catch (const SimulationError& e) {
+      if (!smallerStepMayHelp(e.status)) throw;  // a check or a loop no tolerance is at fault for
       record.failure = e.what();
       control.tolerance.absolute *= 0.1;  // a failure of the controller itself: ask for smaller steps
       control.tolerance.relative *= 0.1;

@@ -1,10 +1,10 @@
 #include "mbsopt/integrators/integration.hpp"
 
-#include "mbsopt/integrators/adaptive_newmark.hpp"
-#include "mbsopt/integrators/integrator_choice.hpp"
-
 #include <cmath>
 #include <stdexcept>
+
+#include "mbsopt/integrators/adaptive_newmark.hpp"
+#include "mbsopt/integrators/integrator_choice.hpp"
 
 namespace mbsopt {
 

@@ -1,7 +1,5 @@
 #include "mbsopt/integrators/newmark.hpp"
 
-#include "mbsopt/algorithms/assembly.hpp"
-
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mbsopt/algorithms/assembly.hpp"
 #include "mbsopt/algorithms/closure.hpp"
 #include "mbsopt/algorithms/mass_matrix.hpp"
 #include "mbsopt/algorithms/residual.hpp"
@@ -18,16 +17,6 @@
 namespace mbsopt {
 
 namespace {
-
-std::string describe(const std::string& what, double time, long step, double residual_norm,
-                     const std::string& element) {
-  std::ostringstream out;
-  out << what << " at t = " << time << " s (step " << step << ")";
-  const bool residual = !std::isnan(residual_norm);
-  if (residual) out << ", residual norm " << residual_norm;
-  if (!element.empty()) out << (residual ? ", largest at '" : ", at '") << element << "'";
-  return out.str();
-}
 
 /// A step in seconds as a message prints it ("0.05").
 std::string formatStep(double step) {
@@ -65,14 +54,6 @@ constexpr double kRateMeasurable = 16.0;
 constexpr double kIterationMatrixStepChange = 0.2;
 
 }  // namespace
-
-SimulationError::SimulationError(const std::string& what, double t, long s, double norm, std::string where)
-    : std::runtime_error(describe(what, t, s, norm, where)),
-      reason(what),
-      time(t),
-      step(s),
-      residual_norm(norm),
-      element(std::move(where)) {}
 
 long stepsToCover(double end_time, double step) {
   return std::max(1L, static_cast<long>(std::ceil(end_time / step * (1.0 - 1e-12))));
@@ -202,7 +183,7 @@ NewmarkIntegrator::NewmarkIntegrator(const Model& model, NewmarkSettings setting
   lambda_ = Eigen::VectorXd::Zero(model.constraintCount());
 }
 
-void NewmarkIntegrator::fail(const std::string& reason, const Eigen::VectorXd& residual) const {
+void NewmarkIntegrator::fail(StepStatus status, const std::string& reason, const Eigen::VectorXd& residual) const {
   Eigen::Index worst = 0;
   const double norm = residual.size() ? residual.cwiseAbs().maxCoeff(&worst) : 0.0;
   std::string element;
@@ -211,7 +192,7 @@ void NewmarkIntegrator::fail(const std::string& reason, const Eigen::VectorXd& r
   for (Eigen::Index i = 0; i < residual.size(); ++i)
     if (!std::isfinite(residual[i]) && i < static_cast<Eigen::Index>(free_.size()))
       element = model_.coordinateOwner(free_[static_cast<std::size_t>(i)]);
-  throw SimulationError(reason, t_, step_count_, norm, element);
+  throw SimulationError(status, reason, t_, step_count_, norm, element);
 }
 
 std::string NewmarkIntegrator::unresistedCoordinate(const Eigen::MatrixXd& matrix) const {
@@ -228,7 +209,7 @@ std::string NewmarkIntegrator::unresistedCoordinate(const Eigen::MatrixXd& matri
 
 void NewmarkIntegrator::failSingular(const std::string& reason, const Eigen::MatrixXd& matrix) const {
   const std::string element = unresistedCoordinate(matrix);
-  throw SimulationError(reason + ": nothing resists a motion of '" + element +
+  throw SimulationError(StepStatus::StepTooLarge, reason + ": nothing resists a motion of '" + element +
                             "' (a joint with no body beyond it, or a massless loop?)",
                         t_, step_count_, r_free_.size() ? r_free_.norm() : 0.0, element);
 }
@@ -239,7 +220,8 @@ void NewmarkIntegrator::factor(const Eigen::MatrixXd& matrix, const char* name) 
     // the inertia at this h (gravity on a raised chain, a negative stiffness), so the step is at fault.
     if (&matrix == &J_ && tangents_in_use_ && partition_.setIterationMatrix(mass_)) {
       const std::string element = unresistedCoordinate(matrix);
-      throw SimulationError("the iteration matrix M + gamma h C + beta h^2 K is singular on the free directions "
+      throw SimulationError(StepStatus::StepTooLarge,
+                            "the iteration matrix M + gamma h C + beta h^2 K is singular on the free directions "
                             "although the mass matrix is not: at h = " + formatStep(h_) +
                                 " s its stiffness and damping terms cancel the inertia of '" + element +
                                 "', a step too large for Newton here (take a smaller step, or --accuracy)",
@@ -271,7 +253,8 @@ void NewmarkIntegrator::setDriven(double t) {
     a_[i] = model_.value(motion, t, 2);
     if (!std::isfinite(q_[i]) || !std::isfinite(v_[i]) || !std::isfinite(a_[i])) {
       const std::string& element = model_.coordinateOwner(i);
-      throw SimulationError("the prescribed motion of '" + element + "' or its derivatives are not finite", t,
+      throw SimulationError(StepStatus::CheckFailed,
+                            "the prescribed motion of '" + element + "' or its derivatives are not finite", t,
                             step_count_, std::numeric_limits<double>::quiet_NaN(), element);
     }
   }
@@ -355,7 +338,7 @@ void NewmarkIntegrator::evaluateResidual() {
   try {
     residual(model_, ws_, q_, v_, a_, lambda_, t_, f_);
   } catch (const DegenerateElementError& degenerate) {  // an element whose force is undefined in this state
-    throw SimulationError(degenerate.what(), t_, step_count_, std::numeric_limits<double>::quiet_NaN(),
+    throw SimulationError(StepStatus::StepTooLarge, degenerate.what(), t_, step_count_, std::numeric_limits<double>::quiet_NaN(),
                           degenerate.element());
   }
   for (std::size_t j = 0; j < free_.size(); ++j) r_free_[static_cast<Eigen::Index>(j)] = f_[free_[j]];
@@ -384,7 +367,7 @@ void NewmarkIntegrator::initialize(const Eigen::VectorXd& q0, const Eigen::Vecto
   // Consistent accelerations: [M Bᵀ; B 0][q̈; λ] = −[f(0, q̇, q); b̈(0)], exact in one solve since
   // f is linear in q̈ and λ, and b̈ in q̈.
   evaluateResidual();
-  if (!r_free_.allFinite()) fail("the initial residual is not finite", r_free_);
+  if (!r_free_.allFinite()) fail(StepStatus::CheckFailed, "the initial residual is not finite", r_free_);
   massMatrix(model_, ws_, free_, mass_);
   factor(mass_, "the mass matrix");
   reduced_dirty_ = true;  // the partition now holds M, not J
@@ -460,7 +443,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
     applyNewmarkUpdate();
     evaluateResidual();
-    if (!r_free_.allFinite()) fail("the residual is not finite (NaN or infinity)", r_free_);
+    if (!r_free_.allFinite()) fail(StepStatus::StepTooLarge, "the residual is not finite (NaN or infinity)", r_free_);
     closure_.resize(model_.constraintCount());
     if (model_.constraintCount() > 0)
       closureEquations(model_, ws_, position_closure ? Derivative::Position : Derivative::Acceleration, closure_);
@@ -505,7 +488,7 @@ bool NewmarkIntegrator::newton(bool fresh_jacobian) {
     double largest = 0.0;
     for (int i : free_) largest = std::max(largest, std::abs(a_[i]));
     const double increment = da_.size() ? da_.cwiseAbs().maxCoeff() : 0.0;
-    if (!std::isfinite(increment)) fail("the Newton increment is not finite", r_free_);
+    if (!std::isfinite(increment)) fail(StepStatus::StepTooLarge, "the Newton increment is not finite", r_free_);
     // Converged: the increment is below tolerance, an ∞-norm weighted by tol·(1 + ‖q̈‖∞), or below the
     // round-off floor; or it has stopped shrinking within a few digits of that floor. ‖q̈‖∞ is capped
     // at twice the last accepted step's (plus one): a diverging iterate must not inflate its own
@@ -585,14 +568,26 @@ void NewmarkIntegrator::step() {
 void NewmarkIntegrator::advanceTo(double t_next) { advance(t_next, std::nullopt); }
 
 void NewmarkIntegrator::advance(double t_next, std::optional<double> h) {
-  if (!attempt(t_next, h)) {
-    failIfLoopsCannotClose(t_next);
-    fail("Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
+  if (const StepOutcome attempted = attemptOutcome(t_next, h); !attempted.converged()) throw SimulationError(attempted);
+  if (const StepOutcome accepted = acceptStep(); !accepted.converged()) throw SimulationError(accepted);
+}
+
+StepOutcome NewmarkIntegrator::attemptOutcome(double t_next, std::optional<double> h) {
+  try {
+    if (attempt(t_next, h)) return {StepStatus::Converged, "", t_, step_count_};
+    fail(StepStatus::NewtonDiverged,
+         "Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
              " iterations (a step too large for Newton, or a singular configuration: a smaller step, or --accuracy, "
              "which retries smaller ones)",
          r_free_);
+  } catch (const SimulationError& e) {
+    StepOutcome outcome = e.outcome();
+    // Where no configuration at t_next closes the loops, that is why, and no smaller step helps.
+    if (smallerStepMayHelp(outcome.status))
+      if (StepOutcome loops = loopsCloseAt(t_next); !loops.converged()) outcome = std::move(loops);
+    rejectStep();
+    return outcome;
   }
-  acceptStep();
 }
 
 void NewmarkIntegrator::failIfLoopsCannotClose(double t) const {
@@ -607,12 +602,21 @@ void NewmarkIntegrator::failIfLoopsCannotClose(double t) const {
     what << "the loop closed by " << cuts << " cannot be closed: the configuration nearest the last step's leaves a "
          << "closure error of " << e.closureError() << " m (a link too short for the driven motion, or a position the "
          << "loop cannot reach), so Newton could not either";
-    throw SimulationError(what.str(), t, step_count_, std::numeric_limits<double>::quiet_NaN(),
+    throw SimulationError(StepStatus::LoopCannotClose, what.str(), t, step_count_, std::numeric_limits<double>::quiet_NaN(),
                           e.openCuts().empty() ? "" : model_.cuts()[static_cast<std::size_t>(e.openCuts().front())].name);
   }
 }
 
-bool NewmarkIntegrator::attemptStep(double t_next) { return attempt(t_next, std::nullopt); }
+StepOutcome NewmarkIntegrator::attemptStep(double t_next) { return attemptOutcome(t_next, std::nullopt); }
+
+StepOutcome NewmarkIntegrator::loopsCloseAt(double t) const {
+  try {
+    failIfLoopsCannotClose(t);
+  } catch (const SimulationError& e) {
+    return e.outcome();
+  }
+  return {StepStatus::Converged, "", t, step_count_};
+}
 
 bool NewmarkIntegrator::attempt(double t_next, std::optional<double> step) {
   if (!(t_next > t_)) throw std::logic_error("Newmark: a step must move time forward");
@@ -672,7 +676,16 @@ void NewmarkIntegrator::rejectStep() {
   predictor_.reset();
 }
 
-void NewmarkIntegrator::acceptStep() {
+StepOutcome NewmarkIntegrator::acceptStep() {
+  try {
+    accept();
+  } catch (const SimulationError& e) {
+    return e.outcome();
+  }
+  return {StepStatus::Converged, "", t_, step_count_};
+}
+
+void NewmarkIntegrator::accept() {
   lambda_older_ = lambda_before_;
   for (std::size_t k = 0; k < free_.size(); ++k) free_accelerations_[static_cast<Eigen::Index>(k)] = a_[free_[k]];
   predictor_.record(free_accelerations_);
@@ -685,7 +698,7 @@ void NewmarkIntegrator::acceptStep() {
     factorMass("the mass matrix");
     reduced_dirty_ = tangents_in_use_;  // J = M: this factorization is the next step's too
     projectOntoConstraints();
-    if (!v_.allFinite() || !a_.allFinite()) fail("the projected rates are not finite", r_free_);
+    if (!v_.allFinite() || !a_.allFinite()) fail(StepStatus::StepTooLarge, "the projected rates are not finite", r_free_);
   } else {
     frameGeometry(model_, ws_, q_);
     if (model_.constraintCount() > 0) closureEquations(model_, ws_, Derivative::Position, position_closure_);
@@ -707,14 +720,16 @@ void NewmarkIntegrator::checkStep() {
   stats_.max_relative_residual =
       std::max(stats_.max_relative_residual, last_relative_residual_ * std::numeric_limits<double>::epsilon());
   if (!q_.allFinite() || !v_.allFinite() || !a_.allFinite() || !lambda_.allFinite())
-    fail("the state is not finite (NaN or infinity)", r_free_);
+    fail(StepStatus::StepTooLarge, "the state is not finite (NaN or infinity)", r_free_);
   if (model_.constraintCount() > 0)
     if (const StepDefect defect = closure_check_.check(model_, ws_, position_closure_, closureTolerance(settings_));
         !defect.reason.empty())
-      throw SimulationError(defect.reason, t_, step_count_, r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0,
+      throw SimulationError(StepStatus::StepTooLarge, defect.reason, t_, step_count_,  // another branch, or drift
+                            r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0,
                             defect.element);
   if (const StepDefect defect = energy_watch_.check(model_, ws_, q_, v_, t_); !defect.reason.empty())
-    throw SimulationError(defect.reason, t_, step_count_, r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0, "");
+    throw SimulationError(StepStatus::StepTooLarge, defect.reason, t_, step_count_,  // energy grew: an unstable step
+                          r_free_.size() ? r_free_.cwiseAbs().maxCoeff() : 0.0, "");
 }
 
 Trajectory NewmarkIntegrator::simulate(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0,

@@ -24,15 +24,16 @@
 #include <vector>
 
 #include "mbsopt/model/model.hpp"
+#include "mbsopt/model/scalar.hpp"
+#include "mbsopt/model/workspace.hpp"
+#include "mbsopt/algorithms/sensors.hpp"
+#include "mbsopt/algorithms/svd_partition.hpp"
+#include "mbsopt/algorithms/tangent.hpp"
 #include "mbsopt/integrators/newton_convergence.hpp"
 #include "mbsopt/integrators/newton_predictor.hpp"
 #include "mbsopt/integrators/run_checks.hpp"
-#include "mbsopt/algorithms/sensors.hpp"
-#include "mbsopt/model/scalar.hpp"
-#include "mbsopt/algorithms/svd_partition.hpp"
-#include "mbsopt/algorithms/tangent.hpp"
+#include "mbsopt/integrators/step_outcome.hpp"
 #include "mbsopt/integrators/trajectory.hpp"
-#include "mbsopt/model/workspace.hpp"
 
 namespace mbsopt {
 
@@ -174,16 +175,6 @@ double largestStep(const NewmarkSettings& settings);
 /// settings.closure_tolerance, or the default of its closure level when it is 0.
 double closureTolerance(const NewmarkSettings& settings);
 
-class SimulationError : public std::runtime_error {
- public:
-  SimulationError(const std::string& what, double time, long step, double residual_norm, std::string element);
-  std::string reason;  ///< what went wrong, without the time and the residual
-  double time;
-  long step;
-  double residual_norm;
-  std::string element;
-};
-
 class NewmarkIntegrator {
  public:
   /// The integrator keeps a reference to `model`, which must outlive it and stay unchanged.
@@ -197,18 +188,18 @@ class NewmarkIntegrator {
   void initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& v0, double t0 = 0.0);
   /// Advances one step: to the next multiple of uniformStep(settings), or to the next point of settings.time_grid.
   void step();
-  /// Advances one step to t_next > time() (its size t_next − time()); SimulationError when it fails.
+  /// Advances one step to t_next > time() (its size t_next − time()); a SimulationError carrying
+  /// the step's outcome when it fails.
   void advanceTo(double t_next);
-  /// Solves the step to t_next > time() without accepting it: q(), v(), a(), lambda() are then Newton's
-  /// solution at t_next, before the projections. False when Newton did not converge from any of its
-  /// starts. A SimulationError from inside the step (a non-finite residual, a singular iteration
-  /// matrix) may also mean a step too large: a caller that can retry smaller calls rejectStep() and
-  /// does. After it, acceptStep() or rejectStep() and nothing else.
-  bool attemptStep(double t_next);
+  /// Solves the step to t_next > time() without accepting it. Converged: q(), v(), a(), lambda() are
+  /// Newton's solution at t_next, before the projections, and acceptStep() or rejectStep() comes
+  /// next, nothing else. Any other outcome says why (smallerStepMayHelp(status) says whether a
+  /// smaller step may succeed) and leaves the integrator as it was before the attempt.
+  StepOutcome attemptStep(double t_next);
   /// Accepts the attempted step: the projections onto the velocity and acceleration constraints and
-  /// the checks of run_checks.hpp (SimulationError when one fails).
-  void acceptStep();
-  /// Returns to the state before the attempted step (or before a SimulationError thrown inside it).
+  /// the checks of run_checks.hpp. Anything but Converged ends the run: the outcome says why.
+  StepOutcome acceptStep();
+  /// Returns to the state before the attempted step.
   void rejectStep();
   /// initialize + stepsToCover(end_time, step) steps of uniformStep(settings), the last ending at
   /// end_time, or the steps of settings.time_grid, storing every step.
@@ -252,6 +243,11 @@ class NewmarkIntegrator {
   /// h exactly, where t_next − time() carries the round-off of the times).
   void advance(double t_next, std::optional<double> h);
   bool attempt(double t_next, std::optional<double> h);
+  /// attempt() as an outcome: a SimulationError from inside the step, or Newton's failure, becomes
+  /// the outcome, with the integrator returned to the state before the attempt.
+  StepOutcome attemptOutcome(double t_next, std::optional<double> h);
+  /// The work of acceptStep(); a SimulationError when a check fails.
+  void accept();
   /// Makes h the step of the next attempt: J's tangent part follows it (γh C_T + βh² K_T) once it has
   /// moved far enough, and Newton's start forgets its history (an extrapolation at equal spacing) when h
   /// changes by more than a factor of 2.
@@ -278,12 +274,14 @@ class NewmarkIntegrator {
   void evaluateSensors(SensorRow values);
   /// The checks of run_checks.hpp after a step; throws SimulationError when one fails.
   void checkStep();
-  [[noreturn]] void fail(const std::string& reason, const Eigen::VectorXd& residual) const;
+  [[noreturn]] void fail(StepStatus status, const std::string& reason, const Eigen::VectorXd& residual) const;
   /// After Newton failed on the step to t: when no configuration at t closes the loops (assemble()
   /// from the last accepted one leaves a closure error: a link too short for a driven motion), a
   /// SimulationError that says so at the cut joint, distinct from a step too large for Newton;
   /// otherwise nothing.
   void failIfLoopsCannotClose(double t) const;
+  /// failIfLoopsCannotClose as an outcome: LoopCannotClose naming the cut, or Converged.
+  StepOutcome loopsCloseAt(double t) const;
   /// The element of the coordinate that `matrix` resists least within the free directions.
   std::string unresistedCoordinate(const Eigen::MatrixXd& matrix) const;
   /// For an iteration matrix singular on the free directions: names the coordinate it leaves free.

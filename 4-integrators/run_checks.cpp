@@ -3,9 +3,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "mbsopt/model/overloaded.hpp"
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/integrators/newton_convergence.hpp"
-#include "mbsopt/model/overloaded.hpp"
 
 namespace mbsopt {
 

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/algorithms/energy.hpp"
 #include "mbsopt/model/model.hpp"
 #include "mbsopt/model/workspace.hpp"
+#include "mbsopt/algorithms/energy.hpp"
 
 namespace mbsopt {
 

@@ -3,8 +3,8 @@
 
 #include <Eigen/Core>
 
-#include "mbsopt/integrators/integrator_choice.hpp"
 #include "mbsopt/model/model.hpp"
+#include "mbsopt/integrators/integrator_choice.hpp"
 #include "mbsopt/integrators/newmark.hpp"
 
 namespace mbsopt {

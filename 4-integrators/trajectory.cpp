@@ -1,8 +1,8 @@
 #include "mbsopt/integrators/trajectory.hpp"
 
+#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
-#include "mbsopt/model/workspace.hpp"
 
 namespace mbsopt {
 

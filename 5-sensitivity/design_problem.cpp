@@ -1,11 +1,11 @@
 #include "mbsopt/sensitivity/design_problem.hpp"
 
-#include "mbsopt/integrators/extrapolation.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
+
+#include "mbsopt/integrators/extrapolation.hpp"
 
 #include <Eigen/SVD>
 

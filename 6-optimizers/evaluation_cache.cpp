@@ -1,12 +1,12 @@
 #include "mbsopt/optimizers/evaluation_cache.hpp"
 
-#include "mbsopt/optimizers/first_order_check.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <string>
+
+#include "mbsopt/optimizers/first_order_check.hpp"
 
 namespace mbsopt {
 

@@ -9,8 +9,8 @@
 #include <map>
 #include <sstream>
 
-#include "mbsopt/integrators/adaptive_newmark.hpp"
 #include "mbsopt/algorithms/assembly.hpp"
+#include "mbsopt/integrators/adaptive_newmark.hpp"
 #include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/io/design_file.hpp"
 #include "mbsopt/io/element_type.hpp"

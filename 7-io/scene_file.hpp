@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "mbsopt/sensitivity/design_problem.hpp"
 #include "mbsopt/integrators/scene.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
 
 namespace mbsopt {
 

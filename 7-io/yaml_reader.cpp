@@ -1,9 +1,9 @@
 #include "mbsopt/io/yaml_reader.hpp"
 
-#include "mbsopt/io/scene_text.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "mbsopt/io/scene_text.hpp"
 
 namespace mbsopt {
 

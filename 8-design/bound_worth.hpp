@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/optimizers/first_order_check.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/optimizers/first_order_check.hpp"
 
 namespace mbsopt {
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
-#include "mbsopt/design/constraint_verdicts.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/design/constraint_verdicts.hpp"
 
 namespace mbsopt {
 

@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "mbsopt/optimizers/nlp_problem.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/thread_budget.hpp"
+#include "mbsopt/optimizers/nlp_problem.hpp"
 
 namespace mbsopt {
 

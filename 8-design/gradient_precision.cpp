@@ -3,8 +3,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "mbsopt/design/gradient_difference.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/design/gradient_difference.hpp"
 
 namespace mbsopt {
 

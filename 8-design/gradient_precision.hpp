@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/design/precision_run.hpp"
-#include "mbsopt/sensitivity/design_problem.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/design/precision_run.hpp"
 
 namespace mbsopt {
 

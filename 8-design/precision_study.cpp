@@ -7,9 +7,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "mbsopt/algorithms/sensors.hpp"
 #include "mbsopt/integrators/extrapolation.hpp"
 #include "mbsopt/integrators/integration.hpp"
-#include "mbsopt/algorithms/sensors.hpp"
 #include "mbsopt/integrators/trajectory.hpp"
 #include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/io/scene_text.hpp"

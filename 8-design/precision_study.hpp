@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/design/precision_run.hpp"
 #include "mbsopt/integrators/scene.hpp"
+#include "mbsopt/design/precision_run.hpp"
 
 namespace mbsopt {
 

@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "mbsopt/model/track.hpp"
-#include "mbsopt/sensitivity/design_problem.hpp"
 #include "mbsopt/integrators/scene.hpp"
+#include "mbsopt/sensitivity/design_problem.hpp"
 
 namespace mbsopt {
 

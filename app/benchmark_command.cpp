@@ -1,5 +1,3 @@
-#include "app/option_checks.hpp"
-#include "app/output_paths.hpp"
 #include "app/benchmark_command.hpp"
 
 #include <cstdio>
@@ -10,12 +8,14 @@
 #include <numeric>
 #include <optional>
 
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "app/atomic_file.hpp"
 #include "app/benchmark_plan.hpp"
 #include "app/benchmark_report.hpp"
 #include "app/mpi_sweep.hpp"
-#include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "app/optimization_options.hpp"
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 
 namespace mbsopt {
 

@@ -5,11 +5,11 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "app/atomic_file.hpp"
-#include "app/scene_argument.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 #include "mbsopt/optimizers/latin_hypercube.hpp"
 #include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/sensitivity/gradient_method.hpp"
+#include "app/atomic_file.hpp"
+#include "app/scene_argument.hpp"
 
 namespace mbsopt {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/sensitivity/design_problem.hpp"
+#include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/design/run_record.hpp"
 
 namespace mbsopt {

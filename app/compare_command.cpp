@@ -1,5 +1,3 @@
-#include "app/option_checks.hpp"
-#include "app/output_paths.hpp"
 #include "app/compare_command.hpp"
 
 #include <algorithm>
@@ -10,14 +8,16 @@
 #include <numeric>
 #include <sstream>
 
+#include "mbsopt/sensitivity/parallel_runs.hpp"
+#include "mbsopt/design/optimization_run.hpp"
+#include "mbsopt/design/run_record.hpp"
 #include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
-#include "mbsopt/design/optimization_run.hpp"
-#include "mbsopt/sensitivity/parallel_runs.hpp"
-#include "app/scene_argument.hpp"
-#include "mbsopt/design/run_record.hpp"
-#include "app/optimization_plots.hpp"
 #include "app/optimization_options.hpp"
+#include "app/optimization_plots.hpp"
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
+#include "app/scene_argument.hpp"
 
 namespace mbsopt {
 

@@ -1,5 +1,3 @@
-#include "app/option_checks.hpp"
-#include "app/output_paths.hpp"
 #include "app/gradcheck_command.hpp"
 
 #include <chrono>
@@ -9,12 +7,14 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/scene_text.hpp"
+#include "mbsopt/design/gradient_difference.hpp"
 #include "app/atomic_file.hpp"
 #include "app/design_point.hpp"
-#include "mbsopt/design/gradient_difference.hpp"
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/scene_argument.hpp"
-#include "mbsopt/io/scene_text.hpp"
-#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -5,8 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "app/benchmark_command.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/design/provenance.hpp"
+#include "app/benchmark_command.hpp"
 #include "app/compare_command.hpp"
 #include "app/exit_status.hpp"
 #include "app/gradcheck_command.hpp"
@@ -14,7 +15,6 @@
 #include "app/parameters_command.hpp"
 #include "app/precision_command.hpp"
 #include "app/simulate_command.hpp"
-#include "mbsopt/io/scene_file.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{

@@ -1,8 +1,8 @@
 #include "app/optimization_options.hpp"
 
-#include "app/option_checks.hpp"
 #include "mbsopt/sensitivity/formulation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "app/option_checks.hpp"
 
 namespace mbsopt {
 

@@ -1,5 +1,3 @@
-#include "app/option_checks.hpp"
-#include "app/output_paths.hpp"
 #include "app/optimize_command.hpp"
 
 #include <algorithm>
@@ -9,18 +7,20 @@
 #include <memory>
 #include <optional>
 
+#include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "mbsopt/design/accurate_optimization.hpp"
+#include "mbsopt/design/optimization_run.hpp"
+#include "mbsopt/design/run_record.hpp"
 #include "app/atomic_file.hpp"
 #include "app/exit_status.hpp"
 #include "app/gnuplot.hpp"
-#include "mbsopt/design/optimization_run.hpp"
-#include "app/registry_choices.hpp"
-#include "mbsopt/sensitivity/gradient_method.hpp"
-#include "app/scene_argument.hpp"
-#include "mbsopt/sensitivity/parallel_runs.hpp"
-#include "mbsopt/design/run_record.hpp"
-#include "app/optimization_plots.hpp"
 #include "app/optimization_options.hpp"
+#include "app/optimization_plots.hpp"
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
+#include "app/registry_choices.hpp"
+#include "app/scene_argument.hpp"
 
 namespace mbsopt {
 

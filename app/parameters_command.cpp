@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/scene_argument.hpp"
 #include "mbsopt/io/scene_text.hpp"
+#include "app/scene_argument.hpp"
 
 namespace mbsopt {
 

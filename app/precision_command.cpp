@@ -1,5 +1,3 @@
-#include "app/option_checks.hpp"
-#include "app/output_paths.hpp"
 #include "app/precision_command.hpp"
 
 #include <algorithm>
@@ -11,15 +9,17 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "mbsopt/integrators/extrapolation.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/scene_text.hpp"
+#include "mbsopt/design/gradient_precision.hpp"
+#include "mbsopt/design/precision_study.hpp"
 #include "app/atomic_file.hpp"
 #include "app/design_point.hpp"
-#include "mbsopt/design/gradient_precision.hpp"
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
 #include "app/precision_report.hpp"
-#include "mbsopt/design/precision_study.hpp"
 #include "app/scene_argument.hpp"
-#include "mbsopt/integrators/extrapolation.hpp"
-#include "mbsopt/io/scene_text.hpp"
-#include "mbsopt/sensitivity/gradient_method.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,3 @@
-#include "app/option_checks.hpp"
 #include "app/simulate_command.hpp"
 
 #include <chrono>
@@ -9,14 +8,15 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "app/atomic_file.hpp"
-#include "app/output_paths.hpp"
-#include "app/registry_choices.hpp"
-#include "app/csv_output.hpp"
-#include "app/scene_argument.hpp"
-#include "app/simulation_summary.hpp"
 #include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/io/scene_text.hpp"
+#include "app/atomic_file.hpp"
+#include "app/csv_output.hpp"
+#include "app/option_checks.hpp"
+#include "app/output_paths.hpp"
+#include "app/registry_choices.hpp"
+#include "app/scene_argument.hpp"
+#include "app/simulation_summary.hpp"
 
 namespace mbsopt {
 

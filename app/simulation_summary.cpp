@@ -1,9 +1,9 @@
 #include "app/simulation_summary.hpp"
 
-#include "mbsopt/model/units.hpp"
-
 #include <cstdio>
 #include <sstream>
+
+#include "mbsopt/model/units.hpp"
 
 namespace mbsopt {
 

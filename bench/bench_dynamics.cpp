@@ -14,10 +14,10 @@
 #include <string>
 
 #include "mbsopt/model/model.hpp"
-#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/algorithms/residual.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
-#include "mbsopt/model/workspace.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/integrators/scene.hpp"
 #include "mbsopt/design/chain_scenes.hpp"
 #include "mbsopt/design/tramway.hpp"

@@ -17,12 +17,12 @@
 #include <chrono>
 #include <vector>
 
-#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "mbsopt/sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/design/tramway.hpp"
 
 namespace mbsopt {
 namespace {

@@ -12,17 +12,19 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/design/optimization_run.hpp"
-#include "mbsopt/io/scene_lookup.hpp"
+#include "mbsopt/model/units.hpp"
 #include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/model/units.hpp"
-#include "mbsopt/design/design_nlp.hpp"
+#include "mbsopt/sensitivity/gradient_method.hpp"
 #include "mbsopt/io/design_point.hpp"
 #include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/scene_lookup.hpp"
+#include "mbsopt/design/design_nlp.hpp"
+#include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/design/provenance.hpp"
 #include "mbsopt/design/run_record.hpp"
+#include "python/conversions.hpp"
+#include "python/optimization_run_binding.hpp"
 
 namespace py = pybind11;
 
@@ -37,24 +39,6 @@ std::vector<ParameterOverride> overridesOf(const SceneSource& source, const py::
     out.push_back(parseOverride(source, py::str(name), py::str(value)));
   return out;
 }
-
-/// A matrix as a numpy array of its own (rows × columns, C order).
-py::array_t<double> array(const Eigen::MatrixXd& m) {
-  py::array_t<double> out({m.rows(), m.cols()});
-  auto view = out.mutable_unchecked<2>();
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.cols(); ++j) view(i, j) = m(i, j);
-  return out;
-}
-
-py::array_t<double> array(const Eigen::VectorXd& v) {
-  py::array_t<double> out(v.size());
-  std::copy(v.data(), v.data() + v.size(), out.mutable_data());
-  return out;
-}
-
-/// JSON as Python objects, through the json module (the records the command line writes).
-py::object pythonOf(const nlohmann::json& json) { return py::module_::import("json").attr("loads")(json.dump()); }
 
 /// A scene loaded once, with its overrides: `mbsopt.Scene`. set() adds overrides and reloads it, so
 /// a value is checked, and settings (words) take effect, exactly as `--set` does on the command line;
@@ -223,7 +207,7 @@ class PythonProblem {
     return out;
   }
 
-  py::object optimize(const std::string& optimizer, const std::string& formulation, std::optional<double> epsilon,
+  PythonRun optimize(const std::string& optimizer, const std::string& formulation, std::optional<double> epsilon,
                       std::optional<double> budget, int max_iter, const py::dict& settings) const {
     RunChoice choice;
     choice.optimizer = optimizer;
@@ -235,12 +219,12 @@ class PythonProblem {
     choice.gradient_jobs = jobs_;
     for (const auto& [name, value] : settings)
       choice.settings.push_back(std::string(py::str(name)) + "=" + std::string(py::str(value)));
-    OptimizationRun run;
+    PythonRun run{{}, source_.path};
     {
       const py::gil_scoped_release unlocked;  // a run takes seconds; other Python threads may go on
-      run = runOptimization(problem(), choice, {});
+      run.run = runOptimization(problem(), choice, {});
     }
-    return pythonOf(toJson(run, source_.path));
+    return run;
   }
 
   const DesignProblem& problem() const { return nlp_.problem(); }
@@ -278,6 +262,7 @@ PYBIND11_MODULE(mbsopt, m) {
   m.def("optimizers", [] { return optimizerNames(); }, "The optimizers' names.");
   m.def("formulations", [] { return formulationNames(); }, "The formulations' names.");
   m.def("integrators", [] { return integratorNames(); }, "The integrators' names.");
+  bindOptimizationRun(m);
 
   py::class_<PythonScene>(m, "Scene",
                           "A scene (a built-in name or a YAML file), loaded once, with overrides {name: value} as "
@@ -319,9 +304,9 @@ PYBIND11_MODULE(mbsopt, m) {
       .def("optimize", &PythonProblem::optimize, py::arg("optimizer") = "sdcc", py::arg("formulation") = "",
            py::arg("epsilon") = py::none(), py::arg("budget") = py::none(), py::arg("max_iter") = 100,
            py::arg("settings") = py::dict(),
-           "Runs an optimizer from the problem's start: the record `mbsopt optimize --json` writes, as a dict "
-           "(status, message, design, responses, constraints, cost_functional, history, ...). formulation '' "
-           "is the problem's own; budget in simulation-equivalents; settings {name: value} are the optimizer's.")
+           "Runs an optimizer from the problem's start: an OptimizationRun (status, design, constraints, history, "
+           "...; record() is what `mbsopt optimize --json` writes). formulation '' is the problem's own; budget "
+           "in simulation-equivalents; settings {name: value} are the optimizer's.")
       .def_property_readonly("variables", &PythonProblem::variables, "The design variables' parameters, then b_{k+1}.")
       .def_property_readonly("scales", &PythonProblem::scales, "value = x * scale, per variable.")
       .def_property_readonly("lower", &PythonProblem::lower,

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "mbsopt/integrators/integration.hpp"
-#include "mbsopt/optimizers/optimizer.hpp"
 #include "mbsopt/sensitivity/formulation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
 
 namespace mbsopt {
 namespace {

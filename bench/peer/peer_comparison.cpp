@@ -52,8 +52,8 @@
 #include <vector>
 
 #include "bench/peer/simbody_models.hpp"
-#include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/model/model.hpp"
+#include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/integrators/scene.hpp"
 #include "mbsopt/io/scene_file.hpp"

@@ -18,6 +18,7 @@ matplotlib.use("Agg")  # files, no display
 import matplotlib.pyplot as plt
 
 import mbsopt
+import numpy
 
 TITLES = {"positive_part": "∫⟨φ⟩dt (the paper's)", "grid_max": "max over the time grid"}
 
@@ -38,14 +39,13 @@ def main():
     for formulation, axis in zip(formulations, axes[0]):
         for optimizer in args.optimizers.split(","):
             run = mbsopt.optimize("tramway", optimizer=optimizer, formulation=formulation)
-            cost = run["cost_functional"]
-            print(f"{formulation:14} {optimizer:10} {run['status']:10} {cost['final']:19.6f} "
-                  f"{run['simulation_equivalents']:17.0f} {'yes' if run['feasible'] else 'no':>9}")
-            points = [(h["simulation_equivalents"], h["cost_functional"]) for h in run["history"]
-                      if h["cost_functional"] is not None]
-            axis.plot(*zip(*points), marker="o", markersize=3, label=f"{optimizer} ({run['status']})")
+            print(f"{formulation:14} {optimizer:10} {run.status.name:10} {run.cost_functional:19.6f} "
+                  f"{run.simulation_equivalents:17.0f} {'yes' if run.feasible else 'no':>9}")
+            known = ~numpy.isnan(run.history.cost_functional)  # records that say which point they were
+            axis.plot(run.history.simulation_equivalents[known], run.history.cost_functional[known], marker="o",
+                      markersize=3, label=f"{optimizer} ({run.status.name})")
         axis.set_xlabel("simulation-equivalents")
-        axis.set_ylabel(f"{cost['name']} [{cost['unit']}]")
+        axis.set_ylabel(f"{run.cost_name} [{run.cost_unit}]")
         axis.set_title(f"tramway, {TITLES.get(formulation, formulation)}, adjoint gradients")
         axis.grid(True)
         axis.legend()

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "mbsopt/model/model.hpp"
-#include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/algorithms/sensors.hpp"
 #include "mbsopt/model/track.hpp"
+#include "mbsopt/algorithms/sensors.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 
 namespace mbsopt {
 namespace {

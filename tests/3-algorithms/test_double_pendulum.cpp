@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "mbsopt/model/model.hpp"
+#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/algorithms/residual.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
-#include "mbsopt/model/workspace.hpp"
 
 using namespace mbsopt;
 

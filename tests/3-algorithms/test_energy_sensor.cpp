@@ -12,8 +12,8 @@
 
 #include "mbsopt/algorithms/energy.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
-#include "tests/mechanical_energy.hpp"
 #include "mbsopt/io/scene_file.hpp"
+#include "tests/mechanical_energy.hpp"
 
 namespace mbsopt {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 
 using namespace mbsopt;
 

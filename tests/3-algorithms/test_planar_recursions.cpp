@@ -28,16 +28,16 @@
 #include <type_traits>
 #include <vector>
 
-#include "mbsopt/algorithms/kinematics.hpp"
-#include "mbsopt/algorithms/mass_matrix.hpp"
 #include "mbsopt/model/model.hpp"
-#include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/algorithms/planar_recursions.hpp"
-#include "mbsopt/algorithms/residual.hpp"
 #include "mbsopt/model/track.hpp"
 #include "mbsopt/model/workspace.hpp"
-#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/algorithms/kinematics.hpp"
+#include "mbsopt/algorithms/mass_matrix.hpp"
+#include "mbsopt/algorithms/planar_recursions.hpp"
+#include "mbsopt/algorithms/residual.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/sensitivity/forward_ad.hpp"
+#include "mbsopt/io/scene_file.hpp"
 
 namespace mbsopt {
 namespace {

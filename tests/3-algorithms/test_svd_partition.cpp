@@ -15,10 +15,10 @@
 #include <limits>
 #include <random>
 
+#include "mbsopt/linalg/small_products.hpp"
 #include "mbsopt/algorithms/articulated_body.hpp"
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/algorithms/mass_matrix.hpp"
-#include "mbsopt/linalg/small_products.hpp"
 #include "mbsopt/algorithms/svd_partition.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
 #include "mbsopt/design/chain_scenes.hpp"

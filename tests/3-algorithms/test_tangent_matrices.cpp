@@ -22,14 +22,14 @@
 #include <string>
 #include <vector>
 
+#include "mbsopt/model/model.hpp"
+#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/algorithms/articulated_body.hpp"
 #include "mbsopt/algorithms/closure.hpp"
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/algorithms/mass_matrix.hpp"
-#include "mbsopt/model/model.hpp"
 #include "mbsopt/algorithms/residual.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
-#include "mbsopt/model/workspace.hpp"
 
 namespace mbsopt {
 namespace {

@@ -14,12 +14,12 @@
 #include <limits>
 
 #include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/design/chain_scenes.hpp"
-#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/design_problem.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "mbsopt/sensitivity/newmark_derivatives.hpp"
+#include "mbsopt/design/chain_scenes.hpp"
+#include "mbsopt/design/tramway.hpp"
 
 namespace {
 std::atomic<long> allocations{0};

@@ -10,11 +10,11 @@
 #include <cmath>
 #include <memory>
 
+#include "mbsopt/model/model.hpp"
+#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/algorithms/assembly.hpp"
 #include "mbsopt/algorithms/kinematics.hpp"
-#include "mbsopt/model/model.hpp"
 #include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/model/workspace.hpp"
 
 namespace mbsopt {
 namespace {

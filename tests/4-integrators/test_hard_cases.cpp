@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "mbsopt/model/model.hpp"
-#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/io/scene_file.hpp"
 
 namespace mbsopt {

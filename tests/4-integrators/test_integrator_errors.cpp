@@ -57,6 +57,7 @@ TEST(IntegratorErrors, SingularIterationMatrixIsReported) {
         try {
           integrator.simulate(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1));
         } catch (const SimulationError& error) {
+          EXPECT_EQ(error.status, StepStatus::StepTooLarge);
           EXPECT_NE(std::string(error.what()).find("singular"), std::string::npos) << error.what();
           throw;
         }
@@ -80,6 +81,7 @@ TEST(IntegratorErrors, NewtonNonConvergenceSaysHowFarItGot) {
     FAIL() << "expected a SimulationError";
   } catch (const SimulationError& error) {
     const std::string message = error.what();
+    EXPECT_EQ(error.status, StepStatus::NewtonDiverged);
     EXPECT_NE(message.find("did not converge"), std::string::npos) << message;
     EXPECT_NE(message.find("t = "), std::string::npos) << message;
     EXPECT_NE(message.find("'hinge'"), std::string::npos) << message;
@@ -102,6 +104,7 @@ TEST(IntegratorErrors, ALoopThatCannotCloseIsNamedAtItsCutWithTheTime) {
     FAIL() << "expected a SimulationError";
   } catch (const SimulationError& error) {
     const double t_star = (std::numbers::pi + std::asin(0.7)) / 10.0, h = scene.settings.step;
+    EXPECT_EQ(error.status, StepStatus::LoopCannotClose);
     EXPECT_EQ(error.element, "wrist_pin");
     EXPECT_GT(error.time, t_star);
     EXPECT_LE(error.time, t_star + h * (1 + 1e-9));

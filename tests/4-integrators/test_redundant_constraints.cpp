@@ -15,12 +15,12 @@
 #include <memory>
 #include <string>
 
-#include "mbsopt/algorithms/assembly.hpp"
 #include "mbsopt/model/model.hpp"
-#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/model/workspace.hpp"
+#include "mbsopt/algorithms/assembly.hpp"
 #include "mbsopt/algorithms/svd_partition.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
-#include "mbsopt/model/workspace.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 
 namespace mbsopt {
 namespace {

@@ -21,8 +21,8 @@
 
 #include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/integrators/run_checks.hpp"
-#include "mbsopt/design/chain_scenes.hpp"
 #include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/chain_scenes.hpp"
 #include "mbsopt/design/tramway.hpp"
 
 namespace mbsopt {

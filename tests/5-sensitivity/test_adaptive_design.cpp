@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "mbsopt/integrators/adaptive_newmark.hpp"
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

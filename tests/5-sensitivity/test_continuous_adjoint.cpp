@@ -8,9 +8,9 @@
 
 #include <cmath>
 
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "mbsopt/algorithms/sensors.hpp"
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/gradient_checks.hpp"
 
 namespace mbsopt {

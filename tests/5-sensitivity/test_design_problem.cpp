@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "mbsopt/optimizers/optimizer.hpp"
-#include "mbsopt/design/design_nlp.hpp"
-#include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/design_nlp.hpp"
+#include "mbsopt/design/tramway.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

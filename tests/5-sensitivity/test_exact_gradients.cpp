@@ -12,14 +12,14 @@
 #include <string>
 
 #include "mbsopt/algorithms/mass_matrix.hpp"
+#include "mbsopt/algorithms/svd_partition.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
 #include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/algorithms/svd_partition.hpp"
-#include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/tramway.hpp"
 #include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

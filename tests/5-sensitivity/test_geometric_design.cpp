@@ -13,12 +13,12 @@
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/algorithms/svd_partition.hpp"
 #include "mbsopt/algorithms/tangent.hpp"
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/continuous_adjoint.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
 #include "mbsopt/sensitivity/initial_state.hpp"
 #include "mbsopt/sensitivity/response_jacobian.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/gradient_checks.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

@@ -10,12 +10,12 @@
 #include <string>
 #include <stdexcept>
 
-#include "mbsopt/optimizers/optimizer.hpp"
-#include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/design/design_nlp.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 #include "mbsopt/sensitivity/newmark_derivatives.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
+#include "mbsopt/optimizers/optimizer.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/design_nlp.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

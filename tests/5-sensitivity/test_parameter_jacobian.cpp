@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "mbsopt/algorithms/residual.hpp"
-#include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/newmark_derivatives.hpp"
 #include "mbsopt/sensitivity/parameter_jacobian.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/tramway.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

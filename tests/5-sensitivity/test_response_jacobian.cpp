@@ -4,8 +4,8 @@
 
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
-#include "mbsopt/design/tramway.hpp"
 #include "mbsopt/sensitivity/response_jacobian.hpp"
+#include "mbsopt/design/tramway.hpp"
 
 namespace mbsopt {
 namespace {

@@ -3,9 +3,9 @@
 // are in, and not fooled by a variable whose derivative is small only because its unit is.
 #include <gtest/gtest.h>
 
-#include "tests/analytic_problems.hpp"
 #include "mbsopt/optimizers/evaluation_cache.hpp"
 #include "mbsopt/optimizers/first_order_check.hpp"
+#include "tests/analytic_problems.hpp"
 
 namespace mbsopt {
 namespace {

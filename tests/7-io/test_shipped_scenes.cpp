@@ -24,13 +24,13 @@
 #include <utility>
 #include <vector>
 
+#include "mbsopt/model/model.hpp"
+#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/algorithms/kinematics.hpp"
 #include "mbsopt/algorithms/mass_matrix.hpp"
-#include "mbsopt/model/model.hpp"
-#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
+#include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/integrators/trajectory.hpp"
-#include "mbsopt/model/workspace.hpp"
 #include "mbsopt/io/scene_file.hpp"
 
 namespace mbsopt {

@@ -6,10 +6,10 @@
 
 #include <string>
 
-#include "mbsopt/io/scene_file.hpp"
-#include "mbsopt/design/design_nlp.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/design_nlp.hpp"
 #include "tests/sensitivity_scenes.hpp"
 
 namespace mbsopt {

@@ -17,9 +17,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/direct_sensitivity.hpp"
 #include "mbsopt/sensitivity/discrete_adjoint.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/gradient_checks.hpp"
 
 namespace mbsopt {

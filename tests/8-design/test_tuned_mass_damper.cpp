@@ -12,8 +12,8 @@
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/command_directory.hpp"
 
 namespace mbsopt {

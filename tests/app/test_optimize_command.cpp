@@ -15,8 +15,8 @@
 #include <unistd.h>
 
 #include "mbsopt/integrators/track_breaks.hpp"
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/design_evaluation.hpp"
+#include "mbsopt/io/scene_file.hpp"
 #include "tests/command_directory.hpp"
 #include "tests/sensitivity_scenes.hpp"
 

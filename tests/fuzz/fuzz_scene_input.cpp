@@ -24,13 +24,13 @@
 #include <string>
 #include <vector>
 
-#include "app/design_point.hpp"
-#include "mbsopt/design/optimization_run.hpp"
-#include "app/scene_argument.hpp"
 #include "mbsopt/integrators/newmark.hpp"
-#include "mbsopt/design/design_nlp.hpp"
-#include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/design/design_nlp.hpp"
+#include "mbsopt/design/optimization_run.hpp"
+#include "app/design_point.hpp"
+#include "app/scene_argument.hpp"
 #include "tests/fuzz/input_arguments.hpp"
 
 namespace {

@@ -29,7 +29,8 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         # The same run in both (the results do not depend on the gradients' threads): the same
         # designs, status and history to the bit; the tramway's optimum, 2.189373 m/s² on its grid
         # (README), to what the constraints' tolerances are worth there.
-        record = mbsopt.optimize("tramway", optimizer="sdcc", gradient="adjoint", jobs=1)
+        run = mbsopt.optimize("tramway", optimizer="sdcc", gradient="adjoint", jobs=1)
+        record = run.record()
         with tempfile.TemporaryDirectory() as directory:
             path = os.path.join(directory, "result.json")
             self.assertEqual(command("optimize", "tramway", "--jobs", "1", "--json", path).returncode, 0)
@@ -41,6 +42,23 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         self.assertEqual([h["design"] for h in record["history"]], [h["design"] for h in expected["history"]])
         self.assertEqual(record["reported_iterate"]["point"], "final")
         self.assertAlmostEqual(record["cost_functional"]["final"], 2.189373, delta=record["tolerance_worth"])
+        # The object says the same as its record, in Python's types: enums, numpy arrays, verdicts.
+        self.assertEqual(run.status, mbsopt.Status.converged)
+        self.assertEqual(run.status.name, expected["status"])
+        self.assertEqual(run.reported, mbsopt.ReportedPoint.final)
+        self.assertIsInstance(run.design, numpy.ndarray)
+        self.assertEqual(run.design.tolist(), expected["design"])
+        self.assertEqual(run.variables, [v["parameter"] for v in expected["variables"]])
+        self.assertEqual(run.cost_functional, expected["cost_functional"]["final"])
+        self.assertEqual(run.feasible, expected["feasible"])
+        self.assertEqual([(c.name, c.value, c.met) for c in run.constraints],
+                         [(c["name"], c["value"], c["met"]) for c in expected["constraints"]])
+        self.assertEqual(run.history.design.shape, (len(expected["history"]), len(expected["design"])))
+        self.assertEqual(run.history.design.tolist(), [h["design"] for h in expected["history"]])
+        # The budget's count holds a measured gradient cost, so it is the object's own record's.
+        self.assertEqual(run.history.simulation_equivalents.tolist(),
+                         [h["simulation_equivalents"] for h in record["history"]])
+        self.assertEqual(run.responses, expected["responses"])
 
     def test_simulate_gives_the_trajectory_of_mbsopt_simulate(self):
         trajectory = mbsopt.simulate("pendulum", set={"settings.end_time": 1})
@@ -303,15 +321,15 @@ class RandomInputs(unittest.TestCase):
                            budget=self.random.choice([None, self.number(1.0, 30.0)]),
                            max_iter=self.random.choice([-1, 0, 1, 2, 3]),
                            settings=self.random.choice([{}, {}, {"xtol_rel": self.number(0.0, 1e-3)}, {"nope": 1}]))
-            record = self.refused(lambda: self.problem.optimize(**options))
-            if record is None:
+            run = self.refused(lambda: self.problem.optimize(**options))
+            if run is None:
                 continue
             ran += 1
-            self.assertIn(record["status"], ("converged", "failed", "max_iterations", "unsupported"), options)
-            self.assertFinite(record["design"], "design")
-            self.assertFinite(list(record["responses"].values()), "responses")
-            if record["status"] == "converged":
-                self.assertTrue(math.isfinite(record["cost_functional"]["final"]), options)
+            self.assertIsInstance(run.status, mbsopt.Status, options)
+            self.assertFinite(run.design, "design")
+            self.assertFinite(list(run.responses.values()), "responses")
+            if run.status == mbsopt.Status.converged:
+                self.assertTrue(math.isfinite(run.cost_functional), options)
         self.assertGreater(ran, 3)
 
 
