@@ -574,7 +574,8 @@ void NewmarkIntegrator::advance(double t_next, std::optional<double> h) {
 
 StepOutcome NewmarkIntegrator::attemptOutcome(double t_next, std::optional<double> h) {
   try {
-    if (attempt(t_next, h)) return {StepStatus::Converged, "", t_, step_count_};
+    if (attempt(t_next, h))
+      return {StepStatus::Converged, "", t_, step_count_, std::numeric_limits<double>::quiet_NaN(), ""};
     fail(StepStatus::NewtonDiverged,
          "Newton did not converge in " + std::to_string(settings_.max_newton_iterations) +
              " iterations (a step too large for Newton, or a singular configuration: a smaller step, or --accuracy, "
@@ -615,7 +616,7 @@ StepOutcome NewmarkIntegrator::loopsCloseAt(double t) const {
   } catch (const SimulationError& e) {
     return e.outcome();
   }
-  return {StepStatus::Converged, "", t, step_count_};
+  return {StepStatus::Converged, "", t, step_count_, std::numeric_limits<double>::quiet_NaN(), ""};
 }
 
 bool NewmarkIntegrator::attempt(double t_next, std::optional<double> step) {
@@ -682,7 +683,7 @@ StepOutcome NewmarkIntegrator::acceptStep() {
   } catch (const SimulationError& e) {
     return e.outcome();
   }
-  return {StepStatus::Converged, "", t_, step_count_};
+  return {StepStatus::Converged, "", t_, step_count_, std::numeric_limits<double>::quiet_NaN(), ""};
 }
 
 void NewmarkIntegrator::accept() {
