@@ -35,9 +35,9 @@ std::vector<std::string> integratorNames() {
 }
 
 std::string integratorNameList() {
-  std::string names;
-  for (const IntegratorInfo& info : integrators()) names += (names.empty() ? "" : ", ") + info.name;
-  return names;
+  std::string list;
+  for (const std::string& name : integratorNames()) list += (list.empty() ? "" : ", ") + name;
+  return list;
 }
 
 const IntegratorInfo& integratorInfo(const std::string& name) {

@@ -40,7 +40,7 @@ const ElementType& elementType(const std::string& name) {
   for (const ElementType& type : elementTypes())
     if (type.name == name) return type;
   std::string known;
-  for (const ElementType& type : elementTypes()) known += (known.empty() ? "" : ", ") + type.name;
+  for (const std::string& type_name : elementTypeNames()) known += (known.empty() ? "" : ", ") + type_name;
   throw std::invalid_argument("unknown element type '" + name + "' (known: " + known + ")");
 }
 

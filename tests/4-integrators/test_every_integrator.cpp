@@ -42,13 +42,18 @@ class EveryIntegrator : public testing::TestWithParam<std::string> {
   }
 };
 
-double oscillatorError(const std::string& integrator, double step, double local_tolerance) {
+/// The oscillator's run by `integrator` at `step` (a variable-step one at `local_tolerance`).
+Integration oscillatorRun(const std::string& integrator, double step, double local_tolerance) {
   Scene scene = test::oscillator(1.0);
   scene.settings.step = step;
   IntegrationRequest request;
   request.integrator.name = integrator;
   request.integrator.local_tolerance = local_tolerance;
-  return test::trueOscillatorError(integrate(scene.model, scene.settings, scene.q0, scene.v0, request).run.trajectory);
+  return integrate(scene.model, scene.settings, scene.q0, scene.v0, request);
+}
+
+double oscillatorError(const std::string& integrator, double step, double local_tolerance) {
+  return test::trueOscillatorError(oscillatorRun(integrator, step, local_tolerance).run.trajectory);
 }
 
 TEST_P(EveryIntegrator, ConvergesAtItsOrder) {
@@ -57,11 +62,9 @@ TEST_P(EveryIntegrator, ConvergesAtItsOrder) {
     EXPECT_NEAR(coarse / fine, 4.0, 1.0) << coarse << " " << fine;
     return;
   }
-  Scene scene = test::oscillator(1.0);
-  scene.settings.step = 0.02;
-  IntegrationRequest r = request();
-  const int order = integrate(scene.model, scene.settings, scene.q0, scene.v0, r).run.order;
-  const double coarse = oscillatorError(GetParam(), 0.02, 0.0), fine = oscillatorError(GetParam(), 0.01, 0.0);
+  const Integration coarse_run = oscillatorRun(GetParam(), 0.02, 0.0);
+  const int order = coarse_run.run.order;
+  const double coarse = test::trueOscillatorError(coarse_run.run.trajectory), fine = oscillatorError(GetParam(), 0.01, 0.0);
   const double expected = std::pow(2.0, order);
   EXPECT_GT(coarse / fine, 0.8 * expected) << "order " << order;
   EXPECT_LT(coarse / fine, 1.25 * expected) << "order " << order;
