@@ -13,8 +13,11 @@
 #include "mbsopt/algorithms/mass_matrix.hpp"
 #include "mbsopt/algorithms/residual.hpp"
 #include "mbsopt/algorithms/sensors.hpp"
+#include "mbsopt/integrators/stepper.hpp"
 
 namespace mbsopt {
+
+static_assert(Stepper<NewmarkIntegrator>, "Newmark's steps follow the attempt/accept/reject contract (stepper.hpp)");
 
 namespace {
 

@@ -30,9 +30,24 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
   return out;
 }
 
+const DesignResponse& loadCaseResponse(const DesignResponse& response, std::size_t c) {
+  if (response.made_of != ResponseParts::LoadCases) throw std::logic_error("loadCaseResponse: a response without load cases");
+  return response.parts.at(c);
+}
+
+const DesignResponse& extrapolationRunResponse(const DesignResponse& response, int j) {
+  if (response.made_of != ResponseParts::ExtrapolationRuns)
+    throw std::logic_error("extrapolationRunResponse: a response of one Newmark run");
+  return response.parts.at(static_cast<std::size_t>(j - 1));
+}
+
 const Trajectory& caseTrajectory(const DesignResponse& response, std::size_t c) {
-  if (!response.runs.empty()) return caseTrajectory(response.runs.back(), c);
-  return response.load_cases.empty() ? response.trajectory : response.load_cases.at(c).trajectory;
+  switch (response.made_of) {
+    case ResponseParts::ExtrapolationRuns: return caseTrajectory(response.parts.back(), c);
+    case ResponseParts::LoadCases: return response.parts.at(c).trajectory;
+    case ResponseParts::Simulation: break;
+  }
+  return response.trajectory;
 }
 
 Eigen::VectorXd runWeights(const DesignProblem& problem, int first) {
@@ -46,11 +61,11 @@ namespace {
 template <class Value>
 auto combineRuns(const DesignProblem& problem, const DesignResponse& response, int first, Value&& value) {
   const Eigen::VectorXd w = runWeights(problem, first);
-  auto sum = value(extrapolationRunProblem(problem, first + 1), response.runs[static_cast<std::size_t>(first)]);
+  auto sum = value(extrapolationRunProblem(problem, first + 1), extrapolationRunResponse(response, first + 1));
   sum *= w[0];
   for (Eigen::Index i = 1; i < w.size(); ++i) {
     const int j = first + static_cast<int>(i);
-    sum += w[i] * value(extrapolationRunProblem(problem, j + 1), response.runs[static_cast<std::size_t>(j)]);
+    sum += w[i] * value(extrapolationRunProblem(problem, j + 1), extrapolationRunResponse(response, j + 1));
   }
   return sum;
 }
@@ -58,7 +73,7 @@ auto combineRuns(const DesignProblem& problem, const DesignResponse& response, i
 }  // namespace
 
 double costFunctional(const DesignProblem& problem, const DesignResponse& response) {
-  if (!response.runs.empty())
+  if (response.made_of == ResponseParts::ExtrapolationRuns)
     return combineRuns(problem, response, 1, [](const DesignProblem& run, const DesignResponse& r) {
       return costFunctional(run, r);
     });
@@ -77,7 +92,7 @@ double costFunctional(const DesignProblem& problem, const DesignResponse& respon
 }
 
 double costFunctionalError(const DesignProblem& problem, const DesignResponse& response) {
-  if (response.runs.empty()) return 0.0;
+  if (response.made_of != ResponseParts::ExtrapolationRuns) return 0.0;
   const auto value = [](const DesignProblem& run, const DesignResponse& r) { return costFunctional(run, r); };
   return combineRuns(problem, response, 1, value) - combineRuns(problem, response, 0, value);  // result − exact
 }
@@ -89,31 +104,31 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
     if (stored) throw std::logic_error("evaluateDesign: an extrapolated problem reports no stored points");
     if (!problem.load_cases.empty())
       throw std::invalid_argument("the extrapolation does not combine load cases: take settings.integrator newmark");
-    out.runs.resize(static_cast<std::size_t>(runs));
+    out.made_of = ResponseParts::ExtrapolationRuns;
+    out.parts.resize(static_cast<std::size_t>(runs));
     for (int j = 0; j < runs; ++j)
-      evaluateDesign(extrapolationRunProblem(problem, j + 1), functionals, x, out.runs[static_cast<std::size_t>(j)], {},
+      evaluateDesign(extrapolationRunProblem(problem, j + 1), functionals, x, out.parts[static_cast<std::size_t>(j)], {},
                      keep_step_matrices);
-    out.cost = out.runs.front().cost;
+    out.cost = out.parts.front().cost;
     const auto constraints = [](const DesignProblem&, const DesignResponse& r) -> Eigen::VectorXd { return r.constraints; };
     out.constraints = combineRuns(problem, out, 1, constraints);
     out.constraint_errors = out.constraints - combineRuns(problem, out, 0, constraints);  // result − exact
     out.trajectory = {};
     out.functionals.clear();
-    out.load_cases.clear();
     return;
   }
-  out.runs.clear();
   out.constraint_errors.resize(0);
   if (!problem.load_cases.empty()) {
     if (stored) throw std::logic_error("evaluateDesign: a problem with load cases reports no stored points");
-    out.load_cases.resize(problem.load_cases.size());
+    out.made_of = ResponseParts::LoadCases;
+    out.parts.resize(problem.load_cases.size());
     out.constraints.resize(static_cast<Eigen::Index>(functionals.size()));
     out.functionals.assign(functionals.size(), {});
     out.trajectory = {};
     std::vector<Eigen::Index> rows;
     for (std::size_t c = 0; c < problem.load_cases.size(); ++c) {
       const std::vector<ConstraintFunctional> own = loadCaseFunctionals(functionals, static_cast<int>(c), &rows);
-      DesignResponse& response = out.load_cases[c];
+      DesignResponse& response = out.parts[c];
       evaluateDesign(loadCaseProblem(problem, c), own, x, response, {}, keep_step_matrices);
       out.cost = response.cost;
       for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -123,7 +138,8 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
     }
     return;
   }
-  out.load_cases.clear();
+  out.made_of = ResponseParts::Simulation;
+  out.parts.clear();
   const Scene& scene = problem.scene;
   Model model = scene.model;
   out.cost = applyDesign(problem, x, model);
@@ -157,7 +173,7 @@ void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFu
 
 Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                                  const DesignResponse& response) {
-  if (!response.runs.empty())
+  if (response.made_of == ResponseParts::ExtrapolationRuns)
     return combineRuns(problem, response, 1, [&](const DesignProblem& run, const DesignResponse& r) {
       return artificialColumn(run, functionals, r);
     });
@@ -172,7 +188,7 @@ Eigen::VectorXd artificialColumn(const DesignProblem& problem, const std::vector
 
 Eigen::MatrixXd boundJacobian(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                               const DesignResponse& response) {
-  if (!response.runs.empty())
+  if (response.made_of == ResponseParts::ExtrapolationRuns)
     return combineRuns(problem, response, 1, [&](const DesignProblem& run, const DesignResponse& r) {
       return boundJacobian(run, functionals, r);
     });

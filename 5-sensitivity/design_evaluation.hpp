@@ -13,6 +13,18 @@
 
 namespace mbsopt {
 
+/// What a design response was measured on.
+enum class ResponseParts {
+  Simulation,         ///< one simulation: `trajectory` and `functionals` are its own; `parts` is empty
+  LoadCases,          ///< parts[c] is load case c's response (its trajectory, and its functionals in the order of
+                      ///< loadCaseFunctionals); `functionals` holds every case's in the problem's order, `trajectory`
+                      ///< is empty
+  ExtrapolationRuns,  ///< parts[j] is Newmark run j + 1's (at h/(j + 1)), of an extrapolated problem
+                      ///< (extrapolationRuns(problem) = k ≥ 2); `constraints` is their combination T_{k,k−1}
+                      ///< (4-integrators/extrapolation.hpp), `constraint_errors` its estimated discretisation error
+                      ///< T_{k,k−1} − T_{k,k}; `trajectory` and `functionals` are empty
+};
+
 struct DesignResponse {
   double cost = 0.0;            ///< b_{k+1} [units of the cost sensor]
   Eigen::VectorXd constraints;  ///< measure(φ_j) − tolerance, each ≤ 0 when feasible
@@ -20,17 +32,15 @@ struct DesignResponse {
   /// Per constraint: its value and ∂measure/∂φ_k at every time point (what the gradient methods
   /// chain with ∂φ/∂(q, q̇, q̈)).
   std::vector<TimeFunctionalValue> functionals;
-  /// With load cases, each case's own response (its trajectory, and its functionals' values in the
-  /// order of loadCaseFunctionals); `trajectory` is then empty and the vectors above hold every
-  /// case's, in the problem's order.
-  std::vector<DesignResponse> load_cases;
-  /// With an extrapolated problem (extrapolationRuns(problem) = k ≥ 2), each Newmark run's own response
-  /// (run j at h/j); `constraints` is then their combination T_{k,k−1} (runs 2 … k,
-  /// 4-integrators/extrapolation.hpp), `constraint_errors` its estimated discretisation error T_{k,k−1} − T_{k,k},
-  /// and `trajectory`, `functionals` are empty (caseTrajectory gives the finest run's).
-  std::vector<DesignResponse> runs;
-  Eigen::VectorXd constraint_errors;
+  ResponseParts made_of = ResponseParts::Simulation;
+  std::vector<DesignResponse> parts;  ///< the responses it combines (ResponseParts)
+  Eigen::VectorXd constraint_errors;  ///< of an extrapolated response; empty otherwise
 };
+
+/// Load case c's response of a response made of load cases; std::logic_error otherwise.
+const DesignResponse& loadCaseResponse(const DesignResponse& response, std::size_t c);
+/// Newmark run j's response (1-based, at h/j) of an extrapolated response; std::logic_error otherwise.
+const DesignResponse& extrapolationRunResponse(const DesignResponse& response, int j);
 
 /// The trajectory of load case c of a response (c = 0: the only one of a problem without cases); of an
 /// extrapolated response, its finest run's.
@@ -43,7 +53,7 @@ DesignResponse evaluateDesign(const DesignProblem& problem, const std::vector<Co
 /// point k of out.trajectory is complete (NewmarkIntegrator::simulate), before the constraints are
 /// measured. `keep_step_matrices`: the trajectory keeps each point's M and B where the integrator
 /// forms them (NewmarkIntegrator::keepStepMatrices), for the exact gradients. With load cases each
-/// case is simulated into out.load_cases (`stored` must then be empty).
+/// case is simulated into out.parts (`stored` must then be empty).
 void evaluateDesign(const DesignProblem& problem, const std::vector<ConstraintFunctional>& functionals,
                     const Eigen::VectorXd& x, DesignResponse& out, const std::function<void(long)>& stored,
                     bool keep_step_matrices = false);

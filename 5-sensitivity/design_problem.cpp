@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "mbsopt/integrators/extrapolation.hpp"
 
@@ -100,7 +101,30 @@ std::vector<ConstraintFunctional> loadCaseFunctionals(const std::vector<Constrai
   return out;
 }
 
+DesignVariable designVariable(const Model& model, std::string parameter, double lower, double upper, double scale) {
+  const std::vector<std::string>& names = model.parameterNames();
+  if (std::find(names.begin(), names.end(), parameter) == names.end())
+    throw std::invalid_argument("design variable '" + parameter + "' is not a model parameter");
+  const ParameterIndex index = model.parameterIndex(parameter);
+  return {std::move(parameter), index, lower, upper, scale};
+}
+
+namespace {
+
+/// Every variable's index names its parameter in `model` (a load case's scene has the scene's parameters).
+void checkResolved(const std::vector<DesignVariable>& variables, const Model& model) {
+  const std::vector<std::string>& names = model.parameterNames();
+  for (const DesignVariable& v : variables) {
+    const auto i = static_cast<std::size_t>(v.index);
+    if (i >= names.size() || names[i] != v.parameter)
+      throw std::invalid_argument("design variable '" + v.parameter + "' is not resolved in the model (designVariable)");
+  }
+}
+
+}  // namespace
+
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem) {
+  checkResolved(problem.design.variables, problem.scene.model);
   if (!problem.load_cases.empty()) {
     // Each case's constraints, named after it; NlpProblem's order: every inequality, then every equality.
     std::vector<ConstraintFunctional> inequalities, equalities;
@@ -194,7 +218,7 @@ Eigen::VectorXd initialPoint(const DesignProblem& problem) {
   Eigen::VectorXd x(optimisationSize(problem));
   for (std::size_t i = 0; i < problem.design.variables.size(); ++i) {
     const DesignVariable& v = problem.design.variables[i];
-    x[static_cast<Eigen::Index>(i)] = problem.scene.model.parameter(v.parameter) / v.scale;
+    x[static_cast<Eigen::Index>(i)] = problem.scene.model.value(v.index) / v.scale;
   }
   x[x.size() - 1] = problem.design.artificial.initial / problem.design.artificial.scale;
   return x;
@@ -206,7 +230,7 @@ double applyDesign(const DesignProblem& problem, const Eigen::VectorXd& x, Model
                                 std::to_string(optimisationSize(problem)) + " variables");
   for (std::size_t i = 0; i < problem.design.variables.size(); ++i) {
     const DesignVariable& v = problem.design.variables[i];
-    model.setParameter(v.parameter, x[static_cast<Eigen::Index>(i)] * v.scale);
+    model.setParameter(v.index, x[static_cast<Eigen::Index>(i)] * v.scale);
   }
   return x[x.size() - 1] * problem.design.artificial.scale;
 }
@@ -214,12 +238,10 @@ double applyDesign(const DesignProblem& problem, const Eigen::VectorXd& x, Model
 void validate(const DesignProblem& problem) {
   if (const ResponseMeasure of = problem.design.cost.of; of == ResponseMeasure::Min || of == ResponseMeasure::FinalValue)
     throw std::invalid_argument("the cost is a sensor's extreme over time (max_abs or max), its integral or its rms");
-  const std::vector<std::string> names = problem.scene.model.parameterNames();
+  checkResolved(problem.design.variables, problem.scene.model);
   for (const DesignVariable& v : problem.design.variables) {
-    if (std::find(names.begin(), names.end(), v.parameter) == names.end())
-      throw std::invalid_argument("design variable '" + v.parameter + "' is not a model parameter");
     checkRange("design variable '" + v.parameter + "'", v.lower, v.upper, v.scale);
-    const double value = problem.scene.model.parameter(v.parameter);
+    const double value = problem.scene.model.value(v.index);
     if (value < v.lower || value > v.upper)
       throw std::invalid_argument("design variable '" + v.parameter + "' starts outside its bounds");
   }

@@ -17,12 +17,18 @@
 
 namespace mbsopt {
 
-/// A model parameter by its dotted name (Model::parameterNames()), its bounds [SI] and the scale in
-/// which the optimizers see it: x = value / scale, so that every x is of order 1-100.
+/// A model parameter resolved once to its place in the model's parameter vector, its bounds [SI] and
+/// the scale in which the optimizers see it: x = value / scale, so that every x is of order 1-100.
+/// Made by designVariable; the dotted name stays for the reports.
 struct DesignVariable {
-  std::string parameter;
+  std::string parameter;  ///< its dotted name (Model::parameterNames())
+  ParameterIndex index{};
   double lower = 0.0, upper = 0.0, scale = 1.0;
 };
+
+/// The parameter `parameter` of `model` as a design variable; throws std::invalid_argument naming it
+/// when the model has no such parameter.
+DesignVariable designVariable(const Model& model, std::string parameter, double lower, double upper, double scale);
 
 /// The artificial variable b_{k+1} that carries a max-over-time cost (17)-(19).
 struct ArtificialVariable {
@@ -170,7 +176,8 @@ inline constexpr double kDeterminateReaction = 1e-6;
 /// constraint, each MaxAbs giving two (y above, −y above) and a Min one (−y above −bound), then the
 /// equalities. An integral constraint ∫y dt ≤ bound (= bound) is ∫(y − bound/τ) dt ≤ 0 (= 0); a final
 /// value y(τ) − bound ≤ 0 (= 0). Names are unique: a repeated one gets its rank ("y_above_2").
-/// Throws std::invalid_argument naming an unknown sensor or one designSensorDefect refuses.
+/// Throws std::invalid_argument naming an unknown sensor or one designSensorDefect refuses, or a
+/// design variable whose index names another parameter in the scene's model or a load case's.
 std::vector<ConstraintFunctional> transcribe(const DesignProblem& problem);
 
 /// Number of optimisation variables: the design variables and the artificial one.

@@ -23,7 +23,7 @@ DesignGradient perLoadCase(const std::string& method, const DesignProblem& probl
   std::vector<Eigen::Index> rows;
   for (std::size_t c = 0; c < problem.load_cases.size(); ++c) {
     const std::vector<ConstraintFunctional> own = loadCaseFunctionals(functionals, static_cast<int>(c), &rows);
-    const DesignResponse* response = simulated ? &simulated->load_cases.at(c) : nullptr;
+    const DesignResponse* response = simulated ? &loadCaseResponse(*simulated, c) : nullptr;
     const DesignGradient g = designGradient(method, loadCaseProblem(problem, c), own, x, fd_step, response, jobs);
     out.cost = g.cost;
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -48,7 +48,7 @@ DesignGradient perExtrapolationRun(const std::string& method, const DesignProble
   bool every_value = true;
   for (Eigen::Index i = 0; i < w.size(); ++i) {
     const int j = static_cast<int>(i) + 2;
-    const DesignResponse* response = simulated ? &simulated->runs.at(static_cast<std::size_t>(j - 1)) : nullptr;
+    const DesignResponse* response = simulated ? &extrapolationRunResponse(*simulated, j) : nullptr;
     const DesignGradient g =
         designGradient(method, extrapolationRunProblem(problem, j), functionals, x, fd_step, response, jobs);
     if (i == 0) {

@@ -21,7 +21,7 @@ constexpr double kTolerance = 1e-12;  // what the scene's own assembly aims at (
 bool designMovesLoopClosure(const DesignProblem& problem) {
   const Model& model = problem.scene.model;
   return std::any_of(problem.design.variables.begin(), problem.design.variables.end(), [&](const DesignVariable& v) {
-    return movesLoopClosure(model, model.parameterIndex(v.parameter));
+    return movesLoopClosure(model, v.index);
   });
 }
 

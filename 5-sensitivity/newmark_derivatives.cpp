@@ -87,8 +87,7 @@ TrajectoryDerivatives::TrajectoryDerivatives(const DesignProblem& problem,
       model_(checkedModel(problem, x)),
       simulated_(simulated),
       scratch_(model_) {
-  for (const DesignVariable& v : problem.design.variables) parameters_.push_back(v.parameter);
-  parameter_indices_ = parameterIndices(model_, parameters_);
+  for (const DesignVariable& v : problem.design.variables) parameter_indices_.push_back(v.index);
   for (const ParameterIndex index : parameter_indices_) {
     const bool linear = isLinearForceParameter(model_, index);
     ad_parameter_.push_back(linear ? -1 : static_cast<int>(ad_parameter_indices_.size()));

@@ -89,7 +89,7 @@ class TrajectoryDerivatives {
   Eigen::Index timePoints() const { return response().trajectory.time.size(); }
   double time(Eigen::Index k) const { return response().trajectory.time[k]; }
   Eigen::Index freeCount() const { return static_cast<Eigen::Index>(model_.freeCoordinates().size()); }
-  Eigen::Index variableCount() const { return static_cast<Eigen::Index>(parameters_.size()); }
+  Eigen::Index variableCount() const { return static_cast<Eigen::Index>(parameter_indices_.size()); }
   Eigen::Index functionalCount() const { return static_cast<Eigen::Index>(functionals_.size()); }
   const NewmarkSettings& settings() const { return problem_.scene.settings; }
   /// The step from time point k − 1 to k (k ≥ 1): the settings' uniform step (the integrator's), or
@@ -148,7 +148,6 @@ class TrajectoryDerivatives {
   const DesignResponse* simulated_;  ///< the caller's simulation at x, or null
   DesignResponse simulation_;        ///< this object's own, without one
   const DesignResponse& response() const { return simulated_ ? *simulated_ : simulation_; }
-  std::vector<std::string> parameters_;
   std::vector<ParameterIndex> parameter_indices_;  ///< their indices in model_
   /// Per design variable, its direction among the AD passes' parameters, or −1 when f is linear in
   /// it through a force element (a stiffness or a damping): its column of ∂f/∂b is then computed in

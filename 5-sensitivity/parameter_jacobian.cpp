@@ -4,19 +4,11 @@
 
 namespace mbsopt {
 
-std::vector<ParameterIndex> parameterIndices(const Model& model, const std::vector<std::string>& parameters) {
-  std::vector<ParameterIndex> out;
-  out.reserve(parameters.size());
-  for (const std::string& name : parameters) out.push_back(model.parameterIndex(name));
-  return out;
-}
-
 Eigen::MatrixXd parameterJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                   const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
-                                  double t, const std::vector<std::string>& parameters) {
+                                  double t, const std::vector<ParameterIndex>& parameters) {
   // The state is constant in these passes; only the parameters carry derivatives.
-  return residualJacobian(model, ws, q, v, a, lambda, t, parameterInputs(parameters.size()),
-                          parameterIndices(model, parameters));
+  return residualJacobian(model, ws, q, v, a, lambda, t, parameterInputs(parameters.size()), parameters);
 }
 
 }  // namespace mbsopt

@@ -1,11 +1,10 @@
-// ∂f/∂b: the derivative of the residual f = M q̈ + h − Q + Bᵀλ (37) with respect to named model
+// ∂f/∂b: the derivative of the residual f = M q̈ + h − Q + Bᵀλ (37) with respect to model
 // parameters at one state, the ∂f/∂b of the paper's sensitivity equations (49)-(50). Forward AD of
 // the residual itself, the parameters seeded through Workspace::parameter_seeds, so exact and
 // always consistent with the dynamics.
 #pragma once
 
 #include <Eigen/Core>
-#include <string>
 #include <vector>
 
 #include "mbsopt/model/model.hpp"
@@ -13,14 +12,11 @@
 
 namespace mbsopt {
 
-/// The index in `model` of each named parameter, for seeding it (Workspace::parameter_seeds).
-std::vector<ParameterIndex> parameterIndices(const Model& model, const std::vector<std::string>& parameters);
-
 /// n × p, one column per parameter (every coordinate's row, driven ones included), at the given
 /// state: the driven coordinates too are held, so a driven motion's number has a zero column here
 /// (TrajectoryDerivatives moves them, Workspace::driving_model).
 Eigen::MatrixXd parameterJacobian(const Model& model, Workspace<AdScalar>& ws, const Eigen::VectorXd& q,
                                   const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
-                                  double t, const std::vector<std::string>& parameters);
+                                  double t, const std::vector<ParameterIndex>& parameters);
 
 }  // namespace mbsopt

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "mbsopt/model/units.hpp"
 #include "mbsopt/sensitivity/formulation.hpp"
@@ -55,14 +56,14 @@ DesignDescription readDesign(const MapReader& design, const Model& model) {
   for (const YamlNode& node : readList(context, design.required("variables"), "design.variables")) {
     const MapReader v(context, node, "design variable");
     v.allowKeys({"parameter", "lower", "upper", "scale"});
-    DesignVariable variable;
     const YamlNode& name = v.required("parameter");
-    variable.parameter = name.isScalar() ? name.text() : "";
-    if (std::find(parameters.begin(), parameters.end(), variable.parameter) == parameters.end())
-      v.fail("parameter", "parameter " + quoted(variable.parameter) + " is not a model parameter" +
-                              suggestion(variable.parameter, parameters) + " ('mbsopt parameters' lists them)");
-    readRange(v, model.parameter(variable.parameter), variable.lower, variable.upper, variable.scale);
-    out.variables.push_back(variable);
+    const std::string parameter = name.isScalar() ? name.text() : "";
+    if (std::find(parameters.begin(), parameters.end(), parameter) == parameters.end())
+      v.fail("parameter", "parameter " + quoted(parameter) + " is not a model parameter" +
+                              suggestion(parameter, parameters) + " ('mbsopt parameters' lists them)");
+    DesignVariable variable = designVariable(model, parameter, 0.0, 0.0, 1.0);
+    readRange(v, model.value(variable.index), variable.lower, variable.upper, variable.scale);
+    out.variables.push_back(std::move(variable));
   }
   if (out.variables.empty()) design.fail("variables", "a design problem needs at least one variable");
 

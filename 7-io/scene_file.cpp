@@ -67,9 +67,9 @@ class SceneBuilder {
     readTracks();
     readElements();
     for (const YamlNode& node : list("bodies")) readBody(node);
-    for (const YamlNode& node : list("cuts")) readCut(node);
-    for (const YamlNode& node : list("forces")) readForce(node);
-    for (const YamlNode& node : list("sensors")) readSensor(node);
+    for (const YamlNode& node : list("cuts")) readEntry(node, cutTypes(), "cut");
+    for (const YamlNode& node : list("forces")) readEntry(node, forceTypes(), "force");
+    for (const YamlNode& node : list("sensors")) readEntry(node, sensorTypes(), "sensor");
     checkTrajectorySize();
     if (root_.has("design")) result_.design = readDesign(MapReader(context_, root_.node()["design"], "design"), model());
     recordLocations();
@@ -175,9 +175,9 @@ class SceneBuilder {
                         " (joints are revolute, prismatic and curve-slider elements and curve-slider cuts)");
   }
 
-  /// The model index of the cut named by `cut` (a curve-slider cut's equations are its "_closure").
-  int cut(const MapReader& entry) {
-    const std::string name = entry.name("cut");
+  /// The model index of the cut named under `key` (a curve-slider cut's equations are its "_closure").
+  int cut(const MapReader& entry, const std::string& key) {
+    const std::string name = entry.name(key);
     std::vector<std::string> names;
     const std::string closure = "_closure";
     for (std::size_t c = 0; c < model().cuts().size(); ++c) {
@@ -187,7 +187,7 @@ class SceneBuilder {
       if (declared == name) return static_cast<int>(c);
       names.push_back(declared);
     }
-    entry.fail("cut", "cut joint '" + name + "' does not exist" + suggestion(name, names) +
+    entry.fail(key, "cut joint '" + name + "' does not exist" + suggestion(name, names) +
                           (names.empty() ? " (the scene has no cuts)" : ""));
   }
 
@@ -316,9 +316,9 @@ class SceneBuilder {
     for (const YamlNode& node : list("elements")) {
       std::string name;
       MapReader e = entry(node, "element", name);
-      const std::string type = e.choice("type", elementTypeNames());
+      const std::string type = e.choice("type", entryTypeNames(elementTypes()));
       std::vector<std::string> keys{"name", "type", "parent"};
-      for (const std::string& key : elementType(type).keys) keys.push_back(key);
+      for (const std::string& key : entryType(elementTypes(), type, "element").keys) keys.push_back(key);
       e.allowKeys(keys);
       const std::string parent = e.name("parent");
       index.emplace(name, pending.size());
@@ -358,26 +358,49 @@ class SceneBuilder {
     }
   }
 
-  /// One entry of `elements:` as its type's reader sees it (element_type.hpp).
-  class Entry final : public ElementEntry {
+  /// One entry of a named section as its type's reader sees it (entry_type.hpp); `Interface` is
+  /// SectionEntry, or ElementEntry for the elements.
+  template <class Interface>
+  class EntryOf : public Interface {
    public:
-    Entry(SceneBuilder& builder, const MapReader& map, const std::string& name, FrameIndex parent)
-        : builder_(builder), map_(map), name_(name), parent_(parent) {}
+    EntryOf(SceneBuilder& builder, const MapReader& map, const std::string& name)
+        : builder_(builder), map_(map), name_(name) {}
     const MapReader& map() const override { return map_; }
     const std::string& name() const override { return name_; }
-    FrameIndex parent() const override { return parent_; }
     Model& model() override { return builder_.model(); }
+    FrameIndex frame(const std::string& key) const override { return builder_.frame(map_, key); }
+    std::string joint(const std::string& key) const override { return builder_.joint(map_, key); }
+    int cut(const std::string& key) const override { return builder_.cut(map_, key); }
     TrackIndex track(const std::string& key) const override { return builder_.track(map_, key); }
+    TimeFunction timeFunction(const std::string& key) const override {
+      return readTimeFunction(builder_.context_, map_.node()[key], map_.what() + "." + key);
+    }
     void guarded(const std::function<void()>& call) const override { builder_.guarded(map_, name_, call); }
+    void initialValues(const std::string& coordinate, bool angular) override {
+      builder_.initialValues(map_, coordinate, angular);
+    }
+
+   protected:
+    SceneBuilder& builder_;
+    const MapReader& map_;
+    const std::string& name_;
+  };
+
+  class ElementEntryOf final : public EntryOf<ElementEntry> {
+   public:
+    ElementEntryOf(SceneBuilder& builder, const MapReader& map, const std::string& name, FrameIndex parent)
+        : EntryOf(builder, map, name), parent_(parent) {}
+    using EntryOf::initialValues;
+    FrameIndex parent() const override { return parent_; }
     void motionOrInitialValues(const std::string& coordinate, bool angular) override {
       if (!map_.has("motion")) {
-        builder_.initialValues(map_, coordinate, angular);
+        initialValues(coordinate, angular);
         return;
       }
       for (const char* key : {"q0", "v0"})
         if (map_.has(key))
           map_.fail(key, std::string(key) + " conflicts with 'motion': a driven joint starts where its motion says");
-      const TimeFunction motion = readTimeFunction(builder_.context_, map_.node()["motion"], map_.what() + ".motion");
+      const TimeFunction motion = timeFunction("motion");
       guarded([&] { model().drive(coordinate, motion); });
     }
     void initialValues(const std::string& coordinate, double q0, double v0) override {
@@ -386,16 +409,13 @@ class SceneBuilder {
     void claimName(const std::string& added) override { builder_.claimName(map_, added); }
 
    private:
-    SceneBuilder& builder_;
-    const MapReader& map_;
-    const std::string& name_;
     FrameIndex parent_;
   };
 
   void addElement(const MapReader& e, const std::string& name, const std::string& type,
                   const std::string& parent_name) {
-    Entry entry(*this, e, name, parent_name == "ground" ? Model::ground : model().frame(parent_name));
-    elementType(type).add(entry);
+    ElementEntryOf entry(*this, e, name, parent_name == "ground" ? Model::ground : model().frame(parent_name));
+    entryType(elementTypes(), type, "element").add(entry);
   }
 
   void readBody(const YamlNode& node) {
@@ -415,108 +435,20 @@ class SceneBuilder {
     guarded(b, name, [&] { model().addBody(name, f, mass, com, inertia); });
   }
 
-  void readCut(const YamlNode& node) {
+  /// An entry of `cuts:`, `forces:` or `sensors:` (`kind`: "cut", "force", "sensor"), read by its
+  /// registered type (entry_type.hpp).
+  void readEntry(const YamlNode& node, const std::vector<SectionEntryType>& types, const std::string& kind) {
     std::string name;
-    const MapReader c = entry(node, "cut", name);
-    const std::string type = c.choice("type", {"spherical", "revolute", "weld", "curve_slider"});
-    if (type == "curve_slider") {
-      c.allowKeys({"name", "type", "frame", "base", "track", "orientation", "q0", "v0"});
-      const FrameIndex a = frame(c, "frame");
-      const FrameIndex base = c.has("base") ? frame(c, "base") : Model::ground;
-      const auto t = track(c);
-      const SliderOrientation o = readSliderOrientation(c);
-      guarded(c, name, [&] { model().addCurveSliderCut(name, a, base, t, o); });
-      initialValues(c, name, false);
-    } else if (type == "revolute") {
-      c.allowKeys({"name", "type", "frame_a", "frame_b", "axis_in_a", "axis_in_b"});
-      const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");
-      const Eigen::Vector3d axis_a = readAxis(c, "axis_in_a"), axis_b = readAxis(c, "axis_in_b");
-      guarded(c, name, [&] { model().addRevoluteCut(name, a, b, axis_a, axis_b); });
-    } else {
-      c.allowKeys({"name", "type", "frame_a", "frame_b"});
-      const FrameIndex a = frame(c, "frame_a"), b = frame(c, "frame_b");
-      guarded(c, name, [&] {
-        if (type == "spherical") model().addSphericalCut(name, a, b);
-        else model().addWeldCut(name, a, b);
-      });
-    }
-    cut_marks_.resize(model().cuts().size(), c.node().mark());
-    checkModelSize(c);
-  }
-
-  void readForce(const YamlNode& node) {
-    std::string name;
-    const MapReader f = entry(node, "force", name);
-    const std::string type =
-        f.choice("type", {"joint_spring_damper", "point_spring_damper", "joint_actuation", "track_guidance"});
-    if (type == "joint_spring_damper") {
-      f.allowKeys({"name", "type", "joint", "k", "c", "rest"});
-      const std::string j = joint(f, "joint");
-      const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
-      const TimeFunction rest =
-          f.has("rest") ? readTimeFunction(context_, f.node()["rest"], f.what() + ".rest") : TimeFunction::constant(0.0);
-      guarded(f, name, [&] { model().addGuidanceSpring(name, j, k, c, rest); });
-    } else if (type == "point_spring_damper") {
-      f.allowKeys({"name", "type", "frame_a", "point_a", "frame_b", "point_b", "k", "c", "rest_length"});
-      const FrameIndex a = frame(f, "frame_a"), b = frame(f, "frame_b");
-      const Eigen::Vector3d pa = f.vector("point_a", Eigen::Vector3d::Zero());
-      const Eigen::Vector3d pb = f.vector("point_b", Eigen::Vector3d::Zero());
-      const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
-      const double rest = f.nonNegative("rest_length", 0.0);
-      guarded(f, name, [&] { model().addPointSpringDamper(name, a, pa, b, pb, k, c, rest); });
-    } else if (type == "joint_actuation") {
-      f.allowKeys({"name", "type", "joint", "value"});
-      const std::string j = joint(f, "joint");
-      const TimeFunction value = readTimeFunction(context_, f.required("value"), f.what() + ".value");
-      guarded(f, name, [&] { model().addJointActuation(name, j, value); });
-    } else {
-      f.allowKeys({"name", "type", "frame", "slider", "k", "c"});
-      const FrameIndex fr = frame(f, "frame");
-      const std::string slider = joint(f, "slider");
-      const double k = f.nonNegative("k", 0.0), c = f.nonNegative("c", 0.0);
-      guarded(f, name, [&] { model().addTrackGuidance(name, fr, slider, k, c); });
-    }
-  }
-
-  Derivative quantity(const MapReader& s) {
-    const std::string q = s.choice("quantity", {"position", "velocity", "acceleration"});
-    return q == "position" ? Derivative::Position : q == "velocity" ? Derivative::Velocity : Derivative::Acceleration;
-  }
-
-  void readSensor(const YamlNode& node) {
-    std::string name;
-    const MapReader s = entry(node, "sensor", name);
-    const std::string type = s.choice("type", {"point", "joint", "relative_angle", "energy", "cut_force"});
-    SensorKind kind;
-    if (type == "point") {
-      s.allowKeys({"name", "type", "frame", "point", "quantity", "axes", "component"});
-      const FrameIndex f = frame(s, "frame");
-      const Eigen::Vector3d point = s.vector("point", Eigen::Vector3d::Zero());
-      const Derivative d = quantity(s);
-      const FrameIndex axes = s.has("axes") ? frame(s, "axes") : Model::ground;
-      const std::string c = s.choice("component", {"x", "y", "z"});
-      kind = PointSensor{f, point, d, axes, c[0] - 'x'};
-    } else if (type == "joint") {
-      s.allowKeys({"name", "type", "joint", "quantity"});
-      kind = JointSensor{model().coordinate(joint(s, "joint")), quantity(s)};
-    } else if (type == "energy") {
-      s.allowKeys({"name", "type", "part"});
-      const std::string part = s.choice("part", {"kinetic", "potential", "total"}, "total");
-      kind = EnergySensor{part == "kinetic"     ? EnergyPart::Kinetic
-                          : part == "potential" ? EnergyPart::Potential
-                                                : EnergyPart::Total};
-    } else if (type == "cut_force") {
-      s.allowKeys({"name", "type", "cut", "quantity", "component"});
-      const int c = cut(s);
-      const bool torque = s.choice("quantity", {"force", "torque"}, "force") == "torque";
-      const std::string component = s.choice("component", {"x", "y", "z"});
-      kind = CutReactionSensor{c, torque ? ReactionQuantity::Torque : ReactionQuantity::Force, component[0] - 'x'};
-    } else {
-      s.allowKeys({"name", "type", "frame_a", "frame_b", "axis"});
-      const FrameIndex a = frame(s, "frame_a"), b = frame(s, "frame_b");
-      kind = RelativeAngleSensor{a, b, readAxis(s, "axis").normalized()};
-    }
-    guarded(s, name, [&] { model().addSensor(name, kind); });
+    const MapReader map = entry(node, kind, name);
+    const SectionEntryType& type = entryType(types, map.choice("type", entryTypeNames(types)), kind);
+    std::vector<std::string> keys{"name", "type"};
+    keys.insert(keys.end(), type.keys.begin(), type.keys.end());
+    map.allowKeys(keys);
+    EntryOf<SectionEntry> reader(*this, map, name);
+    type.add(reader);
+    if (kind != "cut") return;
+    cut_marks_.resize(model().cuts().size(), map.node().mark());
+    checkModelSize(map);
   }
 
   /// q₀ and q̇₀ from the joints' q0 and v0, moved onto the loop closure when they miss it.

@@ -137,8 +137,8 @@ DesignProblem startingAt(DesignProblem problem, const Eigen::VectorXd& x) {
   for (std::size_t i = 0; i < problem.design.variables.size(); ++i) {
     const DesignVariable& v = problem.design.variables[i];
     const double value = x[static_cast<Eigen::Index>(i)] * v.scale;
-    problem.scene.model.setParameter(v.parameter, value);
-    for (LoadCase& c : problem.load_cases) c.scene.model.setParameter(v.parameter, value);
+    problem.scene.model.setParameter(v.index, value);
+    for (LoadCase& c : problem.load_cases) c.scene.model.setParameter(v.index, value);
   }
   problem.design.artificial.initial = x[x.size() - 1] * problem.design.artificial.scale;
   return problem;

@@ -50,7 +50,7 @@ std::vector<BoundWorth> boundWorth(const DesignProblem& problem, const std::vect
       w.kind = kind;
       w.raising_relaxes = !lower;
       w.name = v.parameter;
-      w.unit = parameterUnit(model, model.parameterIndex(v.parameter));
+      w.unit = parameterUnit(model, v.index);
       w.index = static_cast<int>(j);
       w.bound = lower ? v.lower : v.upper;
       w.derivative = (lower ? mu : -mu) / v.scale * cost_unit;

@@ -49,13 +49,13 @@ double constraintTolerance(const ResponseConstraint& constraint) {
 std::string constraintName(const ResponseConstraint& constraint) { return constraint.sensor + "_" + measureName(constraint.of); }
 
 std::vector<ConstraintVerdict> constraintVerdicts(const DesignProblem& problem, const DesignResponse& response) {
-  if (!response.runs.empty()) {  // the verdicts of the combination the optimizer saw, not of one run
+  if (response.made_of == ResponseParts::ExtrapolationRuns) {  // the verdicts of the combination the optimizer saw, not of one run
     const Eigen::VectorXd w = runWeights(problem, 1);
     std::vector<ConstraintVerdict> out;
     for (Eigen::Index i = 0; i < w.size(); ++i) {
       const int j = static_cast<int>(i) + 1;  // runs 2 … k
       const std::vector<ConstraintVerdict> run =
-          constraintVerdicts(extrapolationRunProblem(problem, j + 1), response.runs[static_cast<std::size_t>(j)]);
+          constraintVerdicts(extrapolationRunProblem(problem, j + 1), extrapolationRunResponse(response, j + 1));
       if (out.empty()) {
         out = run;
         for (ConstraintVerdict& v : out) v.value *= w[i], v.excess *= w[i];

@@ -212,7 +212,7 @@ OptimizationRun runOptimization(DesignProblem problem, const RunChoice& choice,
   run.result = minimize(choice.optimizer, nlp, options);
   run.variables = nlp.problem().design.variables;
   for (const DesignVariable& v : run.variables)
-    run.variable_units.push_back(parameterUnit(nlp.problem().scene.model, nlp.problem().scene.model.parameterIndex(v.parameter)));
+    run.variable_units.push_back(parameterUnit(nlp.problem().scene.model, v.index));
   run.artificial = nlp.problem().design.artificial;
   run.start = designInSi(nlp.problem(), nlp.start());
   if (run.result.x.size() == 0) run.result.x = nlp.start();  // nothing was evaluated (its error follows below)

@@ -109,8 +109,11 @@ DesignProblem tramwayDesignProblem(const TramwayDesign& design, const TramwayOpt
   DesignDescription& d = problem.design;
   // Scales of 100 kN·m/rad and 10 kN·m·s/rad put every variable between 0.5 and 10, like b5 (README:
   // in kN units, 50 to 1000 beside b5 ≈ 2, SLSQP's identity start of its BFGS Hessian stalls it).
-  for (const char* spring : {"front_secondary.k", "rear_secondary.k"}) d.variables.push_back({spring, 50e3, 1000e3, 100e3});
-  for (const char* damper : {"front_secondary.c", "rear_secondary.c"}) d.variables.push_back({damper, 5e3, 50e3, 10e3});
+  const Model& model = problem.scene.model;
+  for (const char* spring : {"front_secondary.k", "rear_secondary.k"})
+    d.variables.push_back(designVariable(model, spring, 50e3, 1000e3, 100e3));
+  for (const char* damper : {"front_secondary.c", "rear_secondary.c"})
+    d.variables.push_back(designVariable(model, damper, 5e3, 50e3, 10e3));
   d.cost = {"a_lat", ResponseMeasure::MaxAbs};
   d.artificial = {3.0, 0.0, 10.0, 1.0};
   const double ten_degrees = 10.0 / 180.0 * std::numbers::pi;

@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "mbsopt/sensitivity/parallel_runs.hpp"
-#include "app/atomic_file.hpp"
-#include "app/benchmark_plan.hpp"
+#include "mbsopt/io/atomic_file.hpp"
+#include "mbsopt/design/benchmark_plan.hpp"
 #include "app/benchmark_report.hpp"
 #include "app/mpi_sweep.hpp"
 #include "app/optimization_options.hpp"

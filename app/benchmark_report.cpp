@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-#include "app/atomic_file.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_plots.hpp"
 

@@ -13,7 +13,7 @@
 // constraints the start may be infeasible and its cost below f_L, which that test cannot take.
 #pragma once
 
-#include "app/benchmark_plan.hpp"
+#include "mbsopt/design/benchmark_plan.hpp"
 
 namespace mbsopt {
 

@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "mbsopt/sensitivity/parallel_runs.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/design/run_record.hpp"
-#include "app/atomic_file.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_options.hpp"
 #include "app/optimization_plots.hpp"

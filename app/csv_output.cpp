@@ -1,7 +1,7 @@
 #include "app/csv_output.hpp"
 
 #include "mbsopt/model/units.hpp"
-#include "app/atomic_file.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 
 namespace mbsopt {
 

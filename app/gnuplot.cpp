@@ -7,7 +7,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "app/atomic_file.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 
 namespace mbsopt {
 

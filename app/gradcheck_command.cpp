@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/io/scene_text.hpp"
 #include "mbsopt/design/gradient_difference.hpp"
-#include "app/atomic_file.hpp"
 #include "app/design_point.hpp"
 #include "app/option_checks.hpp"
 #include "app/output_paths.hpp"

@@ -9,10 +9,10 @@
 
 #include "mbsopt/sensitivity/gradient_method.hpp"
 #include "mbsopt/sensitivity/parallel_runs.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/design/accurate_optimization.hpp"
 #include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/design/run_record.hpp"
-#include "app/atomic_file.hpp"
 #include "app/exit_status.hpp"
 #include "app/gnuplot.hpp"
 #include "app/optimization_options.hpp"

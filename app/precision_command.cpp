@@ -11,10 +11,10 @@
 
 #include "mbsopt/integrators/extrapolation.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/io/scene_text.hpp"
 #include "mbsopt/design/gradient_precision.hpp"
 #include "mbsopt/design/precision_study.hpp"
-#include "app/atomic_file.hpp"
 #include "app/design_point.hpp"
 #include "app/option_checks.hpp"
 #include "app/output_paths.hpp"

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "mbsopt/integrators/integration.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/io/scene_text.hpp"
-#include "app/atomic_file.hpp"
 #include "app/csv_output.hpp"
 #include "app/option_checks.hpp"
 #include "app/output_paths.hpp"

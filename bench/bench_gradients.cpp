@@ -39,7 +39,7 @@ struct TramwayProblem {
     if (variables == 8)
       for (const char* name : {"bogie1_guidance.k", "bogie1_guidance.c", "bogie2_guidance.k", "bogie2_guidance.c"}) {
         const double value = problem.scene.model.parameter(name);
-        problem.design.variables.push_back({name, 0.5 * value, 1.5 * value, value});
+        problem.design.variables.push_back(designVariable(problem.scene.model, name, 0.5 * value, 1.5 * value, value));
       }
     functionals = transcribe(problem);
     x = initialPoint(problem);

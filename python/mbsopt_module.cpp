@@ -8,7 +8,6 @@
 
 #include <mutex>
 #include <optional>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -24,7 +23,9 @@
 #include "mbsopt/design/provenance.hpp"
 #include "mbsopt/design/run_record.hpp"
 #include "python/conversions.hpp"
+#include "python/evaluation_binding.hpp"
 #include "python/optimization_run_binding.hpp"
+#include "python/simulation_binding.hpp"
 
 namespace py = pybind11;
 
@@ -94,8 +95,8 @@ class PythonScene {
 
   /// As `mbsopt simulate` runs the scene: its own integrator at its step, or to `accuracy` (absolute,
   /// the extrapolation unless `integrator` says), rows at the multiples of `output_step` when given.
-  py::dict simulate(const std::optional<std::string>& integrator, const std::optional<double>& accuracy,
-                    double output_step, bool estimate_error, bool fast_steps) const {
+  PythonSimulation simulate(const std::optional<std::string>& integrator, const std::optional<double>& accuracy,
+                            double output_step, bool estimate_error, bool fast_steps) const {
     const Scene& s = loaded_.scene;
     IntegrationRequest request =
         sceneIntegration(s, integrator, accuracy ? std::optional<ErrorTolerance>(ErrorTolerance{*accuracy, 0.0}) : std::nullopt);
@@ -107,31 +108,8 @@ class PythonScene {
       const std::lock_guard<std::mutex> lock(mutex_);
       integration = integrate(s.model, fast_steps ? withFastSteps(s.settings) : s.settings, s.q0, s.v0, request);
     }
-    const Trajectory& t = integration.run.trajectory;
-    py::dict out;
-    out["time"] = array(t.time);
-    out["coordinates"] = coordinates();  // the columns of q, v and a
-    out["coordinate_units"] = coordinateUnits();  // of q (v and a per s, per s²)
-    out["q"] = array(Eigen::MatrixXd(t.q.transpose()));
-    out["v"] = array(Eigen::MatrixXd(t.v.transpose()));
-    out["a"] = array(Eigen::MatrixXd(t.a.transpose()));
-    out["sensor_names"] = sensorNames();  // the columns of sensors
-    out["sensor_units"] = sensorUnits();
-    out["sensors"] = array(t.sensors);
-    out["newton_iterations"] = array(Eigen::VectorXd(t.newton_iterations.cast<double>()));
-    out["integrator"] = request.integrator.name;
-    out["steps"] = integration.run.steps;  // the step of every Newmark run made
-    out["order"] = integration.run.order;
-    if (integration.estimated) {  // the estimated global error of q and of the sensors, same shapes
-      py::dict estimate;
-      estimate["q"] = array(Eigen::MatrixXd(integration.run.q_error.transpose()));
-      estimate["sensors"] = array(integration.run.sensor_error);
-      // The largest round-off floor included in q, where it was measured (docs/integrators.md §5).
-      estimate["round_off_floor"] =
-          integration.run.round_off_floor ? py::object(py::float_(*integration.run.round_off_floor)) : py::object(py::none());
-      out["estimated_error"] = estimate;
-    }
-    return out;
+    return {std::move(integration), request.integrator.name, coordinates(), coordinateUnits(), sensorNames(),
+            sensorUnits()};
   }
 
   const std::string& path() const { return source_.path; }
@@ -182,8 +160,8 @@ class PythonProblem {
     return out;
   }
 
-  py::dict evaluate(const std::optional<std::vector<double>>& design, std::optional<double> artificial,
-                    bool gradients, bool outside_bounds) {
+  PythonEvaluation evaluate(const std::optional<std::vector<double>>& design, std::optional<double> artificial,
+                            bool gradients, bool outside_bounds) {
     const Eigen::VectorXd x =
         checkedDesignPoint(source_, overrides_, problem(), {design.value_or(std::vector<double>{}), artificial, outside_bounds});
     NlpEvaluation e;
@@ -192,19 +170,7 @@ class PythonProblem {
       const std::lock_guard<std::mutex> lock(mutex_);
       nlp_.evaluate(x, gradients, e);
     }
-    py::dict out;
-    out["variables"] = variables();  // the columns of the gradients: d/dx, x = value / scale
-    out["scales"] = scales();
-    out["cost"] = e.cost;                      // b_{k+1}
-    out["cost_functional"] = e.reported_cost;  // the cost sensor's own, SI
-    out["constraint_names"] = constraintNames();
-    out["constraints"] = array(e.constraints);
-    out["outside_bounds"] = outsideBounds(problem(), x);  // what outside_bounds=True let through
-    if (gradients) {
-      out["cost_gradient"] = array(e.cost_gradient);
-      out["constraint_jacobian"] = array(e.constraint_jacobian);
-    }
-    return out;
+    return {std::move(e), gradients, variables(), scales(), constraintNames(), outsideBounds(problem(), x)};
   }
 
   PythonRun optimize(const std::string& optimizer, const std::string& formulation, std::optional<double> epsilon,
@@ -262,6 +228,8 @@ PYBIND11_MODULE(mbsopt, m) {
   m.def("optimizers", [] { return optimizerNames(); }, "The optimizers' names.");
   m.def("formulations", [] { return formulationNames(); }, "The formulations' names.");
   m.def("integrators", [] { return integratorNames(); }, "The integrators' names.");
+  bindSimulation(m);
+  bindEvaluation(m);
   bindOptimizationRun(m);
 
   py::class_<PythonScene>(m, "Scene",
@@ -275,10 +243,7 @@ PYBIND11_MODULE(mbsopt, m) {
            "Simulates as `mbsopt simulate` does: the scene's integrator at its step, or to `accuracy` (absolute, "
            "in the coordinates' units; the extrapolation unless `integrator` names one), rows at the multiples "
            "of `output_step` when given; fast_steps=True as `--fast-steps` (each step solved to a thousandth of "
-           "its truncation error; not with the extrapolation). A dict with time [s], coordinates, coordinate_units (of q; "
-           "v and a per s and s²), q, v, a (rows = time points), sensor_names, sensor_units (SI), sensors, newton_iterations, integrator, steps (of every Newmark run), order, and "
-           "estimated_error {q, sensors (same shapes), round_off_floor (None unless measured)} when there is an estimate (`accuracy`, the extrapolation, "
-           "or estimate_error=True for a fixed step).")
+           "its truncation error; not with the extrapolation). A Simulation.")
       .def_property_readonly("parameters", &PythonScene::parameters, "Every model parameter by its dotted name (SI).")
       .def_property_readonly("coordinates", &PythonScene::coordinates, "The columns of q, v and a.")
       .def_property_readonly("sensor_names", &PythonScene::sensorNames, "The columns of the sensors.")
@@ -297,9 +262,8 @@ PYBIND11_MODULE(mbsopt, m) {
       .def("evaluate", &PythonProblem::evaluate, py::arg("design") = py::none(), py::arg("artificial") = py::none(),
            py::arg("gradients") = true, py::arg("outside_bounds") = false,
            "The problem at a design (SI values of its variables; default its start) and b_{k+1} (default its "
-           "start): cost (b_{k+1}), cost_functional, the transcribed constraints (each <= 0, equalities = 0) "
-           "and, with gradients, cost_gradient and constraint_jacobian (columns: variables). Each design value "
-           "must lie within its bounds unless outside_bounds=True (outside_bounds then lists those that do not) "
+           "start), with gradients unless gradients=False: an Evaluation. Each design value must lie within "
+           "its bounds unless outside_bounds=True (Evaluation.outside_bounds then lists those that do not) "
            "and pass the scene file's checks of the same number (a RuntimeError with its message otherwise).")
       .def("optimize", &PythonProblem::optimize, py::arg("optimizer") = "sdcc", py::arg("formulation") = "",
            py::arg("epsilon") = py::none(), py::arg("budget") = py::none(), py::arg("max_iter") = 100,

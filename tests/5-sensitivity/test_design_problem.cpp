@@ -67,6 +67,36 @@ TEST(DesignProblem, TramwayFileEqualsTheCppProblem) {
   EXPECT_NO_THROW(validate(cpp));
 }
 
+// A design variable is its parameter's place in the model, resolved once: the file's and the C++
+// problem's are the model's own indices, an unknown name is refused where the variable is made, and
+// a variable whose index names another parameter is refused by the transcription (every path to a
+// simulation transcribes first), not applied to the wrong number.
+TEST(DesignProblem, DesignVariablesAreResolvedOnceToTheModelsParameters) {
+  const DesignProblem problem = tramwayDesignProblem();
+  const Model& model = problem.scene.model;
+  for (const DesignVariable& v : problem.design.variables)
+    EXPECT_EQ(v.index, model.parameterIndex(v.parameter)) << v.parameter;
+  const DesignProblem file = oscillatorProblem("0.5", "");
+  EXPECT_EQ(file.design.variables.at(0).index, file.scene.model.parameterIndex("spring.k"));
+  EXPECT_THROW(designVariable(model, "front_secondary.kk", 1.0, 2.0, 1.0), std::invalid_argument);
+
+  DesignProblem swapped = problem;
+  std::swap(swapped.design.variables[0].index, swapped.design.variables[2].index);  // k's name, c's place
+  try {
+    transcribe(swapped);
+    ADD_FAILURE() << "a variable whose index names another parameter was transcribed";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'front_secondary.k' is not resolved"), std::string::npos) << e.what();
+  }
+  // applyDesign writes each value at the variable's index, scaled: x · scale, the others untouched.
+  Model applied = model;
+  Eigen::VectorXd x = initialPoint(problem);
+  x[1] = 7.5;
+  applyDesign(problem, x, applied);
+  EXPECT_EQ(applied.parameter("rear_secondary.k"), 7.5 * problem.design.variables[1].scale);
+  EXPECT_EQ(applied.parameter("front_secondary.k"), model.parameter("front_secondary.k"));
+}
+
 // x'' + ω² x = 0, x(0) = 1, ω = √k = 2π, over T = 1 s (one period); constraint Ψ = ∫⟨x − b⟩dt.
 // With F(Θ) = ∫₀^Θ ⟨cos θ − b⟩dθ: Ψ = F(ωT)/ω, F(2π) = 2(sin θ* − b θ*), θ* = arccos b, and
 // dΨ/dω = −F(ωT)/ω² + ⟨cos ωT − b⟩ T/ω, dω/dk = 1/(2ω); dΨ/db = −(time with x > b) = −2θ*/ω.
@@ -366,7 +396,11 @@ TEST(DesignProblem, LoadCasesAreSimulatedOneByOneAndShareTheDesign) {
       EXPECT_EQ(adjoint.constraints.row(rows[i]), single_adjoint.constraints.row(static_cast<Eigen::Index>(i))) << names[rows[i]];
     }
     EXPECT_EQ(caseTrajectory(response, static_cast<std::size_t>(c)).q(0, 0), q0);
+    EXPECT_EQ(loadCaseResponse(response, static_cast<std::size_t>(c)).constraints, single.constraints);
   }
+  EXPECT_EQ(response.made_of, ResponseParts::LoadCases);
+  EXPECT_EQ(response.trajectory.time.size(), 0);  // each case's is its own
+  EXPECT_THROW(extrapolationRunResponse(response, 1), std::logic_error);
   EXPECT_LE((adjoint.constraints - direct.constraints).cwiseAbs().maxCoeff(), 1e-12 * adjoint.constraints.cwiseAbs().maxCoeff());
   const DesignGradient central = finiteDifferenceGradient(problem, f, x, 1e-5, true);
   EXPECT_LE((central.constraints - adjoint.constraints).cwiseAbs().maxCoeff(), 1e-6 * adjoint.constraints.cwiseAbs().maxCoeff());

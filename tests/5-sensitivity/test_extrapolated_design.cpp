@@ -61,9 +61,10 @@ TEST(ExtrapolatedDesign, EveryRunEndsAtTheEndTime) {
       openChain({ParameterOverride::ofWord("settings.integrator", "extrapolation"), {"settings.extrapolation_runs", 3.0},
                  {"settings.step", 7e-3}});
   const DesignResponse combined = evaluateDesign(problem, transcribe(problem), initialPoint(problem));
-  ASSERT_EQ(combined.runs.size(), 3u);
-  for (std::size_t j = 0; j < combined.runs.size(); ++j) {
-    const Eigen::VectorXd& time = combined.runs[j].trajectory.time;
+  ASSERT_EQ(combined.made_of, ResponseParts::ExtrapolationRuns);
+  ASSERT_EQ(combined.parts.size(), 3u);
+  for (std::size_t j = 0; j < combined.parts.size(); ++j) {
+    const Eigen::VectorXd& time = combined.parts[j].trajectory.time;
     EXPECT_EQ(time.size(), 215 * static_cast<Eigen::Index>(j + 1) + 1);
     EXPECT_EQ(time[time.size() - 1], 1.5);
   }

@@ -9,5 +9,5 @@ import mbsopt  # noqa: E402 (after the path is set)
 
 assert mbsopt.__file__.startswith(package_dir + "/"), mbsopt.__file__
 run = mbsopt.simulate("pendulum")
-assert run["q"].shape == (len(run["time"]), 1), run["q"].shape
-print(f"ok: the installed module {mbsopt.__file__} simulated {len(run['time'])} time points")
+assert run.q.shape == (len(run.time), 1), run.q.shape
+print(f"ok: the installed module {mbsopt.__file__} simulated {len(run.time)} time points")

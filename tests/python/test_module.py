@@ -69,11 +69,11 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
             with open(path, newline="") as f:
                 rows = list(csv.reader(f))
         header, values = rows[0], numpy.array(rows[1:], dtype=float)
-        named = zip(["t", *trajectory["coordinates"], *trajectory["sensor_names"]],
-                    ["s", *trajectory["coordinate_units"], *trajectory["sensor_units"]])
+        named = zip(["t", *trajectory.coordinates, *trajectory.sensor_names],
+                    ["s", *trajectory.coordinate_units, *trajectory.sensor_units])
         self.assertEqual(header, ["%s [%s]" % (name, unit) for name, unit in named])
-        self.assertEqual(trajectory["coordinate_units"], ["rad"])  # the pendulum's hinge
-        columns = numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]])
+        self.assertEqual(trajectory.coordinate_units, ["rad"])  # the pendulum's hinge
+        columns = numpy.column_stack([trajectory.time, trajectory.q, trajectory.sensors])
         self.assertEqual(columns.shape, values.shape)
         # The CSV prints 17 significant digits: it reads back to the same doubles.
         numpy.testing.assert_array_equal(columns, values)
@@ -82,28 +82,28 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         # The extrapolation to 1e-6 with rows every 0.1 s: the same rows as `mbsopt simulate --accuracy
         # 1e-6 --output-step 0.1` to the bit, and an estimate within the accepted half of the tolerance.
         trajectory = mbsopt.Scene("four_bar").simulate(accuracy=1e-6, output_step=0.1)
-        self.assertEqual(trajectory["integrator"], "extrapolation")
-        numpy.testing.assert_allclose(trajectory["time"], numpy.arange(41) * 0.1, rtol=0, atol=1e-12)
-        self.assertLessEqual(numpy.abs(trajectory["estimated_error"]["q"]).max(), 0.5e-6)
-        self.assertEqual(trajectory["estimated_error"]["sensors"].shape, trajectory["sensors"].shape)
+        self.assertEqual(trajectory.integrator, "extrapolation")
+        numpy.testing.assert_allclose(trajectory.time, numpy.arange(41) * 0.1, rtol=0, atol=1e-12)
+        self.assertLessEqual(numpy.abs(trajectory.estimated_error.q).max(), 0.5e-6)
+        self.assertEqual(trajectory.estimated_error.sensors.shape, trajectory.sensors.shape)
         # Newton stops at 1e-9 there, above the scene's 1e-10: no round-off floor is measured. At 1e-8 it is,
         # and it is part of the estimate.
-        self.assertIsNone(trajectory["estimated_error"]["round_off_floor"])
+        self.assertIsNone(trajectory.estimated_error.round_off_floor)
         tight = mbsopt.Scene("four_bar").simulate(accuracy=1e-8, output_step=0.1)
-        self.assertGreater(tight["estimated_error"]["round_off_floor"], 0.0)
-        self.assertLessEqual(tight["estimated_error"]["round_off_floor"], numpy.abs(tight["estimated_error"]["q"]).max())
+        self.assertGreater(tight.estimated_error.round_off_floor, 0.0)
+        self.assertLessEqual(tight.estimated_error.round_off_floor, numpy.abs(tight.estimated_error.q).max())
         with tempfile.TemporaryDirectory() as directory:
             path = os.path.join(directory, "four_bar.csv")
             result = command("simulate", "four_bar", "--accuracy", "1e-6", "--output-step", "0.1", "--out", path)
             self.assertEqual(result.returncode, 0, result.stderr)
             with open(path, newline="") as f:
                 values = numpy.array(list(csv.reader(f))[1:], dtype=float)
-        numpy.testing.assert_array_equal(numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]]),
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory.time, trajectory.q, trajectory.sensors]),
                                          values)
         # A fixed step has no estimate unless asked for, and then it is the command line's default one.
-        self.assertNotIn("estimated_error", mbsopt.simulate("pendulum", set={"settings.end_time": 0.5}))
+        self.assertIsNone(mbsopt.simulate("pendulum", set={"settings.end_time": 0.5}).estimated_error)
         estimated = mbsopt.simulate("pendulum", set={"settings.end_time": 0.5}, estimate_error=True)
-        self.assertEqual(estimated["estimated_error"]["q"].shape, estimated["q"].shape)
+        self.assertEqual(estimated.estimated_error.q.shape, estimated.q.shape)
 
     def test_fast_steps_are_those_of_the_command_line(self):
         # fast_steps=True runs what `mbsopt simulate --fast-steps` runs: the same rows to the bit, in fewer
@@ -111,7 +111,7 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         overrides = {"settings.step": 5e-3}
         trajectory = mbsopt.simulate("four_bar", set=overrides, fast_steps=True)
         default = mbsopt.simulate("four_bar", set=overrides)
-        self.assertLess(trajectory["newton_iterations"].sum(), default["newton_iterations"].sum() / 1.5)
+        self.assertLess(trajectory.newton_iterations.sum(), default.newton_iterations.sum() / 1.5)
         with tempfile.TemporaryDirectory() as directory:
             path = os.path.join(directory, "four_bar.csv")
             result = command("simulate", "four_bar", "--dt", "5e-3", "--fast-steps", "--error-estimate", "off",
@@ -119,7 +119,7 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
             self.assertEqual(result.returncode, 0, result.stderr)
             with open(path, newline="") as f:
                 values = numpy.array(list(csv.reader(f))[1:], dtype=float)
-        numpy.testing.assert_array_equal(numpy.column_stack([trajectory["time"], trajectory["q"], trajectory["sensors"]]),
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory.time, trajectory.q, trajectory.sensors]),
                                          values)
         with self.assertRaisesRegex(ValueError, "not --fast-steps"):
             mbsopt.simulate("four_bar", integrator="extrapolation", fast_steps=True)
@@ -163,9 +163,9 @@ class PersistentObjects(unittest.TestCase):
                              "--out", path)
             self.assertEqual(result.returncode, 0, result.stderr)
             values = numpy.loadtxt(path, delimiter=",", skiprows=1)
-        numpy.testing.assert_array_equal(numpy.column_stack([trajectory["time"], trajectory["q"]]),
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory.time, trajectory.q]),
                                          values[:, :2])
-        self.assertEqual(scene.coordinates, trajectory["coordinates"])
+        self.assertEqual(scene.coordinates, trajectory.coordinates)
 
     def test_a_problems_variables_are_its_design_section(self):
         # tramway.yaml's design: the secondary suspensions' yaw stiffness and damping, bounded
@@ -187,9 +187,9 @@ class PersistentObjects(unittest.TestCase):
         first_a, at_b, again_a = (problem.evaluate(design, artificial=2.0) for design in (a, b, a))
         for design, values in ((a, first_a), (b, at_b), (a, again_a)):
             fresh = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="direct")
-            numpy.testing.assert_array_equal(values["constraints"], fresh["constraints"])
-            numpy.testing.assert_array_equal(values["constraint_jacobian"], fresh["constraint_jacobian"])
-        self.assertFalse(numpy.array_equal(first_a["constraints"], at_b["constraints"]))
+            numpy.testing.assert_array_equal(values.constraints, fresh.constraints)
+            numpy.testing.assert_array_equal(values.constraint_jacobian, fresh.constraint_jacobian)
+        self.assertFalse(numpy.array_equal(first_a.constraints, at_b.constraints))
 
     def test_a_refused_override_leaves_the_scene_as_it_was_and_a_name_set_again_takes_its_new_value(self):
         scene = mbsopt.Scene("pendulum", set={"bob.mass": 2.0})
@@ -211,9 +211,9 @@ class PersistentObjects(unittest.TestCase):
         for thread in threads:
             thread.join()
         # 1.0 kg is the scene's own mass: whichever set() a simulation follows, its trajectory is this one.
-        expected = mbsopt.simulate("pendulum", set={"settings.end_time": 0.2})["q"]
+        expected = mbsopt.simulate("pendulum", set={"settings.end_time": 0.2}).q
         for trajectory in trajectories:
-            numpy.testing.assert_array_equal(trajectory["q"], expected)
+            numpy.testing.assert_array_equal(trajectory.q, expected)
         problem = mbsopt.Problem("tramway", gradient="direct")
         designs = [[2.0e5, 1.0e5, 3.0e4, 2.0e4], [3.0e5, 4.0e5, 1.0e4, 4.0e4]]
         results = [None, None]
@@ -227,7 +227,7 @@ class PersistentObjects(unittest.TestCase):
             thread.join()
         for design, values in zip(designs, results):
             fresh = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="direct")
-            numpy.testing.assert_array_equal(values["constraint_jacobian"], fresh["constraint_jacobian"])
+            numpy.testing.assert_array_equal(values.constraint_jacobian, fresh.constraint_jacobian)
 
     def test_errors_of_the_objects(self):
         with self.assertRaisesRegex(ValueError, "unknown gradient method 'nope'"):
@@ -250,8 +250,8 @@ class PersistentObjects(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "k must not be negative, got -400"):
             problem.evaluate([-400.0, 5.0], gradients=False, outside_bounds=True)
         outside = problem.evaluate([1200.0, 5.0], gradients=False, outside_bounds=True)
-        self.assertEqual(outside["outside_bounds"], ["tmd.k = 1200 above its upper bound 1000"])
-        self.assertEqual(problem.evaluate([464.85, 10.58], gradients=False)["outside_bounds"], [])
+        self.assertEqual(outside.outside_bounds, ["tmd.k = 1200 above its upper bound 1000"])
+        self.assertEqual(problem.evaluate([464.85, 10.58], gradients=False).outside_bounds, [])
 
 
 class RandomInputs(unittest.TestCase):
@@ -301,14 +301,14 @@ class RandomInputs(unittest.TestCase):
                 continue
             evaluated += 1
             for key in ("cost", "cost_functional", "constraints", "cost_gradient", "constraint_jacobian"):
-                if key in values:
-                    self.assertFinite(values[key], key)
+                if getattr(values, key) is not None:
+                    self.assertFinite(getattr(values, key), key)
             if not outside:
-                self.assertEqual(values["outside_bounds"], [])
+                self.assertEqual(values.outside_bounds, [])
             given = design if design else list(self.problem.start[:-1])  # none given: the start's
             point = given + ([] if artificial is None else [artificial])  # b_{k+1} last, as in lower
             inside = all(lo <= x <= hi for x, lo, hi in zip(point, lower, upper))
-            self.assertEqual(values["outside_bounds"] == [], inside, point)
+            self.assertEqual(values.outside_bounds == [], inside, point)
         self.assertGreater(evaluated, 20)  # the draws reach the evaluation, not only the refusals
 
     def test_random_run_options_are_refused_or_end_with_a_finite_record(self):
@@ -339,14 +339,14 @@ class Gradients(unittest.TestCase):
         design = [2.0e5, 1.0e5, 3.0e4, 2.0e4]
         adjoint = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="adjoint")
         direct = mbsopt.evaluate("tramway", design=design, artificial=2.0, gradient="direct")
-        self.assertEqual(adjoint["variables"][-1], "b_{k+1}")
-        self.assertEqual(adjoint["constraint_jacobian"].shape, (len(adjoint["constraint_names"]), 5))
+        self.assertEqual(adjoint.variables[-1], "b_{k+1}")
+        self.assertEqual(adjoint.constraint_jacobian.shape, (len(adjoint.constraint_names), 5))
         # Over the design variables' columns (b_{k+1}'s, exact in both, would set a looser scale).
-        scale = numpy.abs(direct["constraint_jacobian"][:, :-1]).max()
+        scale = numpy.abs(direct.constraint_jacobian[:, :-1]).max()
         self.assertGreater(scale, 0.0)
-        numpy.testing.assert_allclose(adjoint["constraint_jacobian"][:, :-1], direct["constraint_jacobian"][:, :-1],
+        numpy.testing.assert_allclose(adjoint.constraint_jacobian[:, :-1], direct.constraint_jacobian[:, :-1],
                                       rtol=0, atol=1e-10 * scale)
-        numpy.testing.assert_array_equal(adjoint["constraints"], direct["constraints"])
+        numpy.testing.assert_array_equal(adjoint.constraints, direct.constraints)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-#include "app/atomic_file.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 
 #include <cerrno>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "app/benchmark_plan.hpp"
+#include "mbsopt/design/benchmark_plan.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,9 +7,9 @@
 
 #include "mbsopt/sensitivity/gradient_method.hpp"
 #include "mbsopt/optimizers/latin_hypercube.hpp"
+#include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/io/scene_file.hpp"
-#include "app/atomic_file.hpp"
-#include "app/scene_argument.hpp"
+#include "mbsopt/io/scene_lookup.hpp"
 
 namespace mbsopt {
 
@@ -48,7 +48,7 @@ std::vector<std::vector<double>> startsOf(const BenchmarkProblem& p, int count, 
                                   " has no finite bounds, and the starts are drawn in them");
     lower[i] = v.lower;
     upper[i] = v.upper;
-    own.push_back(p.problem.scene.model.parameter(v.parameter));
+    own.push_back(p.problem.scene.model.value(v.index));
   }
   std::vector<std::vector<double>> starts{own};
   for (const Eigen::VectorXd& x : latinHypercube(lower, upper, count - 1, seed))
@@ -136,7 +136,7 @@ nlohmann::json executeRun(const BenchmarkOptions& options, const BenchmarkPlan& 
   try {
     DesignProblem problem = p.problem;
     const std::vector<double>& start = p.starts[static_cast<std::size_t>(run.start)];
-    for (std::size_t i = 0; i < start.size(); ++i) problem.scene.model.setParameter(problem.design.variables[i].parameter, start[i]);
+    for (std::size_t i = 0; i < start.size(); ++i) problem.scene.model.setParameter(problem.design.variables[i].index, start[i]);
     nlohmann::json record = toJson(runOptimization(std::move(problem), choice, {}, std::move(shared_threads)), p.path);
     record["benchmark"] = benchmark;
     return record;

@@ -1,6 +1,8 @@
-// The element types' registry (7-io/element_type.hpp) and the type added through it in one file,
-// the spherical joint (7-io/elements/spherical.cpp):
-// - every registered type is one the scene files take, and an unknown type's error lists them all;
+// The registries of the scene files' entry types (7-io/entry_type.hpp: elements, cuts, forces,
+// sensors) and the element type added through one in one file, the spherical joint
+// (7-io/elements/spherical.cpp):
+// - every registered type has a unique name and a description; in every section an unknown type is
+//   refused at its line with every registered name, and a key its type does not take is refused;
 // - a spherical joint is exactly the chain it stands for, three revolutes about x, y', z'' and a
 //   frame: the same trajectory to the bit as that chain written out;
 // - a rigid body on a spherical joint in steady conical rotation, ω = Ω e about the vertical e with
@@ -16,9 +18,12 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/io/element_type.hpp"
+#include "mbsopt/io/entry_type.hpp"
 #include "mbsopt/io/scene_file.hpp"
 
 namespace mbsopt {
@@ -28,25 +33,68 @@ LoadedScene sceneOf(const std::string& text) { return loadScene(SceneSource{"ele
 
 Trajectory simulated(const Scene& scene) { return NewmarkIntegrator(scene.model, scene.settings).simulate(scene.q0, scene.v0); }
 
-TEST(ElementTypes, EveryRegisteredTypeHasAUniqueNameAndADescription) {
+template <class Entry>
+void expectUniqueNamesAndDescriptions(const std::vector<EntryType<Entry>>& registry, const std::string& what) {
   std::set<std::string> names;
-  for (const ElementType& type : elementTypes()) {
-    EXPECT_TRUE(names.insert(type.name).second) << type.name;
-    EXPECT_FALSE(type.description.empty()) << type.name;
-    EXPECT_EQ(&elementType(type.name), &type);
+  for (const EntryType<Entry>& type : registry) {
+    EXPECT_TRUE(names.insert(type.name).second) << what << " " << type.name;
+    EXPECT_FALSE(type.description.empty()) << what << " " << type.name;
+    EXPECT_EQ(&entryType(registry, type.name, what), &type);
   }
-  EXPECT_THROW(elementType("ball_and_socket"), std::invalid_argument);
+  EXPECT_THROW(entryType(registry, "ball_and_socket", what), std::invalid_argument);
 }
 
-TEST(ElementTypes, AnUnknownTypeIsRefusedAtItsLineWithEveryRegisteredName) {
+TEST(EntryTypes, EveryRegisteredTypeHasAUniqueNameAndADescription) {
+  expectUniqueNamesAndDescriptions(elementTypes(), "element");
+  expectUniqueNamesAndDescriptions(cutTypes(), "cut");
+  expectUniqueNamesAndDescriptions(forceTypes(), "force");
+  expectUniqueNamesAndDescriptions(sensorTypes(), "sensor");
+}
+
+// A pendulum whose section `section` ends with `entry` (at line 6 of the file).
+std::string pendulumWith(const std::string& section, const std::string& entry) {
+  std::string text = "elements:\n  - {name: arm, type: revolute, parent: ground, axis: [0, 0, 1]}\n"
+                     "bodies:\n  - {name: bob, frame: arm, mass: 1, com: [1, 0, 0], Ixx: 1, Iyy: 1, Izz: 1}\n";
+  if (section == "elements") return "bodies:\n  - {name: bob, frame: arm, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}\n"
+                                    "elements:\n  - {name: arm, type: revolute, parent: ground, axis: [0, 1, 0]}\n"
+                                    "  - {name: bob_mount, type: offset, parent: arm}\n" + entry;
+  return text + section + ":\n" + entry;
+}
+
+void expectRefusedAtLineSix(const std::string& text, const std::vector<std::string>& words) {
   try {
-    sceneOf("elements:\n  - {name: arm, type: hinge, parent: ground, axis: [0, 1, 0]}\n"
-            "bodies:\n  - {name: bob, frame: arm, mass: 1, Ixx: 1, Iyy: 1, Izz: 1}\n");
-    FAIL() << "an unknown element type was accepted";
+    sceneOf(text);
+    ADD_FAILURE() << "accepted:\n" << text;
   } catch (const SceneError& e) {
-    EXPECT_EQ(e.line(), 2);
-    for (const std::string& name : elementTypeNames()) EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    EXPECT_EQ(e.line(), 6) << e.what();
+    for (const std::string& word : words) EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
   }
+}
+
+TEST(EntryTypes, AnUnknownTypeIsRefusedAtItsLineWithEveryRegisteredName) {
+  const std::pair<std::string, std::vector<std::string>> sections[] = {
+      {"elements", entryTypeNames(elementTypes())},
+      {"cuts", entryTypeNames(cutTypes())},
+      {"forces", entryTypeNames(forceTypes())},
+      {"sensors", entryTypeNames(sensorTypes())},
+  };
+  for (const auto& [section, names] : sections) {
+    SCOPED_TRACE(section);
+    const std::string parent = section == "elements" ? ", parent: ground" : "";
+    expectRefusedAtLineSix(pendulumWith(section, "  - {name: odd, type: hinge" + parent + "}\n"), names);
+  }
+}
+
+TEST(EntryTypes, AKeyItsTypeDoesNotTakeIsRefusedAtItsLine) {
+  expectRefusedAtLineSix(pendulumWith("forces", "  - {name: spring, type: joint_spring_damper, joint: arm, k: 1, "
+                                                "stiffness: 2}\n"),
+                         {"stiffness"});
+  expectRefusedAtLineSix(pendulumWith("sensors", "  - {name: angle, type: joint, joint: arm, quantity: position, "
+                                                 "axis: [0, 0, 1]}\n"),
+                         {"axis"});
+  expectRefusedAtLineSix(pendulumWith("cuts", "  - {name: pin, type: spherical, frame_a: arm, frame_b: ground, "
+                                              "axis_in_a: [0, 0, 1]}\n"),
+                         {"axis_in_a"});
 }
 
 constexpr const char* kBody = R"(
