@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -67,7 +68,7 @@ class SceneBuilder {
     readTracks();
     readElements();
     for (const YamlNode& node : list("bodies")) readBody(node);
-    for (const YamlNode& node : list("cuts")) readEntry(node, cutTypes(), "cut");
+    for (const YamlNode& node : list("cuts")) readCut(node);
     for (const YamlNode& node : list("forces")) readEntry(node, forceTypes(), "force");
     for (const YamlNode& node : list("sensors")) readEntry(node, sensorTypes(), "sensor");
     checkTrajectorySize();
@@ -436,8 +437,9 @@ class SceneBuilder {
   }
 
   /// An entry of `cuts:`, `forces:` or `sensors:` (`kind`: "cut", "force", "sensor"), read by its
-  /// registered type (entry_type.hpp).
-  void readEntry(const YamlNode& node, const std::vector<SectionEntryType>& types, const std::string& kind) {
+  /// registered type (entry_type.hpp); `added` sees the entry once its type has added it.
+  void readEntry(const YamlNode& node, const std::vector<SectionEntryType>& types, const std::string& kind,
+                 const std::function<void(const MapReader&)>& added = {}) {
     std::string name;
     const MapReader map = entry(node, kind, name);
     const SectionEntryType& type = entryType(types, map.choice("type", entryTypeNames(types)), kind);
@@ -446,9 +448,15 @@ class SceneBuilder {
     map.allowKeys(keys);
     EntryOf<SectionEntry> reader(*this, map, name);
     type.add(reader);
-    if (kind != "cut") return;
-    cut_marks_.resize(model().cuts().size(), map.node().mark());
-    checkModelSize(map);
+    if (added) added(map);
+  }
+
+  /// A cut's closure equations are located at its entry, and they count towards the model's size.
+  void readCut(const YamlNode& node) {
+    readEntry(node, cutTypes(), "cut", [&](const MapReader& map) {
+      cut_marks_.resize(model().cuts().size(), map.node().mark());
+      checkModelSize(map);
+    });
   }
 
   /// q₀ and q̇₀ from the joints' q0 and v0, moved onto the loop closure when they miss it.

@@ -11,7 +11,7 @@
 #include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/design/benchmark_plan.hpp"
-#include "app/benchmark_report.hpp"
+#include "mbsopt/design/benchmark_report.hpp"
 #include "app/mpi_sweep.hpp"
 #include "app/optimization_options.hpp"
 #include "app/option_checks.hpp"

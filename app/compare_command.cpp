@@ -10,11 +10,11 @@
 
 #include "mbsopt/sensitivity/parallel_runs.hpp"
 #include "mbsopt/io/atomic_file.hpp"
+#include "mbsopt/io/gnuplot.hpp"
+#include "mbsopt/design/optimization_plots.hpp"
 #include "mbsopt/design/optimization_run.hpp"
 #include "mbsopt/design/run_record.hpp"
-#include "app/gnuplot.hpp"
 #include "app/optimization_options.hpp"
-#include "app/optimization_plots.hpp"
 #include "app/option_checks.hpp"
 #include "app/output_paths.hpp"
 #include "app/scene_argument.hpp"

@@ -14,11 +14,11 @@
 #include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/io/scene_text.hpp"
 #include "mbsopt/design/gradient_precision.hpp"
+#include "mbsopt/design/precision_report.hpp"
 #include "mbsopt/design/precision_study.hpp"
 #include "app/design_point.hpp"
 #include "app/option_checks.hpp"
 #include "app/output_paths.hpp"
-#include "app/precision_report.hpp"
 #include "app/scene_argument.hpp"
 
 namespace mbsopt {

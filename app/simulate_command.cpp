@@ -11,7 +11,7 @@
 #include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/io/atomic_file.hpp"
 #include "mbsopt/io/scene_text.hpp"
-#include "app/csv_output.hpp"
+#include "mbsopt/io/trajectory_csv.hpp"
 #include "app/option_checks.hpp"
 #include "app/output_paths.hpp"
 #include "app/registry_choices.hpp"

@@ -1,4 +1,4 @@
-// The data file of a gnuplot figure the program writes (app/gnuplot.hpp): blocks, each headed
+// The data file of a gnuplot figure the program writes (7-io/gnuplot.hpp): blocks, each headed
 // "# TITLE" ("# (marks)" for a run's ringed reported point), of "x y" lines.
 #pragma once
 

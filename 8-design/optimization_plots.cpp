@@ -1,4 +1,4 @@
-#include "app/optimization_plots.hpp"
+#include "mbsopt/design/optimization_plots.hpp"
 
 #include <algorithm>
 #include <cmath>

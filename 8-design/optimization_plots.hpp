@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "mbsopt/io/gnuplot.hpp"
 #include "mbsopt/design/optimization_run.hpp"
-#include "app/gnuplot.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "app/csv_output.hpp"
+#include "mbsopt/io/trajectory_csv.hpp"
 
 #include "mbsopt/model/units.hpp"
 #include "mbsopt/io/atomic_file.hpp"
@@ -9,7 +9,7 @@ void writeTrajectoryCsv(const std::string& path, const Model& model, const Traje
                         const Eigen::MatrixXd& sensors, long every) {
   writeAtomically(path, [&](std::ostream& out) {
     out.precision(17);
-    out << withUnit("t", "s");  // each column "name [unit]", SI (csv_output.hpp)
+    out << withUnit("t", "s");  // each column "name [unit]", SI (trajectory_csv.hpp)
     for (std::size_t i = 0; i < model.coordinates().size(); ++i)
       out << ',' << withUnit(model.coordinates()[i].name, coordinateUnit(model, static_cast<int>(i)));
     for (const Sensor& s : model.sensors()) out << ',' << withUnit(s.name, sensorSiUnit(model, s));

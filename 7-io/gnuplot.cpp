@@ -1,4 +1,4 @@
-#include "app/gnuplot.hpp"
+#include "mbsopt/io/gnuplot.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,9 +1,9 @@
-#include "app/precision_report.hpp"
+#include "mbsopt/design/precision_report.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "app/gnuplot.hpp"
+#include "mbsopt/io/gnuplot.hpp"
 
 namespace mbsopt {
 

@@ -1,4 +1,4 @@
-#include "app/benchmark_report.hpp"
+#include "mbsopt/design/benchmark_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "mbsopt/io/atomic_file.hpp"
-#include "app/gnuplot.hpp"
-#include "app/optimization_plots.hpp"
+#include "mbsopt/io/gnuplot.hpp"
+#include "mbsopt/design/optimization_plots.hpp"
 
 namespace mbsopt {
 
