@@ -19,7 +19,7 @@ template <class Scalar> using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>
 /// Eight (one AVX-512 register, two AVX2 ones) rather than 16: a pass then wastes fewer unseeded
 /// lanes, and a caller can give a pass only the work its directions need (the tram's step
 /// derivatives: 10 directions in a full pass of 8 and a pass of 2 velocities that skips the
-/// projections' terms); docs/speed.md, "Narrower AD passes", has the measurement behind the choice.
+/// projections' terms); `bench_gradients --benchmark_filter=StepDerivatives` measures the choice.
 inline constexpr int kMaxAdDirections = 8;
 using AdDerivatives = Eigen::Matrix<double, kMaxAdDirections, 1>;
 using AdScalar = Eigen::AutoDiffScalar<AdDerivatives>;

@@ -44,7 +44,7 @@ constexpr double kRateSafety = 10.0;
 // differ by one increment's round-off (~0.2 of the floor). A degree-4 fit did so on most of the
 // tram's steps, and its finite-difference gradients came out 3-7 times noisier (the test at the
 // best step failed). Without it the target is the tolerance, far above round-off, and the fit only
-// saves iterations (open chains 4.0-4.4 to 1.9-2.4 per step, docs/speed.md "Newton's start").
+// saves iterations (open chains: 1.9-2.4 Newton iterations per step instead of 4.0-4.4).
 constexpr int kClosedPredictorDegree = 2, kClosedPredictorWindow = 3;
 constexpr int kOpenPredictorDegree = 6, kOpenPredictorWindow = 12;
 // A contraction rate is measured only from increments this far above the round-off floor: the next

@@ -2,7 +2,7 @@
 // formulation with b5 = 2 m/s² so the a_lat constraints are active): one simulation with its
 // functionals, then the cost's and all constraints' gradients by each method. Every gradient
 // benchmark includes its own simulation; the counter `over_simulation` is (gradient − simulation) /
-// simulation, the measure (targets: adjoint ≤ 1.0, direct ≤ 0.3 per design variable). Each
+// simulation (the targets were adjoint ≤ 1.0, direct ≤ 0.3 per design variable). Each
 // iteration times a plain simulation (evaluateDesign) just before its gradient, outside the
 // iteration's time, and the counter is the median over the iterations of that pair's ratio: on a
 // shared machine whose speed drifts by ±30 % within minutes, a simulation timed once at start-up

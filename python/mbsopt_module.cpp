@@ -16,6 +16,7 @@
 #include "mbsopt/integrators/newmark.hpp"
 #include "mbsopt/sensitivity/gradient_method.hpp"
 #include "mbsopt/io/design_point.hpp"
+#include "mbsopt/io/element_type.hpp"
 #include "mbsopt/io/scene_file.hpp"
 #include "mbsopt/io/scene_lookup.hpp"
 #include "mbsopt/design/design_nlp.hpp"
@@ -228,6 +229,25 @@ PYBIND11_MODULE(mbsopt, m) {
   m.def("optimizers", [] { return optimizerNames(); }, "The optimizers' names.");
   m.def("formulations", [] { return formulationNames(); }, "The formulations' names.");
   m.def("integrators", [] { return integratorNames(); }, "The integrators' names.");
+  m.def(
+      "entry_types",
+      [] {
+        py::dict sections;
+        const auto add = [&](const char* section, const auto& registry) {
+          py::list types;
+          for (const auto& type : registry)
+            types.append(py::dict(py::arg("name") = type.name, py::arg("description") = type.description,
+                                  py::arg("keys") = type.keys));
+          sections[section] = types;
+        };
+        add("elements", elementTypes());
+        add("cuts", cutTypes());
+        add("forces", forceTypes());
+        add("sensors", sensorTypes());
+        return sections;
+      },
+      "The types a scene file's sections take, by section (elements, cuts, forces, sensors): each type's name, "
+      "description and keys besides name and type (and an element's parent).");
   bindSimulation(m);
   bindEvaluation(m);
   bindOptimizationRun(m);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Side by side with a peer (issue 11): builds bench/peer/peer_comparison against Debian's Simbody and
+# Side by side with a peer: builds bench/peer/peer_comparison against Debian's Simbody and
 # writes results/peer-comparison/ (peer_comparison.json, peer_comparison.md, work_precision_<mechanism>.png).
 # By default: four_bar, chain8, nfourbar4, andrews (Andrews' squeezer, problems/scenes/hard/) and the
 # a02_singular survey. Not part of the test suite: ~5-10 minutes on the 2-core VM. Extra arguments go to

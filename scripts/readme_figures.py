@@ -135,7 +135,11 @@ class Report:
 
 
 def run(command):
-    result = subprocess.run(["bash", "-c", command], cwd=ROOT, capture_output=True, text=True)
+    """The command's status and output, run from the repository's root with the built `mbsopt` on PATH
+    (the pages call it by its name)."""
+    environment = dict(os.environ, PATH=os.pathsep.join([os.path.join(ROOT, "build", "release", "app"),
+                                                        os.environ.get("PATH", "")]))
+    result = subprocess.run(["bash", "-c", command], cwd=ROOT, capture_output=True, text=True, env=environment)
     return result.returncode, result.stdout + result.stderr
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Runs driven by accuracy on the hard cases, each against its independent reference (issue 18).
+"""Runs driven by accuracy on the hard cases, each against its independent reference.
 
     scripts/hard_cases/check_accuracy.py [--mbsopt BINARY] [--scenes a,b] [--tolerances 1e-3,1e-5]
                                          [--t-end T] [--integrator NAME] [--out FILE.json]
@@ -29,7 +29,7 @@ import tempfile
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 HARD = os.path.join(ROOT, "problems", "scenes", "hard")
-RATIO_LIMIT = 10.0  # the issue's "within 10x of the estimate"
+RATIO_LIMIT = 10.0  # a run driven by accuracy is within 10x of its estimate
 SAFETY = 2.0        # docs/integrators.md: runs are accepted at half the tolerance; the estimate is within 2x
 FLOOR = 1e-9        # below this the reference (DOP853 at 1e-13, published values to 1e-14) and round-off decide
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs driven by accuracy on every hard case, whole, each against its independent reference
-# (issue 18): `mbsopt simulate SCENE --accuracy TOL` for TOL = 1e-3 … 1e-8, the true error beside the
+# `mbsopt simulate SCENE --accuracy TOL` for TOL = 1e-3 … 1e-8, the true error beside the
 # error the run estimated. Writes results/hard-cases/accuracy.md (the table) and accuracy.json.
 # Not part of the test suite (the N = 40 four-bars take minutes); the tests run the short scenes and
 # A01's first 20 s. Needs a Release build: cmake --preset release && cmake --build --preset release.

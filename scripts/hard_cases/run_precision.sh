@@ -18,7 +18,7 @@ study() {  # scene, steps, then extra arguments
     --repeat 1 --target-error 1e-3 --out "$out/$scene" "$@"
 }
 
-# IFToMM A02, N = 40, 20 s: the steps of the issue, from 2e-2 down to 1e-3.
+# IFToMM A02, N = 40, 20 s: the steps from 2e-2 down to 1e-3.
 study n_four_bar_a02 2e-2,1e-2,5e-3,2e-3,1e-3 --variants newmark
 study n_four_bar_a02_flat 2e-2,1e-2,5e-3,2e-3,1e-3 --variants newmark
 # N = 2 released flat: a step of h = 1e-2 lands 5e-6 rad from the singular position.

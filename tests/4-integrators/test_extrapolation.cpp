@@ -162,7 +162,7 @@ TEST(RoundOffFloor, IsTheDifferenceOfTwoRoundingsOfTheSameCombination) {
   // same truncation error to 1e-13 of it but round differently at every step: their result differs
   // from the first by the combination's round-off alone, √2 times its floor if the floor is a
   // faithful measure of it (the probe is a third rounding). Both sides are largest values over 400
-  // time points and 4 coordinates of sums of many rounding errors; the issue's factor of 10 either way.
+  // time points and 4 coordinates of sums of many rounding errors; the factor of 10 either way that the estimate is held to.
   const Scene scene = sceneFile("problems/scenes/four_bar.yaml");
   const ExtrapolationTableau a = sixRuns(scene, 0.01, 0.0, true);
   const ExtrapolationTableau b = sixRuns(scene, 0.01, 48.0 * std::numeric_limits<double>::epsilon(), false);
@@ -186,7 +186,7 @@ TEST(RoundOffFloor, IsTheDifferenceOfTwoRoundingsOfTheSameCombination) {
 
 TEST(AccuracyControl, OscillatorMeetsEveryToleranceAndSaysHowWell) {
   // The true error against cos ωt stays below the tolerance (absolute; the run accepted at half of it,
-  // asserted at twice it) and within the factor of 10 of its estimate that the issue asks for.
+  // asserted at twice it) and within the factor of 10 of its estimate that a run driven by accuracy promises.
   const Scene scene = oscillator(3.0);
   for (const double tolerance : {1e-3, 1e-5, 1e-7, 1e-9}) {
     AccuracyGoal goal;

@@ -430,7 +430,7 @@ TEST(ExactGradients, FourBarKsAggregateMatchesCentralDifferences) {
   expectAdjointMatchesCentralDifferencesAtTheBestStep(loadDesignProblem(source, {{"settings.end_time", 0.3}}), 1e-8);
 }
 
-// The acceptance figure: on the whole tram run at b0, the paper's formulation with b5 = 2 m/s²
+// The acceptance figure of the exact gradients: on the whole tram run at b0, the paper's formulation with b5 = 2 m/s²
 // (so the a_lat constraints are active), the adjoint agrees with central differences at the best
 // step of a sweep to 1e-6 of each row's largest entry — as first written, with b_{k+1}'s column
 // counted, whose exact −1.709 is 4-6 times the design entries of the a_lat rows: 6e-6 of the largest

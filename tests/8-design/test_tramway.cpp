@@ -1,4 +1,4 @@
-// The tramway scene of docs/tramway.md (issue test 8), and the two charts of the bogie yaw.
+// The tramway scene of docs/tramway.md, and the two charts of the bogie yaw.
 #include <gtest/gtest.h>
 
 #include <cmath>

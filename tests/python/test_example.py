@@ -1,8 +1,8 @@
 """The examples a user copies, run as a user runs them (ctest gives the module's directory on
-PYTHONPATH, EXAMPLE naming python/examples/tramway_comparison.py and README naming README.md):
-in the example, SDCC and SLSQP, two independent algorithms, both converge feasible on the paper's
-formulation of the tramway and agree on its optimum, and the figure is written; every ```python
-block of the README runs."""
+PYTHONPATH, EXAMPLE naming python/examples/tramway_comparison.py, README naming README.md and
+PYTHON_PAGE docs/python.md): in the example, SDCC and SLSQP, two independent algorithms, both
+converge feasible on the paper's formulation of the tramway and agree on its optimum, and the
+figure is written; every ```python block of the README and of the Python page runs."""
 import os
 import re
 import subprocess
@@ -11,7 +11,7 @@ import tempfile
 import unittest
 
 EXAMPLE = os.environ["EXAMPLE"]
-README = os.environ["README"]
+PAGES = [os.environ["README"], os.environ["PYTHON_PAGE"]]
 
 
 class TramwayComparisonExample(unittest.TestCase):
@@ -36,10 +36,13 @@ class TramwayComparisonExample(unittest.TestCase):
 
 
 class ReadmeBlocks(unittest.TestCase):
-    def test_every_python_block_of_the_readme_runs(self):
-        with open(README) as f:
-            blocks = re.findall(r"^```python\n(.*?)^```$", f.read(), flags=re.M | re.S)
-        self.assertGreater(len(blocks), 0)
+    def test_every_python_block_of_the_readme_and_the_python_page_runs(self):
+        blocks = []
+        for page in PAGES:
+            with open(page) as f:
+                found = re.findall(r"^```python\n(.*?)^```$", f.read(), flags=re.M | re.S)
+            self.assertGreater(len(found), 0, page)
+            blocks += found
         for block in blocks:
             with self.subTest(block=block.splitlines()[0]), tempfile.TemporaryDirectory() as directory:
                 run = subprocess.run([sys.executable, "-c", block], capture_output=True, text=True, cwd=directory)
