@@ -22,7 +22,7 @@ struct BoundWorth {
   /// The constraint's report name (yaw_front_max_abs; one bound for every load case), or the design
   /// variable's parameter (front_secondary.k).
   std::string name;
-  /// Its place in DesignDescription::constraints or ::variables: the dotted name
+  /// Its place in DesignDescription::constraints or DesignDescription::variables: the dotted name
   /// design.constraints.INDEX.bound, or design.variables.INDEX.lower / .upper, moves it.
   int index = 0;
   std::string unit;  ///< the bound's: the constraint's reported unit (deg for an angle), a parameter's (parameterUnit; "" where it has none)

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the documentation site into build/docs/site (MkDocs, Debian's package; mkdocs.yml names the
-# pages): gathers docs/, the folders' READMEs and the reference pages generated from the code
-# (scripts/docs_reference.py, from the built program and Python module) into build/docs/pages, then
-# builds them with --strict, so that a warning or a link to a page that does not exist fails.
+# pages): gathers docs/, the folders' READMEs, the reference pages generated from the code
+# (scripts/docs_reference.py, from the built program and Python module) and the C++ API reference
+# (Doxygen, Doxyfile) into build/docs/pages, then builds them with --strict, so that a warning or a
+# link to a page that does not exist fails (and Doxygen fails on any warning of its own).
 #   scripts/build-docs.sh [BUILD_DIR]   (default build/release, which must be built)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,5 +20,6 @@ find results -name '*.png' -exec cp --parents {} "$pages/" \;  # the figures the
 python="$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")"  # the module's interpreter
 "${python:-python3}" scripts/docs_reference.py --mbsopt "$build/app/mbsopt" --python-path "$build/python" \
   --out "$pages/reference"
+doxygen Doxyfile
 mkdocs build --strict --quiet
 echo "build-docs: build/docs/site/index.html"

@@ -21,7 +21,7 @@ packages=(
   python3-matplotlib        # its example, python/examples/tramway_comparison.py
   libsimbody-dev            # the peer engine of bench/peer (scripts/peer_comparison.sh); optional for the build
   python3-scipy python3-mpmath  # hard-case references (scripts/hard_cases/make_references.py)
-  mkdocs                    # the documentation site (scripts/build-docs.sh)
+  mkdocs doxygen            # the documentation site and its C++ API reference (scripts/build-docs.sh)
 )
 
 missing=()
