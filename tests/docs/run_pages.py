@@ -3,10 +3,18 @@
 directory, in the order given: each block after a `<!-- file: NAME -->` line is written to NAME;
 each ```console block's `$ COMMAND` lines are run (bash, with the directory of `mbsopt` and of the
 Python interpreter first on PATH and the module's directory on PYTHONPATH) and their quoted output
-is compared with what the command prints, figure by figure (scripts/readme_figures.py's rules:
-`...` stands for lines left out, timings may move). A command must exit 0, or 1 where its quote
-shows an error line (`: error:`). Any other fenced block on a page is an error, so that no block
-goes unrun.
+is compared with what the command prints, line by line (scripts/readme_figures.py's rules: `...`
+stands for lines left out, timings may move, the words must be the same). A command must exit 0, or
+1 where its quote shows an error line (`: error:`). Any other fenced block on a page is an error, so
+that no block goes unrun.
+
+The pages' figures come from one machine; on another CPU the same build rounds differently, which
+moves the last digits of a result and, through an optimizer's path, its counts. So a quoted figure
+holds when it is within 1e-3 of the printed one, relative (the pages state results to three or
+four digits; an optimum that moved by more is a change to explain); when both are below 1e-6 in
+magnitude (violations, residuals, KKT norms: round-off that the pages quote only as "tiny"); or,
+for a count (an integer: simulations, gradients, iterations, Newton iterations), within 20 % of it
+(round-off may move an optimizer's path by some evaluations, not its order of magnitude).
 
     run_pages.py --mbsopt build/release/app/mbsopt --python-path build/release/python PAGE.md ...
 
@@ -54,6 +62,33 @@ def steps(path):
     return out
 
 
+def close(quoted, printed):
+    """Whether a printed figure is the quoted one, in the sense of the module's docstring."""
+    if quoted == printed:
+        return True
+    a, b = float(quoted), float(printed)
+    if max(abs(a), abs(b)) <= 1e-6:
+        return True
+    if re.fullmatch(r"[-+]?\d+", quoted) and re.fullmatch(r"[-+]?\d+", printed):
+        return abs(a - b) <= 0.2 * max(abs(a), abs(b))
+    return abs(a - b) <= 1e-3 * max(abs(a), abs(b))
+
+
+class Report(readme_figures.Report):
+    def compare(self, where, quoted, now, timing_column=False):
+        (old, old_words), (new, new_words) = (readme_figures.figures(quoted, timing_column),
+                                              readme_figures.figures(now, timing_column))
+        if old_words != new_words or len(old) != len(new):
+            self.changed.append(f"{where}: quoted «{quoted.strip()}», now «{now.strip()}»")
+            return
+        for (a, timing), (b, _) in zip(old, new):
+            if timing:
+                if a != b:
+                    self.timings.append(f"{where}: {a} → {b}")
+            elif not close(a, b):
+                self.changed.append(f"{where}: {a} → {b}   «{now.strip()}»")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--mbsopt", required=True, help="the mbsopt program to run as `mbsopt`")
@@ -64,7 +99,7 @@ def main():
     bin_dirs = [os.path.dirname(os.path.abspath(args.mbsopt)), os.path.dirname(sys.executable)]
     environment["PATH"] = os.pathsep.join(bin_dirs + [environment.get("PATH", "")])
     environment["PYTHONPATH"] = os.path.abspath(args.python_path) if args.python_path else ""
-    report = readme_figures.Report()
+    report = Report()
     with tempfile.TemporaryDirectory() as directory:
         for page in args.pages:
             for step in steps(page):
