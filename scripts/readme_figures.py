@@ -22,7 +22,7 @@ command beside them; this script does not find those.
 Exit status: 0 when no figure changed (timings aside), 1 when some did, 2 when a command failed or
 an output could not be found or read.
 
-    scripts/readme_figures.py                      # every figure set of README.md
+    scripts/readme_figures.py                      # every figure set of README.md and the docs
     scripts/readme_figures.py --list               # the figure sets, with their commands
     scripts/readme_figures.py --only 1 3           # the sets numbered 1 and 3 by --list
     scripts/readme_figures.py --no-run             # compare with the outputs already written
@@ -273,7 +273,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                      epilog="\n".join(__doc__.splitlines()[1:]),
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("files", nargs="*", default=["README.md"], help="markdown files (default: README.md)")
+    pages = ["README.md"] + sorted(os.path.relpath(os.path.join(ROOT, "docs", name), ROOT)
+                                   for name in os.listdir(os.path.join(ROOT, "docs")) if name.endswith(".md"))
+    parser.add_argument("files", nargs="*", default=pages + ["problems/suite/README.md"],
+                        help="markdown files (default: README.md, docs/*.md and problems/suite/README.md; "
+                             "docs/getting-started/ is run by tests/docs/run_pages.py)")
     parser.add_argument("--list", action="store_true", help="list the figure sets and their commands, run nothing")
     parser.add_argument("--only", type=int, nargs="+", metavar="N", help="only the sets numbered N by --list")
     parser.add_argument("--no-run", action="store_true",
