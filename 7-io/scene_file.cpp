@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "mbsopt/algorithms/assembly.hpp"
@@ -15,6 +16,7 @@
 #include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/io/design_file.hpp"
 #include "mbsopt/io/element_type.hpp"
+#include "mbsopt/io/model_file.hpp"
 #include "mbsopt/io/scene_parameters.hpp"
 #include "mbsopt/io/scene_text.hpp"
 #include "mbsopt/io/yaml_reader.hpp"
@@ -56,14 +58,18 @@ TimeFunction readTimeFunction(const YamlContext& context, const YamlNode& node, 
 /// Builds the model of a parsed scene file section by section (problems/scenes/README.md).
 class SceneBuilder {
  public:
-  SceneBuilder(const YamlContext& context, const YamlNode& root) : context_(context), root_(context, root, "scene") {
-    root_.allowKeys({"settings", "gravity", "tracks", "elements", "bodies", "forces", "cuts", "sensors", "design"});
-    root_.required("elements");
-    root_.required("bodies");
+  SceneBuilder(const YamlContext& context, const YamlNode& root, std::vector<ParameterOverride> model_file_overrides = {})
+      : context_(context), root_(context, root, "scene"), model_file_overrides_(std::move(model_file_overrides)) {
+    root_.allowKeys({"settings", "model", "gravity", "tracks", "elements", "bodies", "forces", "cuts", "sensors", "design"});
+    if (!root_.has("model")) {  // a model file brings its own elements and bodies
+      root_.required("elements");
+      root_.required("bodies");
+    }
   }
 
   LoadedScene build() {
     readSettings();
+    readModelFile();
     if (root_.has("gravity")) model().setGravity(root_.vector("gravity"));
     readTracks();
     readElements();
@@ -129,10 +135,11 @@ class SceneBuilder {
 
   /// A name an entry adds to the model beside its own (ElementEntry::claimName): unique among the
   /// file's names, and located at the entry's name.
-  void claimName(const MapReader& entry, const std::string& added) {
+  void claimName(const MapReader& entry, const std::string& added) { claimName(entry, "name", added); }
+  void claimName(const MapReader& entry, const std::string& key, const std::string& added) {
     if (const auto used = names_.find(added); used != names_.end())
-      entry.fail("name", "it adds '" + added + "', a name already used at line " + std::to_string(used->second.line + 1));
-    names_.emplace(added, entry.markOf("name"));
+      entry.fail(key, "it adds '" + added + "', a name already used at line " + std::to_string(used->second.line + 1));
+    names_.emplace(added, entry.markOf(key));
   }
 
   /// Runs a model-builder call; its std::invalid_argument becomes an error at `entry`.
@@ -281,6 +288,93 @@ class SceneBuilder {
                                  " are not unconditionally stable (that needs 2 beta >= gamma >= 1/2)");
   }
 
+  /// `model: {file, ignore}`: the mechanism of an MJCF or URDF file (model_file.hpp), its path relative
+  /// to the scene file's folder; its names are the file's and are located at `model`.
+  void readModelFile() {
+    if (!root_.has("model")) return;
+    const MapReader entry(context_, root_.node()["model"], "model");
+    entry.allowKeys({"file", "ignore", "q0", "v0"});
+    const YamlNode& file = entry.required("file");
+    if (!file.isScalar() || file.text().empty()) entry.fail("file", "file: expected the path of an MJCF (.xml) or URDF (.urdf) file");
+    std::vector<std::string> ignore;  // a list, or one word of names and commas (`--set model.ignore=a,b`)
+    const YamlNode& ignored = entry.node()["ignore"];
+    if (ignored.isScalar()) {
+      std::istringstream words(ignored.text());
+      for (std::string word; std::getline(words, word, ',');)
+        if (!word.empty()) ignore.push_back(word);
+    } else {
+      for (const YamlNode& feature : readList(context_, ignored, "model.ignore")) {
+        if (!feature.isScalar()) context_.fail(feature, "model.ignore: expected a feature's name");
+        ignore.push_back(feature.text());
+      }
+    }
+    const std::filesystem::path folder = std::filesystem::path(context_.path()).parent_path();
+    const std::filesystem::path path = std::filesystem::path(file.text()).is_absolute() ? std::filesystem::path(file.text())
+                                                                                        : folder / file.text();
+    if (!std::filesystem::exists(path)) entry.fail("file", "file: no such file " + quoted(path.string()));
+    ModelFileContents contents;
+    try {
+      contents = addModelFile(model(), path.string(), ignore);
+    } catch (const SceneError& e) {
+      if (e.line() > 0) throw;  // located in the model file
+      entry.fail(e.reason().starts_with("ignore:") ? "ignore" : "file", e.reason());
+    }
+    for (const std::string& name : contents.names) claimName(entry, "file", name);
+    for (const ModelFileContents::Start& s : contents.starts) initial_.push_back({s.coordinate, s.q0, s.v0});
+    readModelFileStarts(entry);
+    applyModelFileOverrides(contents);
+    for (const Frame& f : model().frames()) model_file_frames_.insert(f.name);
+    for (const std::string& left_out : contents.left_out)
+      result_.warnings.push_back(context_.path() + ": warning: left out of " +
+                                 path.filename().string() + ": " + left_out);
+    result_.left_out = contents.left_out;
+  }
+
+  /// `model: {q0: {JOINT: value}, v0: {…}}`: starts of the file's joints other than the file's, in SI
+  /// units (rad or m, rad/s or m/s), from the joint's reference.
+  void readModelFileStarts(const MapReader& entry) {
+    for (const char* key : {"q0", "v0"}) {
+      if (!entry.has(key)) continue;
+      const YamlNode& starts = entry.node()[key];
+      if (!starts.isMap()) entry.fail(key, std::string(key) + ": expected a map of joint names to numbers");
+      const MapReader map(context_, starts, std::string("model.") + key);
+      for (std::size_t i = 0; i < starts.size(); ++i) {
+        const std::string joint = starts.key(i).text();
+        const auto start = std::find_if(initial_.begin(), initial_.end(), [&](const InitialValue& v) { return v.coordinate == joint; });
+        if (start == initial_.end()) {
+          std::vector<std::string> names;
+          for (const InitialValue& v : initial_) names.push_back(v.coordinate);
+          map.fail(joint, "model." + std::string(key) + ": the model file has no joint coordinate '" + joint + "'" +
+                              suggestion(joint, names));
+        }
+        (std::string(key) == "q0" ? start->q0 : start->v0) = map.number(joint);
+      }
+    }
+  }
+
+  /// `--set` of a model file's numbers: its parameters (MODEL.mass, J_spring.c, …) and its joints'
+  /// starts (J.q0, J.v0, in SI units).
+  void applyModelFileOverrides(const ModelFileContents& contents) {
+    std::vector<std::string> names = model().parameterNames();
+    for (const ModelFileContents::Start& s : contents.starts)
+      for (const char* key : {".q0", ".v0"}) names.push_back(s.coordinate + key);
+    for (const ParameterOverride& o : model_file_overrides_) {
+      const auto start = std::find_if(initial_.begin(), initial_.end(), [&](const InitialValue& v) {
+        return o.name == v.coordinate + ".q0" || o.name == v.coordinate + ".v0";
+      });
+      if (start != initial_.end()) {
+        (o.name.ends_with(".q0") ? start->q0 : start->v0) = o.value;
+        continue;
+      }
+      if (std::find(names.begin(), names.end(), o.name) == names.end()) throw unknownOverride(context_, o, names);
+      try {
+        model().setParameter(o.name, o.value);
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(context_.path(), 0, 0, describe(o) + ": " + e.what());
+      }
+    }
+  }
+
   void readTracks() {
     for (const YamlNode& node : list("tracks")) {
       std::string name;
@@ -340,7 +434,7 @@ class SceneBuilder {
         }
         p.state = PendingElement::State::Placing;
         chain.push_back(i);
-        if (p.parent == "ground") break;
+        if (p.parent == "ground" || model_file_frames_.contains(p.parent)) break;
         const auto parent = index.find(p.parent);
         if (parent == index.end()) {
           std::vector<std::string> names{"ground"};
@@ -519,6 +613,8 @@ class SceneBuilder {
   std::map<std::string, TrackIndex> tracks_;
   std::vector<InitialValue> initial_;
   std::vector<YamlMark> cut_marks_;  ///< per cut of the model: where the file declares it
+  std::set<std::string> model_file_frames_;  ///< the frames a model file added (elements may start there)
+  std::vector<ParameterOverride> model_file_overrides_;  ///< of the model file's numbers (applyOverrides)
 };
 
 /// The 1-based number of the last line of `text` that holds something, at least 1.
@@ -592,8 +688,8 @@ SceneSource readSceneFile(const std::string& path) {
 LoadedScene loadScene(const SceneSource& source, const std::vector<ParameterOverride>& overrides) {
   YamlContext context(source.path);
   YamlNode root = parse(source);
-  applyOverrides(context, root, overrides);
-  return SceneBuilder(context, root).build();
+  std::vector<ParameterOverride> model_file_overrides = applyOverrides(context, root, overrides);
+  return SceneBuilder(context, root, std::move(model_file_overrides)).build();
 }
 
 namespace {
@@ -701,8 +797,9 @@ std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& s
   for (const int i : scene.model.freeCoordinates()) {
     const std::string& name = scene.model.coordinates()[static_cast<std::size_t>(i)].name;
     if (scene.model.coordinateOwner(i) != name) continue;  // a coordinate the file does not name
-    defaults.emplace_back(name + ".q0", 0.0);
-    defaults.emplace_back(name + ".v0", 0.0);
+    const bool from_model_file = root["model"].isDefined();  // which starts where the file places its bodies
+    defaults.emplace_back(name + ".q0", from_model_file ? scene.q0[i] : 0.0);
+    defaults.emplace_back(name + ".v0", from_model_file ? scene.v0[i] : 0.0);
   }
   for (const auto& entry : defaults)
     if (std::none_of(parameters.begin(), parameters.end(), [&](const auto& p) { return p.first == entry.first; }))

@@ -72,6 +72,8 @@ struct LoadedScene {
   std::vector<std::string> warnings;  ///< e.g. how far the initial state was moved to close the loops
   std::map<std::string, SceneLocation> locations;  ///< where each named entry is declared
   std::optional<DesignDescription> design;         ///< the `design:` section, when the file has one
+  /// What `model: {ignore: …}` left out of a model file, a line per feature (empty without one).
+  std::vector<std::string> left_out;
 };
 
 /// A failure of a run of the scene (a SimulationError's message and the element it names) as the

@@ -13,6 +13,12 @@ std::string builtinSceneList() {
 }
 
 SceneSource resolveScene(const std::string& scene) {
+  if (scene.ends_with(".xml") || scene.ends_with(".urdf")) {  // a model file, in a scene of its own
+    if (!std::filesystem::exists(scene)) throw SceneError(scene, 0, 0, "no such model file");
+    std::string file;  // a YAML single-quoted scalar: ' doubled
+    for (const char c : std::filesystem::path(scene).filename().string()) file += c == '\'' ? "''" : std::string(1, c);
+    return {scene, "model: {file: '" + file + "'}\n"};
+  }
   const bool looks_like_file = scene.ends_with(".yaml") || scene.ends_with(".yml") ||
                                scene.find('/') != std::string::npos;
   if (!looks_like_file && !std::filesystem::exists(scene)) {

@@ -11,6 +11,7 @@ namespace mbsopt {
 
 /// The file, or the built-in scene of that name (a name that ends in .yaml/.yml or holds a '/' is a
 /// path; a file of that name in the working directory comes first); a SceneError when neither exists.
+/// An MJCF (.xml) or URDF (.urdf) file is the scene `model: {file: …}` with the default settings.
 SceneSource resolveScene(const std::string& scene);
 
 /// The built-in scenes' names, comma-separated (for messages and --help).

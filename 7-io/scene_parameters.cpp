@@ -18,7 +18,8 @@ constexpr std::array<const char*, 10> kVectorKeys{"gravity", "translation", "axi
 constexpr std::array<const char*, 6> kNamedSections{"tracks", "elements", "bodies", "forces", "cuts", "sensors"};
 constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
 // Settings whose value is a word (problems/scenes/README.md, "Top level"); the loader checks the word.
-constexpr std::array<const char*, 2> kWordSettings{"settings.closure", "settings.integrator"};
+// model.ignore: the features a model file may leave out, comma-separated (`--set model.ignore=contacts,limits`).
+constexpr std::array<const char*, 3> kWordSettings{"settings.closure", "settings.integrator", "model.ignore"};
 
 bool isVectorKey(const std::string& key) {
   return std::any_of(kVectorKeys.begin(), kVectorKeys.end(), [&](const char* k) { return key == k; });
@@ -81,7 +82,7 @@ YamlNode* insertDefault(YamlNode& root, const std::vector<std::string>& parts, c
   if (parts.empty()) return nullptr;
   YamlNode* node = &root;
   std::size_t first = 0;
-  if (parts[0] != "settings" && parts[0] != "gravity") {
+  if (parts[0] != "settings" && parts[0] != "gravity" && parts[0] != "model") {
     node = namedEntry(root, parts[0]);
     if (node == nullptr) return nullptr;
     first = 1;
@@ -150,7 +151,16 @@ bool isWordSetting(const std::string& dotted_name) {
   return std::any_of(kWordSettings.begin(), kWordSettings.end(), [&](const char* s) { return dotted_name == s; });
 }
 
-void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<ParameterOverride>& overrides) {
+SceneError unknownOverride(const YamlContext& context, const ParameterOverride& o, const std::vector<std::string>& names) {
+  return SceneError(context.path(), 0, 0,
+                    describe(o) + ": the scene has no number named " + quoted(o.name) + suggestion(o.name, names) +
+                        "; 'mbsopt parameters SCENE' lists them");
+}
+
+std::vector<ParameterOverride> applyOverrides(YamlContext& context, YamlNode& root,
+                                              const std::vector<ParameterOverride>& overrides) {
+  std::vector<ParameterOverride> for_the_model_file;
+  const bool model_file = root.isMap() && root["model"].isDefined();
   for (const ParameterOverride& o : overrides) {
     const YamlNode* target = nullptr;
     std::vector<std::string> names;
@@ -165,12 +175,13 @@ void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<Para
       written = const_cast<YamlNode*>(target);  // a node of `root`, which is ours to change
       written->assign(text);
     } else if (!root.isMap() || (written = insertDefault(root, split(o.name), text)) == nullptr) {
-      throw SceneError(context.path(), 0, 0,
-                       describe(o) + ": the scene has no number named " + quoted(o.name) + suggestion(o.name, names) +
-                           "; 'mbsopt parameters SCENE' lists them");
+      if (!model_file || !o.word.empty()) throw unknownOverride(context, o, names);
+      for_the_model_file.push_back(o);
+      continue;
     }
     context.markOverridden(*written, describe(o));
   }
+  return for_the_model_file;
 }
 
 std::string describe(const ParameterOverride& o) {

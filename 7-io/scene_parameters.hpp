@@ -16,8 +16,14 @@ void forEachNumber(const YamlNode& root, const std::function<void(const std::str
 
 /// Replaces the numbers (and word settings) named by the overrides in the parsed scene. A number the file leaves at
 /// its default (`settings.beta`, `hinge.q0`, `bob.com.x`) is written in, so the loader checks it
-/// like any other; a name that leads nowhere is an error naming the override.
-void applyOverrides(YamlContext& context, YamlNode& root, const std::vector<ParameterOverride>& overrides);
+/// like any other; a name that leads nowhere is an error naming the override, unless the scene has a
+/// `model` file: such overrides are returned, for the model's own parameters and starts
+/// (applyModelFileOverrides), once the file is read.
+std::vector<ParameterOverride> applyOverrides(YamlContext& context, YamlNode& root,
+                                              const std::vector<ParameterOverride>& overrides);
+
+/// The error of an override whose name leads nowhere; `names` are those that lead somewhere.
+SceneError unknownOverride(const YamlContext& context, const ParameterOverride& o, const std::vector<std::string>& names);
 
 /// "--set name=value" (ParameterOverride::origin, name and value), for messages.
 std::string describe(const ParameterOverride& override_);

@@ -6,8 +6,9 @@ namespace mbsopt {
 
 void addSceneArgument(CLI::App& command, SceneArgument& argument, bool with_overrides) {
   command.add_option("scene", argument.scene,
-                     "A scene file (YAML, see problems/scenes/README.md) or a built-in scene: " + builtinSceneList() +
-                         " (a file of that name in the working directory comes first)")
+                     "A scene file (YAML, see problems/scenes/README.md), a model file (MJCF .xml or URDF .urdf, "
+                     "compiled by MuJoCo; docs/model-files.md) or a built-in scene: " +
+                         builtinSceneList() + " (a file of that name in the working directory comes first)")
       ->required();
   if (!with_overrides) return;
   command

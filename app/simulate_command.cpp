@@ -133,6 +133,7 @@ void run(const SimulateOptions& options) {
   // The JSON's warnings are every one the run printed: the loader's (on stderr above) first.
   summary.json["warnings"] = loaded.warnings;
   for (const std::string& warning : summary.warnings) summary.json["warnings"].push_back(warning);
+  summary.json["left_out"] = loaded.left_out;  // of a model file, by `model: {ignore: …}`
   for (const std::string& line : summary.sensor_lines) std::printf("%s\n", line.c_str());
   for (const std::string& warning : summary.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   std::printf("%s%s\n", summary.line.c_str(), options.out.empty() ? "" : (", wrote " + options.out).c_str());
@@ -236,7 +237,8 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--json", options->json,
                       "Write the run's summary as JSON: integrator, steps, the estimated global errors (largest "
                       "over the coordinates and rates, weighted, per sensor), each sensor's {name, unit (SI), max_abs, "
-                      "at_time [s], estimated_error}, warnings (every one printed, the loader's first), wall time");
+                      "at_time [s], estimated_error}, warnings (every one printed, the loader's first), left_out (what "
+                      "`model: {ignore: …}` left out of a model file, a line per feature), wall time");
   command
       ->add_option("--every", options->every,
                    "Write only every N-th time point to the CSV, and always the first and the last (t = 0, N·h, "

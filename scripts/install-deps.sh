@@ -21,6 +21,9 @@ packages=(
   python3-matplotlib        # its example, python/examples/tramway_comparison.py
   libsimbody-dev            # the peer engine of bench/peer (scripts/peer_comparison.sh); optional for the build
   python3-scipy python3-mpmath  # hard-case references (scripts/hard_cases/make_references.py)
+  libmujoco-dev             # MJCF and URDF model files, compiled by MuJoCo (7-io/model_file.hpp)
+  libqhull-dev              # the include folder that libmujoco-dev's CMake target names (Debian 12 omits the dependency)
+  libmujoco-samples         # the sample models the MuJoCo comparison reads (tests/7-io/test_model_file.cpp)
   mkdocs doxygen            # the documentation site and its C++ API reference (scripts/build-docs.sh)
 )
 

@@ -1,0 +1,278 @@
+#include "mbsopt/io/model_file.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <regex>
+#include <sstream>
+
+#include "mbsopt/io/scene_file.hpp"
+
+namespace mbsopt {
+
+namespace {
+
+using MujocoModel = std::unique_ptr<mjModel, decltype(&mj_deleteModel)>;
+
+/// The file's text, for the lines of the elements it names.
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// 1-based line of the first element among `tags` whose name is `name` (0 when none is found: an
+/// element of an included file, or one MuJoCo named itself).
+int lineOf(const std::string& text, std::initializer_list<const char*> tags, const std::string& name) {
+  if (name.empty()) return 0;
+  std::string alternatives;
+  for (const char* tag : tags) alternatives += (alternatives.empty() ? "" : "|") + std::string(tag);
+  std::string escaped;
+  for (const char c : name) {
+    if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) escaped += '\\';
+    escaped += c;
+  }
+  const std::regex element("<(" + alternatives + ")\\b[^>]*\\bname\\s*=\\s*[\"']" + escaped + "[\"']");
+  std::smatch match;
+  if (!std::regex_search(text, match, element)) return 0;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + match.position(0), '\n'));
+}
+
+Eigen::Matrix3d rotationOf(const mjtNum* quaternion) {  // MuJoCo's (w, x, y, z)
+  return Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3]).normalized().toRotationMatrix();
+}
+
+Eigen::Vector3d vectorOf(const mjtNum* v) { return {v[0], v[1], v[2]}; }
+
+/// Cardan angles (a, b, c) of R = Rx(a) Ry(b) Rz(c).
+Eigen::Vector3d cardanAngles(const Eigen::Matrix3d& R) {
+  return {std::atan2(-R(1, 2), R(2, 2)), std::asin(std::clamp(R(0, 2), -1.0, 1.0)), std::atan2(-R(0, 1), R(0, 0))};
+}
+
+class ModelFileReader {
+ public:
+  ModelFileReader(Model& model, const std::string& path, const std::vector<std::string>& ignore)
+      : model_(model), path_(path), text_(fileText(path)), mj_(compile(path), &mj_deleteModel), ignore_(ignore) {
+    for (const std::string& feature : ignore_)
+      if (std::find(modelFileFeatures().begin(), modelFileFeatures().end(), feature) == modelFileFeatures().end()) {
+        std::string names;
+        for (const std::string& f : modelFileFeatures()) names += (names.empty() ? "" : ", ") + f;
+        throw SceneError(path_, 0, 0, "ignore: '" + feature + "' is not a feature a model file may leave out (" + names + ")");
+      }
+  }
+
+  ModelFileContents read() {
+    checkFeatures();
+    const mjModel& m = *mj_;
+    model_.setGravity(vectorOf(m.opt.gravity));
+    frames_.assign(static_cast<std::size_t>(m.nbody), Model::ground);
+    for (int b = 1; b < m.nbody; ++b) addBody(b);
+    return std::move(contents_);
+  }
+
+ private:
+  static mjModel* compile(const std::string& path) {
+    std::array<char, 1000> error{};
+    mjModel* compiled = mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+    if (compiled) return compiled;
+    std::string message(error.data());
+    int line = 0;
+    std::smatch match;
+    if (std::regex_search(message, match, std::regex("line\\s*=?\\s*(\\d+)"))) line = std::stoi(match[1].str());
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    throw SceneError(path, line, 0, "MuJoCo's compiler: " + message);
+  }
+
+  bool ignored(const std::string& feature) const {
+    return std::find(ignore_.begin(), ignore_.end(), feature) != ignore_.end();
+  }
+
+  std::string name(int type, int id, const char* kind) const {
+    const char* n = mj_id2name(mj_.get(), type, id);
+    return n && *n ? std::string(n) : std::string(kind) + std::to_string(id);
+  }
+
+  /// Refused at `line` unless `feature` is ignored; then listed once in left_out.
+  void feature(const std::string& feature, int count, const std::string& first, int line, const std::string& why) {
+    if (count == 0) return;
+    if (!ignored(feature))
+      throw SceneError(path_, line, 0,
+                       first + ": " + why + "; mbsopt does not model " + feature + " (a scene's `model: {ignore: [" +
+                           feature + "]}` leaves them out)");
+    contents_.left_out.push_back(feature + ": " + std::to_string(count) + " left out, the first " + first);
+  }
+
+  void checkFeatures() {
+    const mjModel& m = *mj_;
+    // Contacts: a geom that may collide, unless the file itself switches contacts off.
+    if (!(m.opt.disableflags & mjDSBL_CONTACT)) {
+      int count = 0, first = -1;
+      for (int g = 0; g < m.ngeom; ++g)
+        if (m.geom_contype[g] != 0 || m.geom_conaffinity[g] != 0) {
+          ++count;
+          if (first < 0) first = g;
+        }
+      if (m.npair > 0) count += m.npair;
+      if (count > 0) {
+        const std::string geom = first >= 0 ? name(mjOBJ_GEOM, first, "geom") : "contact pair 0";
+        feature("contacts", count, "geom '" + geom + "'", lineOf(text_, {"geom", "collision"}, geom),
+                "it may touch other geoms (contype/conaffinity ≠ 0)");
+      }
+    }
+    auto firstOf = [](int n, auto&& has) {
+      int count = 0, first = -1;
+      for (int i = 0; i < n; ++i)
+        if (has(i)) {
+          ++count;
+          if (first < 0) first = i;
+        }
+      return std::pair{count, first};
+    };
+    if (!(m.opt.disableflags & mjDSBL_LIMIT)) {
+      const auto [count, first] = firstOf(m.njnt, [&](int j) { return m.jnt_limited[j] != 0; });
+      if (count > 0) {
+        const std::string joint = name(mjOBJ_JOINT, first, "joint");
+        feature("limits", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
+                "it is limited to a range");
+      }
+    }
+    if (m.nu > 0) {
+      const std::string actuator = name(mjOBJ_ACTUATOR, 0, "actuator");
+      feature("actuators", m.nu, "actuator '" + actuator + "'",
+              lineOf(text_, {"motor", "general", "position", "velocity", "cylinder", "muscle", "adhesion", "transmission"},
+                     actuator),
+              "it drives the model by a control input");
+    }
+    if (m.ntendon > 0) {
+      const std::string tendon = name(mjOBJ_TENDON, 0, "tendon");
+      feature("tendons", m.ntendon, "tendon '" + tendon + "'", lineOf(text_, {"spatial", "fixed"}, tendon),
+              "it couples joints or sites");
+    }
+    for (const auto& [field, what] :
+         {std::pair{m.dof_armature, std::string("armature")}, std::pair{m.dof_frictionloss, std::string("friction_loss")}}) {
+      const auto [count, first] = firstOf(m.nv, [&](int d) { return field[d] != 0.0; });
+      if (count > 0) {
+        const std::string joint = name(mjOBJ_JOINT, m.dof_jntid[first], "joint");
+        feature(what, count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
+                what == "armature" ? "it has a rotor inertia (armature)" : "it has dry friction (frictionloss)");
+      }
+    }
+    const auto refuse = [&](int count, const std::string& what, std::initializer_list<const char*> tags, int type,
+                            const char* kind) {
+      if (count == 0) return;
+      const std::string first = name(type, 0, kind);
+      throw SceneError(path_, lineOf(text_, tags, first), 0,
+                       std::string(kind) + " '" + first + "': " + what + ", which mbsopt does not read from a model file");
+    };
+    refuse(m.neq, "an equality constraint", {"connect", "weld", "joint", "tendon", "distance"}, mjOBJ_EQUALITY, "equality");
+    refuse(m.nmocap, "a mocap body (moved by the user, not the dynamics)", {"body"}, mjOBJ_BODY, "body");
+    if (m.opt.density != 0.0 || m.opt.viscosity != 0.0 || vectorOf(m.opt.wind).norm() != 0.0)
+      throw SceneError(path_, lineOf(text_, {"option"}, ""), 0,
+                       "option: density, viscosity or wind ≠ 0 (fluid forces), which mbsopt does not model");
+  }
+
+  /// B_placement, the joints about their anchors, B_frame; the body B on it.
+  void addBody(int b) {
+    const mjModel& m = *mj_;
+    const std::string body = name(mjOBJ_BODY, b, "body");
+    const int line = lineOf(text_, {"body", "link"}, body);
+    const auto guarded = [&](auto&& call) {
+      try {
+        return call();
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(path_, line, 0, "body '" + body + "': " + e.what());
+      }
+    };
+    const FrameIndex parent = frames_[static_cast<std::size_t>(m.body_parentid[b])];
+    const bool free = m.body_jntnum[b] == 1 && m.jnt_type[m.body_jntadr[b]] == mjJNT_FREE;
+    // A free joint places the body in the ground's axes itself (MuJoCo ignores pos and quat there).
+    FrameIndex frame = guarded([&] {
+      return free ? model_.addOffset(added(body + "_placement"), parent, Eigen::Vector3d::Zero())
+                  : model_.addOffset(added(body + "_placement"), parent, vectorOf(m.body_pos + 3 * b),
+                                     rotationOf(m.body_quat + 4 * b));
+    });
+    Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // of the last joint, in the body's axes
+    for (int j = m.body_jntadr[b]; j >= 0 && j < m.body_jntadr[b] + m.body_jntnum[b]; ++j)
+      frame = guarded([&] { return addJoint(j, frame, anchor); });
+    const Eigen::Vector3d back = anchor.isZero() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(-anchor);  // no −0
+    frame = guarded([&] { return model_.addOffset(added(body + "_frame"), frame, back); });
+    frames_[static_cast<std::size_t>(b)] = frame;
+    if (m.body_mass[b] == 0.0 && vectorOf(m.body_inertia + 3 * b).isZero()) return;
+    const Eigen::Matrix3d R = rotationOf(m.body_iquat + 4 * b);
+    const Eigen::Matrix3d inertia = R * vectorOf(m.body_inertia + 3 * b).asDiagonal() * R.transpose();
+    guarded([&] { model_.addBody(added(body), frame, m.body_mass[b], vectorOf(m.body_ipos + 3 * b), inertia); });
+  }
+
+  /// Joint j after `frame`, about its anchor (the last anchor given and updated).
+  FrameIndex addJoint(int j, FrameIndex frame, Eigen::Vector3d& anchor) {
+    const mjModel& m = *mj_;
+    const std::string joint = name(mjOBJ_JOINT, j, "joint");
+    const Eigen::Vector3d position = vectorOf(m.jnt_pos + 3 * j);
+    const Eigen::Vector3d axis = vectorOf(m.jnt_axis + 3 * j);
+    const int qpos = m.jnt_qposadr[j];
+    const int type = m.jnt_type[j];
+    if (type == mjJNT_FREE) {
+      const char* const translations[] = {"_x", "_y", "_z"};
+      for (int i = 0; i < 3; ++i) {
+        frame = model_.addPrismatic(added(joint + translations[i]), frame, Eigen::Vector3d::Unit(i));
+        start(joint + translations[i], m.qpos0[qpos + i]);
+      }
+      return addCardan(joint, {"_rx", "_ry", "_rz"}, frame, rotationOf(m.qpos0 + qpos + 3));
+    }
+    if (position != anchor) frame = model_.addOffset(added(joint + "_anchor"), frame, position - anchor);
+    anchor = position;
+    if (type == mjJNT_BALL) return addCardan(joint, {"_x", "_y", "_z"}, frame, rotationOf(m.qpos0 + qpos));
+    frame = type == mjJNT_HINGE ? model_.addRevolute(added(joint), frame, axis)
+                                : model_.addPrismatic(added(joint), frame, axis);
+    start(joint, 0.0);  // coordinates count from the joint's reference, qpos0
+    const int dof = m.jnt_dofadr[j];
+    if (m.jnt_stiffness[j] != 0.0 || m.dof_damping[dof] != 0.0)
+      model_.addJointSpringDamper(added(joint + "_spring"), joint, m.jnt_stiffness[j], m.dof_damping[dof],
+                                  m.qpos_spring[qpos] - m.qpos0[qpos]);
+    return frame;
+  }
+
+  /// Three revolutes about x, then the turned y and z, started at the Cardan angles of `start_rotation`.
+  FrameIndex addCardan(const std::string& joint, std::array<const char*, 3> suffixes, FrameIndex frame,
+                       const Eigen::Matrix3d& start_rotation) {
+    const Eigen::Vector3d angles = cardanAngles(start_rotation);
+    for (int i = 0; i < 3; ++i) {
+      frame = model_.addRevolute(added(joint + suffixes[i]), frame, Eigen::Vector3d::Unit(i));
+      start(joint + suffixes[i], angles[i]);
+    }
+    return frame;
+  }
+
+  std::string added(const std::string& name) {
+    contents_.names.push_back(name);
+    return contents_.names.back();
+  }
+
+  void start(const std::string& coordinate, double q0) { contents_.starts.push_back({coordinate, q0, 0.0}); }
+
+  Model& model_;
+  std::string path_, text_;
+  MujocoModel mj_;
+  std::vector<std::string> ignore_;
+  std::vector<FrameIndex> frames_;  ///< per MuJoCo body, its B_frame
+  ModelFileContents contents_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& modelFileFeatures() {
+  static const std::vector<std::string> features{"contacts", "limits", "actuators", "tendons", "armature", "friction_loss"};
+  return features;
+}
+
+ModelFileContents addModelFile(Model& model, const std::string& path, const std::vector<std::string>& ignore) {
+  return ModelFileReader(model, path, ignore).read();
+}
+
+}  // namespace mbsopt

@@ -1,0 +1,251 @@
+// Models from MJCF and URDF files (7-io/model_file.hpp), checked against MuJoCo itself: MuJoCo's
+// RK4 at two small steps (their difference bounds its own error) simulates the same compiled model
+// with the same features off, and mbsopt's trajectory must agree within the error mbsopt's
+// extrapolation estimates for itself. The arm is written for the tests in MJCF and in URDF (the two
+// must move alike); the humanoid is MuJoCo's sample model, which no one here wrote.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "mbsopt/integrators/integration.hpp"
+#include "mbsopt/integrators/newmark.hpp"
+#include "mbsopt/io/scene_file.hpp"
+#include "mbsopt/io/scene_lookup.hpp"
+#include "tests/gradient_checks.hpp"
+
+namespace mbsopt {
+namespace {
+
+const std::string kModels = std::string(MBSOPT_SOURCE_DIR) + "/tests/7-io/models/";
+const std::string kHumanoid = "/usr/share/mujoco/model/humanoid/humanoid.xml";  // Debian's libmujoco-samples
+
+LoadedScene loadText(const std::string& text, const std::vector<ParameterOverride>& overrides = {}) {
+  return loadScene({kModels + "scene.yaml", text}, overrides);
+}
+
+/// Starting rates of hinge joints [rad/s], by name: `J.v0` overrides for mbsopt, qvel for MuJoCo.
+using Rates = std::vector<std::pair<std::string, double>>;
+
+/// MuJoCo's own run of `path` to `end_time` by RK4 at `step`, the features mbsopt leaves out switched
+/// off (flags) or zeroed (armature): the joint positions qpos at the end, and the reference qpos0.
+struct MujocoRun {
+  Eigen::VectorXd qpos, qpos0;
+};
+MujocoRun mujocoRun(const std::string& path, double end_time, double step, int disable_flags, bool zero_armature,
+                    const Rates& rates) {
+  std::array<char, 1000> error{};
+  const std::unique_ptr<mjModel, decltype(&mj_deleteModel)> m(mj_loadXML(path.c_str(), nullptr, error.data(), 1000),
+                                                              &mj_deleteModel);
+  if (!m) throw std::runtime_error(error.data());
+  m->opt.integrator = mjINT_RK4;
+  m->opt.timestep = step;
+  m->opt.disableflags |= disable_flags;
+  if (zero_armature)
+    for (int d = 0; d < m->nv; ++d) m->dof_armature[d] = 0.0;
+  const std::unique_ptr<mjData, decltype(&mj_deleteData)> d(mj_makeData(m.get()), &mj_deleteData);
+  for (const auto& [joint, rate] : rates) d->qvel[m->jnt_dofadr[mj_name2id(m.get(), mjOBJ_JOINT, joint.c_str())]] = rate;
+  const long steps = std::lround(end_time / step);
+  for (long k = 0; k < steps; ++k) mj_step(m.get(), d.get());
+  return {Eigen::Map<const Eigen::VectorXd>(d->qpos, m->nq), Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq)};
+}
+
+/// mbsopt's coordinate of each MuJoCo position that is a hinge or slide angle (measured from qpos0)
+/// or a free joint's position (the ground's axes), by name; their indices into qpos.
+struct Comparable {
+  std::vector<int> coordinate, qpos;
+  std::vector<bool> absolute;  ///< a free joint's position, not measured from qpos0
+};
+Comparable comparable(const Model& model, const std::string& path) {
+  std::array<char, 1000> error{};
+  const std::unique_ptr<mjModel, decltype(&mj_deleteModel)> m(mj_loadXML(path.c_str(), nullptr, error.data(), 1000),
+                                                              &mj_deleteModel);
+  Comparable out;
+  const auto index = [&](const std::string& name) {
+    for (int i = 0; i < model.coordinateCount(); ++i)
+      if (model.coordinates()[static_cast<std::size_t>(i)].name == name) return i;
+    ADD_FAILURE() << "no coordinate " << name;
+    return 0;
+  };
+  for (int j = 0; j < m->njnt; ++j) {
+    const std::string name = mj_id2name(m.get(), mjOBJ_JOINT, j);
+    const int a = m->jnt_qposadr[j];
+    if (m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE) {
+      out.coordinate.push_back(index(name));
+      out.qpos.push_back(a);
+      out.absolute.push_back(false);
+    } else if (m->jnt_type[j] == mjJNT_FREE) {
+      for (int i = 0; i < 3; ++i) {
+        out.coordinate.push_back(index(name + "_" + "xyz"[i]));
+        out.qpos.push_back(a + i);
+        out.absolute.push_back(true);
+      }
+    }
+  }
+  return out;
+}
+
+/// Runs the scene with the extrapolation's error estimate and MuJoCo's RK4 at `step` and `step`/2 on
+/// the same model file; at the end time each comparable coordinate must agree within mbsopt's
+/// estimate and MuJoCo's own error (the RK4 difference bounds the coarser run's error; the finer is
+/// taken), each doubled for the next-order terms an asymptotic estimate leaves out.
+void expectMujocoAgrees(const std::string& scene_text, const std::string& path, double step, int disable_flags,
+                        bool zero_armature, const Rates& rates = {}) {
+  std::vector<ParameterOverride> overrides;
+  for (const auto& [joint, rate] : rates) overrides.emplace_back(joint + ".v0", rate);
+  const LoadedScene loaded = loadText(scene_text, overrides);
+  const Scene& scene = loaded.scene;
+  const Integration run = integrate(scene.model, scene.settings, scene.q0, scene.v0, sceneIntegration(scene));
+  ASSERT_TRUE(run.estimated);
+  const Eigen::Index last = run.run.trajectory.q.cols() - 1;
+  ASSERT_NEAR(run.run.trajectory.time[static_cast<std::size_t>(last)], scene.settings.end_time, 1e-12);
+  const MujocoRun coarse = mujocoRun(path, scene.settings.end_time, step, disable_flags, zero_armature, rates);
+  const MujocoRun fine = mujocoRun(path, scene.settings.end_time, step / 2, disable_flags, zero_armature, rates);
+  const Comparable c = comparable(scene.model, path);
+  ASSERT_FALSE(c.coordinate.empty());
+  double moved = 0.0;
+  for (std::size_t i = 0; i < c.coordinate.size(); ++i) {
+    const int q = c.coordinate[i], p = c.qpos[i];
+    const double origin = c.absolute[i] ? 0.0 : fine.qpos0[p];
+    const double reference = fine.qpos[p] - origin;
+    const double mujoco_error = std::abs(coarse.qpos[p] - fine.qpos[p]);
+    const double estimate = std::abs(run.run.q_error(q, last));
+    EXPECT_LE(std::abs(run.run.trajectory.q(q, last) - reference), 2.0 * (estimate + mujoco_error) + 1e-12)
+        << scene.model.coordinates()[static_cast<std::size_t>(q)].name << ": mbsopt " << run.run.trajectory.q(q, last)
+        << ", MuJoCo " << reference << ", mbsopt's estimate " << estimate << ", MuJoCo's " << mujoco_error;
+    if (!c.absolute[i]) moved = std::max(moved, std::abs(reference - scene.q0[q]));
+  }
+  EXPECT_GT(moved, 0.1);  // the joints move: the comparison is of a motion, not of a rest [rad or m]
+}
+
+TEST(ModelFile, AnMjcfArmMovesAsMuJoCoMovesIt) {
+  expectMujocoAgrees(
+      "settings: {end_time: 1.0, step: 2.0e-3, integrator: extrapolation}\n"
+      "model: {file: arm.xml, ignore: [limits]}\n",
+      kModels + "arm.xml", 1e-4, mjDSBL_LIMIT, false);
+}
+
+TEST(ModelFile, TheHumanoidOfMuJoCosSamplesMovesAsMuJoCoMovesIt) {
+  // A free root and 21 hinges, several to a body about anchors off the body's origin, springs and
+  // dampers on every hinge; contacts, limits, actuators and armature off in both. Falling freely from
+  // rest it would not move inside (every joint at its spring's rest): limbs and waist are thrown.
+  expectMujocoAgrees(
+      "settings: {end_time: 1.0, step: 2.0e-3, integrator: extrapolation}\n"
+      "model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators, armature]}\n",
+      kHumanoid, 1e-4, mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_ACTUATION, true,
+      {{"abdomen_z", 2.0}, {"right_hip_y", -4.0}, {"left_knee", 3.0}, {"right_shoulder1", 5.0}, {"left_elbow", -6.0}});
+}
+
+TEST(ModelFile, TheUrdfArmMovesAsItsMjcfTwin) {
+  const std::string settings = "settings: {end_time: 1.0, step: 1.0e-3}\n";
+  const LoadedScene mjcf = loadText(settings + "model: {file: arm.xml, ignore: [limits]}\n");
+  const LoadedScene urdf = loadText(settings + "model: {file: arm.urdf, ignore: [limits]}\n");
+  ASSERT_EQ(mjcf.scene.model.coordinateCount(), urdf.scene.model.coordinateCount());
+  const auto simulate = [](const Scene& s) { return NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0); };
+  const Trajectory a = simulate(mjcf.scene), b = simulate(urdf.scene);
+  // The same mechanism, its inertias written in other principal axes: round-off apart.
+  EXPECT_LE((a.q - b.q).cwiseAbs().maxCoeff(), 1e-9 * a.q.cwiseAbs().maxCoeff());
+  EXPECT_GT(a.q.cwiseAbs().maxCoeff(), 0.1);
+}
+
+/// The 1-based line of `text` in the file at `path` (an independent search of the file).
+int lineHolding(const std::string& path, const std::string& text) {
+  std::ifstream in(path);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number)
+    if (line.find(text) != std::string::npos) return number;
+  return 0;
+}
+
+TEST(ModelFile, AFeatureMbsoptDoesNotModelIsRefusedAtItsLine) {
+  const auto refusal = [](const std::string& ignore) {
+    try {
+      loadText("model: {file: " + kHumanoid + ", ignore: [" + ignore + "]}\n");
+    } catch (const SceneError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "loaded with ignore: [" << ignore << "]";
+    return SceneError("", 0, 0, "");
+  };
+  const SceneError contacts = refusal("");
+  EXPECT_EQ(contacts.path(), kHumanoid);
+  EXPECT_EQ(contacts.line(), lineHolding(kHumanoid, "<geom name=\"floor\""));
+  EXPECT_NE(contacts.reason().find("contacts"), std::string::npos) << contacts.reason();
+  const SceneError limits = refusal("contacts");
+  EXPECT_EQ(limits.line(), lineHolding(kHumanoid, "<joint name=\"abdomen_z\""));
+  EXPECT_NE(limits.reason().find("limits"), std::string::npos) << limits.reason();
+  const SceneError actuators = refusal("contacts, limits");
+  EXPECT_EQ(actuators.line(), lineHolding(kHumanoid, "<motor name=\"abdomen_y\""));
+  const SceneError armature = refusal("contacts, limits, actuators");
+  EXPECT_EQ(armature.line(), lineHolding(kHumanoid, "<joint name=\"abdomen_z\""));
+  EXPECT_NE(armature.reason().find("armature"), std::string::npos) << armature.reason();
+  // An unknown feature is the scene's error, at its `ignore`.
+  const SceneError unknown = refusal("contact");
+  EXPECT_EQ(unknown.path(), kModels + "scene.yaml");
+  EXPECT_EQ(unknown.line(), 1);
+}
+
+TEST(ModelFile, WhatIsLeftOutIsNamed) {
+  const LoadedScene humanoid = loadText("model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators, armature]}\n");
+  ASSERT_EQ(humanoid.left_out.size(), 4u);
+  EXPECT_TRUE(humanoid.left_out[0].starts_with("contacts"));
+  EXPECT_EQ(humanoid.scene.model.coordinateCount(), 27);  // 6 of the free root and 21 hinges
+}
+
+TEST(ModelFile, MuJoCosCompilerErrorsKeepTheirLine) {
+  const std::string path = testing::TempDir() + "bad.xml";
+  std::ofstream(path) << "<mujoco>\n  <worldbody>\n    <body>\n      <joint type=\"hinge\" range=\"0 1\"/>\n"
+                         "    </body>\n  </worldbody>\n</mujoco>\n";
+  try {
+    loadScene(resolveScene(path));
+    FAIL() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), path);
+    EXPECT_EQ(e.line(), 4) << e.what();
+  }
+}
+
+// A design problem on a model no one here wrote (problems/models/humanoid_arm.yaml: an elbow's
+// damping and a lower arm's mass, by the file's names): the adjoint and the direct method are two
+// derivations of one recursion (equal to 1e-12), central differences at their best step agree to
+// the 1e-6 their truncation and the Newton tolerance leave (test_problem_suite.cpp).
+TEST(ModelFile, ADesignProblemOnTheHumanoidHasExactGradients) {
+  const DesignProblem problem =
+      loadDesignProblem(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/models/humanoid_arm.yaml"));
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient adjoint = test::expectAdjointEqualsDirect(problem, functionals, x);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+}
+
+TEST(ModelFile, StartsAndOverridesAddressTheFilesOwnNames) {
+  const std::string text = "model: {file: arm.xml, ignore: [limits], q0: {elbow: 0.3}, v0: {yaw: 1.5}}\n";
+  const LoadedScene loaded = loadText(text, {{"lower.mass", 1.25}, {"shoulder.v0", -2.0}, {"yaw_spring.c", 0.0}});
+  const Model& model = loaded.scene.model;
+  const auto coordinate = [&](const std::string& name) {
+    for (int i = 0; i < model.coordinateCount(); ++i)
+      if (model.coordinates()[static_cast<std::size_t>(i)].name == name) return i;
+    return -1;
+  };
+  EXPECT_EQ(loaded.scene.q0[coordinate("elbow")], 0.3);
+  EXPECT_EQ(loaded.scene.v0[coordinate("yaw")], 1.5);
+  EXPECT_EQ(loaded.scene.v0[coordinate("shoulder")], -2.0);
+  EXPECT_EQ(model.parameter("lower.mass"), 1.25);
+  EXPECT_EQ(model.parameter("yaw_spring.c"), 0.0);
+  EXPECT_EQ(model.parameter("base_placement.translation.z"), 1.0);  // the body's pos in its parent
+  try {
+    loadText("model: {file: arm.xml, ignore: [limits], v0: {elbw: 1}}\n");
+    FAIL() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(e.reason().find("did you mean 'elbow'"), std::string::npos) << e.reason();
+  }
+  EXPECT_THROW(loadText(text, {{"lower.mas", 1.0}}), SceneError);
+}
+
+}  // namespace
+}  // namespace mbsopt
