@@ -152,6 +152,31 @@ TEST(ModelFile, TheUrdfArmMovesAsItsMjcfTwin) {
   EXPECT_GT(a.q.cwiseAbs().maxCoeff(), 0.1);
 }
 
+// With its dampers off nothing takes work out of the arm: the trapezoidal rule keeps its energy to
+// O(h²), so halving the step divides the largest departure from the start's energy by 4 (3 to 5
+// for the next-order terms), and the departure is small against the energy exchanged.
+TEST(ModelFile, TheUndampedArmKeepsItsEnergyToTheIntegratorsOrder) {
+  const std::string text =
+      "settings: {end_time: 1.0}\n"
+      "model: {file: arm.xml, ignore: [limits]}\n"
+      "sensors:\n"
+      "  - {name: energy, type: energy}\n"
+      "  - {name: kinetic, type: energy, part: kinetic}\n";
+  const auto departure = [&](double step, double& exchanged) {
+    const LoadedScene loaded = loadText(text, {{"settings.step", step}, {"yaw_spring.c", 0.0}, {"elbow_spring.c", 0.0},
+                                               {"extension_spring.c", 0.0}});
+    const Scene& s = loaded.scene;
+    const Trajectory run = NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0);
+    exchanged = run.sensors.col(1).maxCoeff();
+    return (run.sensors.col(0).array() - run.sensors(0, 0)).abs().maxCoeff();
+  };
+  double exchanged = 0.0;
+  const double coarse = departure(1e-3, exchanged), fine = departure(5e-4, exchanged);
+  EXPECT_GT(coarse / fine, 3.0);
+  EXPECT_LT(coarse / fine, 5.0);
+  EXPECT_LT(fine, 1e-3 * exchanged) << "energy exchanged " << exchanged << " J";
+}
+
 /// The 1-based line of `text` in the file at `path` (an independent search of the file).
 int lineHolding(const std::string& path, const std::string& text) {
   std::ifstream in(path);
