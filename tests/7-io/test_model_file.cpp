@@ -31,13 +31,15 @@ LoadedScene loadText(const std::string& text, const std::vector<ParameterOverrid
 /// Starting rates of hinge joints [rad/s], by name: `J.v0` overrides for mbsopt, qvel for MuJoCo.
 using Rates = std::vector<std::pair<std::string, double>>;
 
-/// MuJoCo's own run of `path` to `end_time` by RK4 at `step`, the features mbsopt leaves out switched
-/// off (flags) or zeroed (armature): the joint positions qpos at the end, and the reference qpos0.
+/// MuJoCo's own run of `path` by RK4 at `step`, the features mbsopt leaves out switched off (flags)
+/// or zeroed (armature): the joint positions qpos at every `every` [s] to `end_time` (a column
+/// each), and the reference qpos0.
 struct MujocoRun {
-  Eigen::VectorXd qpos, qpos0;
+  Eigen::MatrixXd qpos;
+  Eigen::VectorXd qpos0;
 };
-MujocoRun mujocoRun(const std::string& path, double end_time, double step, int disable_flags, bool zero_armature,
-                    const Rates& rates) {
+MujocoRun mujocoRun(const std::string& path, double end_time, double every, double step, int disable_flags,
+                    bool zero_armature, const Rates& rates) {
   std::array<char, 1000> error{};
   const std::unique_ptr<mjModel, decltype(&mj_deleteModel)> m(mj_loadXML(path.c_str(), nullptr, error.data(), 1000),
                                                               &mj_deleteModel);
@@ -49,9 +51,13 @@ MujocoRun mujocoRun(const std::string& path, double end_time, double step, int d
     for (int d = 0; d < m->nv; ++d) m->dof_armature[d] = 0.0;
   const std::unique_ptr<mjData, decltype(&mj_deleteData)> d(mj_makeData(m.get()), &mj_deleteData);
   for (const auto& [joint, rate] : rates) d->qvel[m->jnt_dofadr[mj_name2id(m.get(), mjOBJ_JOINT, joint.c_str())]] = rate;
-  const long steps = std::lround(end_time / step);
-  for (long k = 0; k < steps; ++k) mj_step(m.get(), d.get());
-  return {Eigen::Map<const Eigen::VectorXd>(d->qpos, m->nq), Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq)};
+  const long instants = std::lround(end_time / every), steps_between = std::lround(every / step);
+  MujocoRun run{Eigen::MatrixXd(m->nq, instants), Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq)};
+  for (long i = 0; i < instants; ++i) {
+    for (long k = 0; k < steps_between; ++k) mj_step(m.get(), d.get());
+    run.qpos.col(i) = Eigen::Map<const Eigen::VectorXd>(d->qpos, m->nq);
+  }
+  return run;
 }
 
 /// mbsopt's coordinate of each MuJoCo position that is a hinge or slide angle (measured from qpos0)
@@ -90,9 +96,9 @@ Comparable comparable(const Model& model, const std::string& path) {
 }
 
 /// Runs the scene with the extrapolation's error estimate and MuJoCo's RK4 at `step` and `step`/2 on
-/// the same model file; at the end time each comparable coordinate must agree within mbsopt's
-/// estimate and MuJoCo's own error (the RK4 difference bounds the coarser run's error; the finer is
-/// taken), each doubled for the next-order terms an asymptotic estimate leaves out.
+/// the same model file; every 0.1 s to the end time, each comparable coordinate must agree within
+/// mbsopt's estimate and MuJoCo's own error (the RK4 difference bounds the coarser run's error; the
+/// finer is taken), each doubled for the next-order terms an asymptotic estimate leaves out.
 void expectMujocoAgrees(const std::string& scene_text, const std::string& path, double step, int disable_flags,
                         bool zero_armature, const Rates& rates = {}) {
   std::vector<ParameterOverride> overrides;
@@ -101,23 +107,29 @@ void expectMujocoAgrees(const std::string& scene_text, const std::string& path, 
   const Scene& scene = loaded.scene;
   const Integration run = integrate(scene.model, scene.settings, scene.q0, scene.v0, sceneIntegration(scene));
   ASSERT_TRUE(run.estimated);
-  const Eigen::Index last = run.run.trajectory.q.cols() - 1;
-  ASSERT_NEAR(run.run.trajectory.time[static_cast<std::size_t>(last)], scene.settings.end_time, 1e-12);
-  const MujocoRun coarse = mujocoRun(path, scene.settings.end_time, step, disable_flags, zero_armature, rates);
-  const MujocoRun fine = mujocoRun(path, scene.settings.end_time, step / 2, disable_flags, zero_armature, rates);
+  const Trajectory& trajectory = run.run.trajectory;
+  constexpr double kEvery = 0.1;
+  const MujocoRun coarse = mujocoRun(path, scene.settings.end_time, kEvery, step, disable_flags, zero_armature, rates);
+  const MujocoRun fine = mujocoRun(path, scene.settings.end_time, kEvery, step / 2, disable_flags, zero_armature, rates);
   const Comparable c = comparable(scene.model, path);
   ASSERT_FALSE(c.coordinate.empty());
   double moved = 0.0;
-  for (std::size_t i = 0; i < c.coordinate.size(); ++i) {
-    const int q = c.coordinate[i], p = c.qpos[i];
-    const double origin = c.absolute[i] ? 0.0 : fine.qpos0[p];
-    const double reference = fine.qpos[p] - origin;
-    const double mujoco_error = std::abs(coarse.qpos[p] - fine.qpos[p]);
-    const double estimate = std::abs(run.run.q_error(q, last));
-    EXPECT_LE(std::abs(run.run.trajectory.q(q, last) - reference), 2.0 * (estimate + mujoco_error) + 1e-12)
-        << scene.model.coordinates()[static_cast<std::size_t>(q)].name << ": mbsopt " << run.run.trajectory.q(q, last)
-        << ", MuJoCo " << reference << ", mbsopt's estimate " << estimate << ", MuJoCo's " << mujoco_error;
-    if (!c.absolute[i]) moved = std::max(moved, std::abs(reference - scene.q0[q]));
+  for (Eigen::Index instant = 0; instant < fine.qpos.cols(); ++instant) {
+    const double t = kEvery * static_cast<double>(instant + 1);
+    Eigen::Index k = 0;  // mbsopt's point at t: its macro steps divide 0.1 s
+    while (k + 1 < trajectory.q.cols() && trajectory.time[static_cast<std::size_t>(k)] < t - 1e-9) ++k;
+    ASSERT_NEAR(trajectory.time[static_cast<std::size_t>(k)], t, 1e-12);
+    for (std::size_t i = 0; i < c.coordinate.size(); ++i) {
+      const int q = c.coordinate[i], p = c.qpos[i];
+      const double reference = fine.qpos(p, instant) - (c.absolute[i] ? 0.0 : fine.qpos0[p]);
+      const double mujoco_error = std::abs(coarse.qpos(p, instant) - fine.qpos(p, instant));
+      const double estimate = std::abs(run.run.q_error(q, k));
+      EXPECT_LE(std::abs(trajectory.q(q, k) - reference), 2.0 * (estimate + mujoco_error) + 1e-12)
+          << scene.model.coordinates()[static_cast<std::size_t>(q)].name << " at t = " << t << " s: mbsopt "
+          << trajectory.q(q, k) << ", MuJoCo " << reference << ", mbsopt's estimate " << estimate << ", MuJoCo's "
+          << mujoco_error;
+      if (!c.absolute[i]) moved = std::max(moved, std::abs(reference - scene.q0[q]));
+    }
   }
   EXPECT_GT(moved, 0.1);  // the joints move: the comparison is of a motion, not of a rest [rad or m]
 }
