@@ -357,6 +357,15 @@ void Model::addGuidanceSpring(const std::string& name, const std::string& joint,
                                       addParameter(name + ".c", damping), timeInput(name + ".rest", std::move(target))});
 }
 
+void Model::addArmature(const std::string& joint, double inertia) {
+  const int i = coordinate(joint);
+  if (!(inertia >= 0.0 && std::isfinite(inertia)))
+    throw std::invalid_argument(joint + ": armature must be finite and >= 0, got " + std::to_string(inertia));
+  for (const JointArmature& a : armatures_)
+    if (a.coordinate == i) throw std::invalid_argument(joint + ": has an armature already");
+  armatures_.push_back({i, addParameter(joint + ".armature", inertia)});
+}
+
 void Model::addPointSpringDamper(const std::string& name, FrameIndex frame_a, const Eigen::Vector3d& point_a,
                                  FrameIndex frame_b, const Eigen::Vector3d& point_b, double stiffness,
                                  double damping, double rest_length) {
@@ -523,6 +532,11 @@ void Model::setParameter(ParameterIndex parameter, double value) {
                                   "' invalid: " + e.what());
     }
   }
+  for (const JointArmature& a : armatures_)
+    if (a.inertia == parameter && value < 0.0) {
+      parameter_values_[i] = previous;
+      throw std::invalid_argument(name + " = " + std::to_string(value) + ": an armature must be >= 0");
+    }
   for (const Body& body : bodies_) {  // the same checks as addBody
     if (const std::string defect = rigidBodyDefect(this->value(body.mass), centreOfMass(body), inertia(body));
         !defect.empty()) {

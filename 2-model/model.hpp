@@ -134,6 +134,15 @@ struct TrackGuidance {
 };
 using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation, TrackGuidance>;
 
+/// Rotor inertia of a joint (MuJoCo's armature): J q̈ on its own coordinate, a term J on the mass
+/// matrix's diagonal with no coupling to the other coordinates (a motor's rotor geared to the
+/// joint, its own motion with the frames neglected). J [kg m² on a revolute, kg on a prismatic] is
+/// the parameter "JOINT.armature".
+struct JointArmature {
+  int coordinate;
+  ParameterIndex inertia;
+};
+
 // ---- cut joints closing loops (34): b(q, t) = 0 ----
 struct SphericalCut {  ///< 3 equations: origins of a and b coincide
   FrameIndex frame_a, frame_b;
@@ -258,6 +267,8 @@ class Model {
   void addTrackGuidance(const std::string& name, FrameIndex frame, const std::string& slider_joint, double stiffness,
                         double damping);
   void setGravity(const Eigen::Vector3d& gravity);
+  /// The rotor inertia `inertia` ≥ 0 of joint `joint` (JointArmature), the parameter "JOINT.armature".
+  void addArmature(const std::string& joint, double inertia);
 
   /// Prescribe a joint coordinate as a function of time (exact up to its second derivative).
   void drive(const std::string& joint, TimeFunction motion);
@@ -289,6 +300,7 @@ class Model {
   const std::vector<KinematicElement>& elements() const { return elements_; }
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<ForceElement>& forces() const { return forces_; }
+  const std::vector<JointArmature>& armatures() const { return armatures_; }
   const std::vector<CutJoint>& cuts() const { return cuts_; }
   const std::vector<ModelTrack>& tracks() const { return tracks_; }
   const Track& track(TrackIndex index) const { return tracks_[static_cast<std::size_t>(index)].geometry; }
@@ -349,6 +361,7 @@ class Model {
   std::vector<KinematicElement> elements_;
   std::vector<Body> bodies_;
   std::vector<ForceElement> forces_;
+  std::vector<JointArmature> armatures_;
   std::vector<CutJoint> cuts_;
   std::vector<ModelTrack> tracks_;
   std::vector<CutFramePath> cut_frame_paths_;

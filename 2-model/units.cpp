@@ -80,6 +80,8 @@ std::string parameterUnit(const Model& model, ParameterIndex parameter) {
       if (offset->turn && offset->turn->angle == parameter) return "rad";
     }
   if (contains(model.gravityParameters(), parameter)) return "m/s²";
+  for (const JointArmature& armature : model.armatures())
+    if (armature.inertia == parameter) return isRevolute(model, armature.coordinate) ? "kg·m²" : "kg";
   for (const ForceElement& force : model.forces())
     if (std::string unit = forceParameterUnit(model, force, parameter); !unit.empty()) return unit;
   for (std::size_t i = 0; i < model.coordinates().size(); ++i)

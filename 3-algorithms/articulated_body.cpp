@@ -82,12 +82,19 @@ bool ArticulatedBodyFactorization::factor(const Model& model, const Workspace<do
   articulated_.resize(nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) articulated_[i] = spatial(composites_[i]);
 
+  // A joint's rotor inertia adds to its pivot D alone (JointArmature: a term of M's diagonal).
+  rotor_.assign(free.size(), 0.0);
+  for (const JointArmature& armature : model.armatures())
+    if (const auto element = static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(armature.coordinate)].element);
+        slot_of_element_[element] >= 0)
+      rotor_[static_cast<std::size_t>(slot_of_element_[element])] = model.value(armature.inertia);
+
   bool definite = true;
   for (std::size_t i = nodes_.size(); i-- > 0;) {
     Node& node = nodes_[i];
     if (node.parent >= 0) addShifted(composites_[i], node.shift, composites_[static_cast<std::size_t>(node.parent)]);
     node.U = articulated_[i] * node.axis;                                   // (7.37)
-    const double pivot = node.axis.dot(node.U);                             // D (7.38)
+    const double pivot = node.axis.dot(node.U) + rotor_[static_cast<std::size_t>(node.slot)];  // D (7.38)
     const double locked = quadraticForm(composites_[i], node.axis.head<3>(), node.axis.tail<3>());
     if (!(pivot > kPivotRatio * locked && std::isfinite(pivot))) definite = false;
     node.inverse_pivot = 1.0 / pivot;

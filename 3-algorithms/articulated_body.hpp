@@ -58,6 +58,7 @@ class ArticulatedBodyFactorization {
   std::vector<Node> nodes_;  ///< in topological order
   // Buffers of factor(), kept so that it allocates nothing once sized.
   std::vector<int> slot_of_element_;  ///< per element: its coordinate's slot in `free`, or -1
+  std::vector<double> rotor_;         ///< per slot: its joint's rotor inertia (JointArmature), 0 without
   std::vector<int> frame_node_;       ///< per frame: the node that carries it rigidly, -1 for the ground's
   std::vector<CompositeInertia> composites_;  ///< per node: I^C, every body beyond its joint, rigid
   std::vector<Matrix6> articulated_;          ///< per node: I^A

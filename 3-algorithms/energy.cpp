@@ -31,8 +31,10 @@ double guidanceDeviation(const Model& model, const TrackGuidance& g, const Works
 }  // namespace
 
 MechanicalEnergy mechanicalEnergyOfFrames(const Model& model, const Workspace<double>& ws, const Eigen::VectorXd& q,
-                                          double t) {
+                                          const Eigen::VectorXd& v, double t) {
   MechanicalEnergy energy;
+  for (const JointArmature& armature : model.armatures())
+    energy.kinetic += 0.5 * model.value(armature.inertia) * v[armature.coordinate] * v[armature.coordinate];
   for (const Body& body : model.bodies()) {
     const auto k = static_cast<std::size_t>(body.frame);
     const Eigen::Matrix3d& R = ws.rotation[k];
@@ -67,7 +69,7 @@ MechanicalEnergy mechanicalEnergyOfFrames(const Model& model, const Workspace<do
 MechanicalEnergy mechanicalEnergy(const Model& model, Workspace<double>& ws, const Eigen::VectorXd& q,
                                   const Eigen::VectorXd& v, double t) {
   forwardKinematics(model, ws, q, v, v, KinematicsLevel::Velocity);  // the accelerations (here v) are not read
-  return mechanicalEnergyOfFrames(model, ws, q, t);
+  return mechanicalEnergyOfFrames(model, ws, q, v, t);
 }
 
 double energyPart(const MechanicalEnergy& energy, EnergyPart part) {

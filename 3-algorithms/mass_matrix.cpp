@@ -137,6 +137,8 @@ void massMatrixBlock(const Model& model, Workspace<double>& ws, const std::vecto
     const int element = model.coordinates()[static_cast<std::size_t>(coordinates[static_cast<std::size_t>(c)])].element;
     fillColumnAndRow(model, ws, composites, position, element, c, M);
   }
+  for (const JointArmature& armature : model.armatures())  // J on the diagonal, uncoupled
+    if (const int r = position[static_cast<std::size_t>(armature.coordinate)]; r >= 0) M(r, r) += model.value(armature.inertia);
 }
 
 }  // namespace

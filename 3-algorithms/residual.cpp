@@ -174,6 +174,15 @@ void addElementResiduals(const Model& model, Workspace<Scalar>& ws, VectorX<Scal
   }
 }
 
+/// The rotor inertias' J q̈ on their coordinates (JointArmature), added to f.
+template <class Scalar>
+void addArmatureForces(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a, VectorX<Scalar>& f) {
+  for (const JointArmature& armature : model.armatures()) {
+    const auto i = static_cast<Eigen::Index>(armature.coordinate);
+    f[i] += parameter(model, ws, armature.inertia) * a[i];
+  }
+}
+
 }  // namespace
 
 template <class Scalar>
@@ -184,12 +193,13 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
     throw std::invalid_argument("residual: q, q̇, q̈ need " + std::to_string(n) + " entries and λ 0 or " +
                                 std::to_string(model.constraintCount()));
   forwardKinematics(model, ws, q, v, a, KinematicsLevel::Acceleration);
-  residualFromKinematics(model, ws, q, v, lambda, t, f);
+  residualFromKinematics(model, ws, q, v, a, lambda, t, f);
 }
 
 template <class Scalar>
 void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                            const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f) {
+                            const VectorX<Scalar>& v, const VectorX<Scalar>& a, const VectorX<Scalar>& lambda,
+                            double t, VectorX<Scalar>& f) {
   startWrenches(model, ws, parameter(model, ws, model.gravityParameters()), FrameMotion::Moving);
   f.setZero(model.coordinateCount());
   for (const ForceElement& element : model.forces()) {
@@ -213,17 +223,19 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
   }
   if (model.constraintCount() > 0 && lambda.size() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);
+  addArmatureForces(model, ws, a, f);
 }
 
 template <class Scalar>
-void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda,
-                                         VectorX<Scalar>& f) {
+void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a,
+                                         const VectorX<Scalar>& lambda, VectorX<Scalar>& f) {
   if (lambda.size() != model.constraintCount())
     throw std::invalid_argument("inertialAndLoopForces: λ needs " + std::to_string(model.constraintCount()) + " entries");
   startWrenches(model, ws, Vector3<Scalar>(Vector3<Scalar>::Zero()), FrameMotion::AtRest);
   f.setZero(model.coordinateCount());
   if (model.constraintCount() > 0) addConstraintWrenches(model, ws, lambda);
   addElementResiduals(model, ws, f);
+  addArmatureForces(model, ws, a, f);
 }
 
 namespace {
@@ -344,9 +356,10 @@ template void residual<AdScalar>(const Model&, Workspace<AdScalar>&, const Vecto
                                  const VectorX<AdScalar>&, const VectorX<AdScalar>&, const VectorX<AdScalar>&,
                                  double, VectorX<AdScalar>&);
 template void residualFromKinematics<AdScalar>(const Model&, Workspace<AdScalar>&, const VectorX<AdScalar>&,
-                                               const VectorX<AdScalar>&, const VectorX<AdScalar>&, double,
-                                               VectorX<AdScalar>&);
+                                               const VectorX<AdScalar>&, const VectorX<AdScalar>&,
+                                               const VectorX<AdScalar>&, double, VectorX<AdScalar>&);
 template void inertialAndLoopForcesFromKinematics<AdScalar>(const Model&, Workspace<AdScalar>&,
-                                                            const VectorX<AdScalar>&, VectorX<AdScalar>&);
+                                                            const VectorX<AdScalar>&, const VectorX<AdScalar>&,
+                                                            VectorX<AdScalar>&);
 
 }  // namespace mbsopt

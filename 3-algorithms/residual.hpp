@@ -27,18 +27,20 @@ void residual(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
               const VectorX<Scalar>& a, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f);
 
 /// What residual() does after its forward pass: the same residual with the kinematics of (q, q̇, q̈)
-/// already in ws (forwardKinematics at Acceleration level, or frameRates on its geometry); q and q̇
-/// are those of that state, for the force elements.
+/// already in ws (forwardKinematics at Acceleration level, or frameRates on its geometry); q, q̇ and
+/// q̈ are those of that state, for the force elements and the joints' rotor inertias.
 template <class Scalar>
 void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& q,
-                            const VectorX<Scalar>& v, const VectorX<Scalar>& lambda, double t, VectorX<Scalar>& f);
+                            const VectorX<Scalar>& v, const VectorX<Scalar>& a, const VectorX<Scalar>& lambda,
+                            double t, VectorX<Scalar>& f);
 /// M(q) q̈ + B(q)ᵀλ alone, with the kinematics of (q, 0, q̈) already in ws (frameAccelerationsAtRest
-/// on its geometry; the frame velocities are taken to be zero and not read): the residual at q̇ = 0
-/// without gravity and force elements, i.e. f(q, 0, q̈, λ) − f(q, 0, 0, 0) (what a projection's
-/// correction q̈ = Δ with multipliers λ = μ adds to f). lambda: constraintCount() multipliers.
+/// on its geometry; the frame velocities are taken to be zero and not read) and q̈ = `a` (for the
+/// rotor inertias): the residual at q̇ = 0 without gravity and force elements, i.e.
+/// f(q, 0, q̈, λ) − f(q, 0, 0, 0) (what a projection's correction q̈ = Δ with multipliers λ = μ adds
+/// to f). lambda: constraintCount() multipliers.
 template <class Scalar>
-void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& lambda,
-                                         VectorX<Scalar>& f);
+void inertialAndLoopForcesFromKinematics(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& a,
+                                         const VectorX<Scalar>& lambda, VectorX<Scalar>& f);
 /// The geometry stage's results at q held by `from` (frameGeometry, or forwardKinematics at Velocity
 /// level or beyond), with the bodies' axes R c and R I Rᵀ (computed in `from` if stale), as constants
 /// of an AD pass in `to`: its rotations, positions, joint axes and biases, curve sliders' tracks and

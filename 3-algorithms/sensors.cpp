@@ -16,7 +16,7 @@ double systemSensorValue(const Model& model, const Sensor& sensor, const Workspa
                          const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                          const Eigen::VectorXd& lambda, double t) {
   if (const auto* energy = std::get_if<EnergySensor>(&sensor.kind))
-    return energyPart(mechanicalEnergyOfFrames(model, ws, q, t), energy->part);
+    return energyPart(mechanicalEnergyOfFrames(model, ws, q, v, t), energy->part);
   if (lambda.size() != model.constraintCount())
     throw std::invalid_argument("sensor '" + sensor.name + "': the trajectory holds no multipliers λ of the cuts");
   return sensorValue(model, sensor, ws, q, v, a, lambda);

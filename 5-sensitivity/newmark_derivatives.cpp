@@ -340,7 +340,7 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
       }
       frameRates(model_, s.ws, state.v, state.a, KinematicsLevel::Acceleration);
     }
-    residualFromKinematics(model_, s.ws, state.q, state.v, s.lambda, tr.time[k], s.f);
+    residualFromKinematics(model_, s.ws, state.q, state.v, state.a, s.lambda, tr.time[k], s.f);
     g.head(n) = s.f;
     if (m == 0) {  // no projections: the state Newton converged to is the trajectory's
       if (sensed) sensorDerivatives(s, state.q, state.v, state.a, first, count);
@@ -351,10 +351,10 @@ void TrajectoryDerivatives::stepAndClosureAt(Eigen::Index k, Scratch& s, PointDe
       closureEquations(model_, s.ws, Derivative::Velocity, s.closure_rates);
       g.segment(n, m) = s.closure_rates;
       frameAccelerationsAtRest(model_, s.ws, s.correction_v);
-      inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_v, s.f);
+      inertialAndLoopForcesFromKinematics(model_, s.ws, s.correction_v, s.mu_v, s.f);
       g.segment(n + 2 * m, n) = s.f;
       frameAccelerationsAtRest(model_, s.ws, s.correction_a);
-      inertialAndLoopForcesFromKinematics(model_, s.ws, s.mu_a, s.f);
+      inertialAndLoopForcesFromKinematics(model_, s.ws, s.correction_a, s.mu_a, s.f);
       g.segment(2 * n + 2 * m, n) = s.f;
       if (geometric_) {
         closureEquations(model_, s.ws, Derivative::Position, s.closure_rates);

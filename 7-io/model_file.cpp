@@ -154,14 +154,21 @@ class ModelFileReader {
       feature("tendons", m.ntendon, "tendon '" + tendon + "'", lineOf(text_, {"spatial", "fixed"}, tendon),
               "it couples joints or sites");
     }
-    for (const auto& [field, what] :
-         {std::pair{m.dof_armature, std::string("armature")}, std::pair{m.dof_frictionloss, std::string("friction_loss")}}) {
-      const auto [count, first] = firstOf(m.nv, [&](int d) { return field[d] != 0.0; });
-      if (count > 0) {
-        const std::string joint = name(mjOBJ_JOINT, m.dof_jntid[first], "joint");
-        feature(what, count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
-                what == "armature" ? "it has a rotor inertia (armature)" : "it has dry friction (frictionloss)");
-      }
+    if (const auto [count, first] = firstOf(m.nv, [&](int d) { return m.dof_frictionloss[d] != 0.0; }); count > 0) {
+      const std::string joint = name(mjOBJ_JOINT, m.dof_jntid[first], "joint");
+      feature("friction_loss", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
+              "it has dry friction (frictionloss)");
+    }
+    // A free joint's or a ball's armature is on its rotations' dofs, which Cardan angles do not
+    // share: refused there, taken on hinges and slides.
+    if (const auto [count, first] = firstOf(m.nv, [&](int d) {
+          const int type = m.jnt_type[m.dof_jntid[d]];
+          return m.dof_armature[d] != 0.0 && (type == mjJNT_FREE || type == mjJNT_BALL);
+        });
+        count > 0) {
+      const std::string joint = name(mjOBJ_JOINT, m.dof_jntid[first], "joint");
+      feature("armature", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
+              "a free or ball joint with a rotor inertia (armature), which its Cardan angles cannot carry");
     }
     const auto refuse = [&](int count, const std::string& what, std::initializer_list<const char*> tags, int type,
                             const char* kind) {
@@ -235,6 +242,7 @@ class ModelFileReader {
     if (m.jnt_stiffness[j] != 0.0 || m.dof_damping[dof] != 0.0)
       model_.addJointSpringDamper(added(joint + "_spring"), joint, m.jnt_stiffness[j], m.dof_damping[dof],
                                   m.qpos_spring[qpos] - m.qpos0[qpos]);
+    if (m.dof_armature[dof] != 0.0) model_.addArmature(joint, m.dof_armature[dof]);
     return frame;
   }
 

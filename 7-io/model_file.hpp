@@ -9,9 +9,10 @@
 // revolutes J_x, J_y, J_z (Cardan angles, singular at J_y = ±90°), a free joint three prismatics
 // J_x, J_y, J_z along the ground's axes and three revolutes J_rx, J_ry, J_rz. A coordinate is
 // measured from the joint's reference (MuJoCo's qpos0). Joint stiffness and damping become the
-// joint spring-damper J_spring (rest at the joint's springref). What the file holds beyond that
-// (contacts, limits, actuators, tendons, armature, friction loss) is refused at its line unless
-// the caller leaves it out by name.
+// joint spring-damper J_spring (rest at the joint's springref), a hinge's or slide's armature the
+// rotor inertia J.armature. What the file holds beyond that (contacts, limits, actuators, tendons,
+// a free or ball joint's armature, friction loss) is refused at its line unless the caller leaves
+// it out by name.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
-// Side by side with a peer: the same mechanisms in Simbody and in mbsopt, an agreement
-// check at tight accuracy, and both engines' work-precision curves.
+// Side by side with peers: the same mechanisms in Simbody, MuJoCo and mbsopt, an agreement
+// check at tight accuracy, and the engines' work-precision curves.
 //
 //   peer_comparison --out DIR [--quick] [--mechanisms four_bar,chain8,nfourbar4,andrews,nfourbar16,a02_singular]
 //
@@ -20,6 +20,8 @@
 //     driven by accuracy (`mbsopt simulate --integrator extrapolation|adaptive --accuracy TOL`) at
 //     Simbody's accuracies taken as absolute tolerances on the angles (the adaptive Newmark down to
 //     kAdaptiveDownTo), the error measured;
+//   - MuJoCo (bench/peer/mujoco_models.hpp): the same pins as MJCF, Euler, implicit and RK4 over the
+//     mbsopt ladder's fixed steps; a mechanism with springs or torques is not run there;
 //   - time of a run: wall time of the integration only (integrator creation, initialisation and the
 //     steps; the models are built beforehand), median of several repetitions;
 //   - each engine's Pareto front (time against error), and the time ratio Simbody/mbsopt at errors
@@ -51,6 +53,7 @@
 #include <variant>
 #include <vector>
 
+#include "bench/peer/mujoco_models.hpp"
 #include "bench/peer/simbody_models.hpp"
 #include "mbsopt/model/model.hpp"
 #include "mbsopt/integrators/integration.hpp"
@@ -181,9 +184,15 @@ peer::PinTree pinTreeOf(const mbsopt::Scene& scene, const std::vector<std::strin
   }
   if (m.bodies().size() != coordinates.size()) throw std::runtime_error("pinTreeOf: a body not on a joint's frame");
   for (const mbsopt::CutJoint& cut : m.cuts()) {
+    // Between pins about z, a revolute cut about z holds its two origins together and nothing else.
     const auto* spherical = std::get_if<mbsopt::SphericalCut>(&cut.kind);
-    if (!spherical) throw std::runtime_error("cut '" + cut.name + "': only spherical cuts here");
-    tree.closures.push_back({at(spherical->frame_a, origin), at(spherical->frame_b, origin)});
+    const auto* revolute = std::get_if<mbsopt::RevoluteCut>(&cut.kind);
+    if (revolute && revolute->axis_in_a == Eigen::Vector3d::UnitZ() && revolute->axis_in_b == Eigen::Vector3d::UnitZ())
+      tree.closures.push_back({at(revolute->frame_a, origin), at(revolute->frame_b, origin)});
+    else if (spherical)
+      tree.closures.push_back({at(spherical->frame_a, origin), at(spherical->frame_b, origin)});
+    else
+      throw std::runtime_error("cut '" + cut.name + "': only spherical cuts and revolute cuts about z here");
   }
   for (const mbsopt::ForceElement& force : m.forces()) {
     const auto* spring = std::get_if<mbsopt::PointSpringDamper>(&force);
@@ -684,6 +693,40 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     for (std::size_t i = 0; i < ladder.size(); i += 3) thinned.push_back(ladder[i]);
     ladder = thinned;
   }
+  // MuJoCo: the same pins written as MJCF, its three integrators over the same ladder of fixed steps.
+  std::string mujoco_absent;
+  std::unique_ptr<peer::MujocoModel> mujoco;
+  try {
+    mujoco = peer::MujocoModel::pinTree(pinTreeOf(scene, mech.coordinates), mujoco_absent);
+  } catch (const std::exception& error) {
+    mujoco_absent = error.what();
+  }
+  data["mujoco"] = mujoco ? json{{"mjcf", mujoco->mjcf()}} : json{{"absent", mujoco_absent}};
+  if (!mujoco) std::cerr << "   mujoco: not run (" << oneLine(mujoco_absent) << ")\n";
+  for (peer::MujocoIntegrator kind : {peer::MujocoIntegrator::Euler, peer::MujocoIntegrator::Implicit,
+                                      peer::MujocoIntegrator::RK4}) {
+    if (!mujoco) break;
+    for (int k : ladder) {
+      Run run;
+      run.engine = "mujoco";
+      run.integrator = peer::integratorName(kind);
+      run.step = mech.output_interval / k;
+      peer::MujocoRun first = mujoco->run(kind, run.step, output_times);
+      run.seconds.push_back(first.seconds);
+      const int repetitions = repetitionsFor(first.seconds, options.quick);
+      for (int r = 1; r < repetitions; ++r) run.seconds.push_back(mujoco->run(kind, run.step, output_times).seconds);
+      run.ok = first.ok;
+      run.message = first.message;
+      run.outputs = std::move(first.outputs);
+      run.median_seconds = median(run.seconds);
+      run.counters = {{"steps", first.steps}};
+      run.error = run.ok ? maxAbsError(run.outputs, reference.outputs) : kNaN;
+      std::cerr << "   mujoco  " << std::setw(18) << run.integrator << " h " << sci(run.step) << ": error "
+                << sci(run.error) << ", " << format(run.median_seconds) << " s" << (run.ok ? "" : " FAILED " + oneLine(run.message))
+                << '\n';
+      runs.push_back(std::move(run));
+    }
+  }
   // One mbsopt run of the sweep: `once()` timed over the repetitions, its first result compared.
   const auto sweep = [&](Run run, const std::function<MbsoptRun()>& once) {
     MbsoptRun first = once();
@@ -748,18 +791,18 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     runs_json.push_back(std::move(r));
   }
   data["runs"] = runs_json;
-  std::vector<Point> simbody_all, mbsopt_all;
+  std::map<std::string, std::vector<Point>> engine_points;  // "mbsopt", "simbody", "mujoco"
   json fronts = json::object();
   for (const auto& [name, points] : series) {
     fronts[name] = frontJson(paretoFront(points));
-    auto& all = name.starts_with("mbsopt") ? mbsopt_all : simbody_all;
+    auto& all = engine_points[name.substr(0, name.find(' '))];
     for (Point p : points) {
       p.label = name + " " + p.label;
       all.push_back(p);
     }
   }
-  const std::vector<Point> mbsopt_front = paretoFront(mbsopt_all), simbody_front = paretoFront(simbody_all);
-  data["fronts"] = {{"per_integrator", fronts}, {"mbsopt", frontJson(mbsopt_front)}, {"simbody", frontJson(simbody_front)}};
+  data["fronts"] = {{"per_integrator", fronts}};
+  for (const auto& [engine, points] : engine_points) data["fronts"][engine] = frontJson(paretoFront(points));
 
   json ratios = json::array();
   for (double target : kTargetErrors) {
@@ -776,7 +819,9 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     };
     const auto [mbsopt_time, mbsopt_winner] = fastest("mbsopt");
     const auto [simbody_time, winner] = fastest("simbody");
+    const auto [mujoco_time, mujoco_winner] = fastest("mujoco");
     const double ratio = (mbsopt_time && simbody_time) ? *simbody_time / *mbsopt_time : kNaN;
+    const double mujoco_ratio = (mbsopt_time && mujoco_time) ? *mujoco_time / *mbsopt_time : kNaN;
     std::string verdict = "not bracketed";
     if (std::isfinite(ratio)) verdict = ratio > 1.0 ? "mbsopt faster" : "Simbody faster";
     else if (mbsopt_time && !simbody_time) verdict = "Simbody does not reach it";
@@ -787,12 +832,18 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
                       {"simbody_integrator", winner.empty() ? json(nullptr) : json(winner)},
                       {"mbsopt_integrator", mbsopt_winner.empty() ? json(nullptr) : json(mbsopt_winner)},
                       {"ratio_simbody_over_mbsopt", jsonNumber(ratio)},
-                      {"verdict", verdict}});
+                      {"verdict", verdict},
+                      {"mujoco_seconds", mujoco_time ? json(*mujoco_time) : json(nullptr)},
+                      {"mujoco_integrator", mujoco_winner.empty() ? json(nullptr) : json(mujoco_winner)},
+                      {"ratio_mujoco_over_mbsopt", jsonNumber(mujoco_ratio)}});
     result.table_rows.push_back("| " + mech.key + " | " + sci(target) + " | " +
                                 (mbsopt_time ? format(*mbsopt_time * 1e3, 3) : std::string("—")) + " | " +
                                 (mbsopt_winner.empty() ? "—" : mbsopt_winner) + " | " +
                                 (simbody_time ? format(*simbody_time * 1e3, 3) : std::string("—")) + " | " +
-                                (winner.empty() ? "—" : winner) + " | " + format(ratio, 3) + " | " + verdict + " |");
+                                (winner.empty() ? "—" : winner) + " | " + format(ratio, 3) + " | " + verdict + " | " +
+                                (mujoco_time ? format(*mujoco_time * 1e3, 3) : std::string("—")) + " | " +
+                                (mujoco_winner.empty() ? (mujoco ? "—" : "not run") : mujoco_winner) + " | " +
+                                format(mujoco_ratio, 3) + " |");
   }
   data["time_ratio"] = ratios;
 
@@ -814,7 +865,7 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     gp << "set terminal pngcairo noenhanced size 900,600\n"
        << "set output '" << base << ".png'\n"
        << "set title \"" << mech.key << ": work-precision, Simbody " << peer::simbodyVersion()
-       << " vs mbsopt\\nSimbody: " << MBSOPT_PEER_SIMBODY_BUILD << "\"\n"
+       << " and MuJoCo " << peer::mujocoVersion() << " vs mbsopt\\nSimbody: " << MBSOPT_PEER_SIMBODY_BUILD << "\"\n"
        << "set logscale xy\nset format x '1e%T'\nset format y '1e%T'\n"
        << "set xlabel 'max abs joint-angle error at the output times [rad]'\n"
        << "set ylabel 'wall time of the integration [s] (median)'\n"
@@ -927,15 +978,18 @@ int main(int argc, char** argv) {
   std::ofstream(options.out / "peer_comparison.json") << all.dump(2) << '\n';
 
   std::ofstream md(options.out / "peer_comparison.md");
-  md << "# Simbody " << peer::simbodyVersion() << " vs mbsopt: time at equal error\n\n"
+  md << "# Simbody " << peer::simbodyVersion() << " and MuJoCo " << peer::mujocoVersion()
+     << " vs mbsopt: time at equal error\n\n"
      << "Error: " << all["error_measure"].get<std::string>() << ". Times: "
-     << all["timing"].get<std::string>() << ". Simbody: **" << MBSOPT_PEER_SIMBODY_BUILD << "**.\n\n"
-     << "Ratio = Simbody time / mbsopt time at the same error; each engine's time that of the fastest of its "
+     << all["timing"].get<std::string>() << ". Simbody: **" << MBSOPT_PEER_SIMBODY_BUILD << "**. MuJoCo: Debian's "
+     << "libmujoco-dev, the same pins written as MJCF (loops as soft `connect` equalities, as stiff as MuJoCo "
+     << "allows at the step), Euler, implicit and RK4 at the ladder's fixed steps.\n\n"
+     << "Ratio = the peer's time / mbsopt's time at the same error; each engine's time that of the fastest of its "
      << "integrators at that error, interpolated log-log on that integrator's Pareto front. Above 1: mbsopt is "
-     << "faster.\n\n"
+     << "faster. The verdict is Simbody's.\n\n"
      << "| mechanism | error [rad] | mbsopt [ms] | mbsopt integrator | Simbody [ms] | Simbody integrator | ratio | "
-     << "verdict |\n"
-     << "|---|---|---|---|---|---|---|---|\n";
+     << "verdict | MuJoCo [ms] | MuJoCo integrator | MuJoCo ratio |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& row : table) md << row << '\n';
   md << "\n## Agreement with the reference (Simbody at 1e-12)\n\n"
      << "| mechanism | reference | run | max abs angle difference [rad] |\n|---|---|---|---|\n";

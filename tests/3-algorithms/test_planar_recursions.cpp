@@ -439,7 +439,7 @@ void expectSameResidual(const TurnedPair& pair) {
     for (auto [model, ws, multipliers, g] : {std::tuple{&a, &ada, &multipliers_a, &ga}, std::tuple{&b, &adb, &multipliers_b, &gb}}) {
       forwardKinematics(*model, *ws, q, zero, acceleration, KinematicsLevel::Velocity);  // geometry and joint axes
       frameAccelerationsAtRest(*model, *ws, acceleration);
-      inertialAndLoopForcesFromKinematics(*model, *ws, *multipliers, *g);
+      inertialAndLoopForcesFromKinematics(*model, *ws, acceleration, *multipliers, *g);
     }
     Eigen::MatrixXd rest_a(ga.size(), 1 + kMaxAdDirections), rest_b(gb.size(), 1 + kMaxAdDirections);
     for (Eigen::Index i = 0; i < ga.size(); ++i) {

@@ -144,6 +144,9 @@ Model randomBranchedTree(Random& rng) {
   body("other_1", other);
   body("other_2", model.addPrismatic("other_b", other, rng.obliqueAxis()));
   model.setGravity(9.81 * rng.obliqueAxis());
+  // Rotor inertias on a hinge deep in the tree, a slide and a hinge on the ground: J on M's
+  // diagonal, which the CRBA, the articulated-body pivots and the AD residual must each carry.
+  for (const char* joint : {"left_a", "right_a", "other_a"}) model.addArmature(joint, rng.uniform(0.05, 0.5));
   return model;
 }
 

@@ -31,15 +31,15 @@ LoadedScene loadText(const std::string& text, const std::vector<ParameterOverrid
 /// Starting rates of hinge joints [rad/s], by name: `J.v0` overrides for mbsopt, qvel for MuJoCo.
 using Rates = std::vector<std::pair<std::string, double>>;
 
-/// MuJoCo's own run of `path` by RK4 at `step`, the features mbsopt leaves out switched off (flags)
-/// or zeroed (armature): the joint positions qpos at every `every` [s] to `end_time` (a column
+/// MuJoCo's own run of `path` by RK4 at `step`, the features mbsopt leaves out switched off (flags):
+/// the joint positions qpos at every `every` [s] to `end_time` (a column
 /// each), and the reference qpos0.
 struct MujocoRun {
   Eigen::MatrixXd qpos;
   Eigen::VectorXd qpos0;
 };
 MujocoRun mujocoRun(const std::string& path, double end_time, double every, double step, int disable_flags,
-                    bool zero_armature, const Rates& rates) {
+                    const Rates& rates) {
   std::array<char, 1000> error{};
   const std::unique_ptr<mjModel, decltype(&mj_deleteModel)> m(mj_loadXML(path.c_str(), nullptr, error.data(), 1000),
                                                               &mj_deleteModel);
@@ -47,8 +47,6 @@ MujocoRun mujocoRun(const std::string& path, double end_time, double every, doub
   m->opt.integrator = mjINT_RK4;
   m->opt.timestep = step;
   m->opt.disableflags |= disable_flags;
-  if (zero_armature)
-    for (int d = 0; d < m->nv; ++d) m->dof_armature[d] = 0.0;
   const std::unique_ptr<mjData, decltype(&mj_deleteData)> d(mj_makeData(m.get()), &mj_deleteData);
   for (const auto& [joint, rate] : rates) d->qvel[m->jnt_dofadr[mj_name2id(m.get(), mjOBJ_JOINT, joint.c_str())]] = rate;
   const long instants = std::lround(end_time / every), steps_between = std::lround(every / step);
@@ -100,7 +98,7 @@ Comparable comparable(const Model& model, const std::string& path) {
 /// mbsopt's estimate and MuJoCo's own error (the RK4 difference bounds the coarser run's error; the
 /// finer is taken), each doubled for the next-order terms an asymptotic estimate leaves out.
 void expectMujocoAgrees(const std::string& scene_text, const std::string& path, double step, int disable_flags,
-                        bool zero_armature, const Rates& rates = {}) {
+                        const Rates& rates = {}) {
   std::vector<ParameterOverride> overrides;
   for (const auto& [joint, rate] : rates) overrides.emplace_back(joint + ".v0", rate);
   const LoadedScene loaded = loadText(scene_text, overrides);
@@ -109,8 +107,8 @@ void expectMujocoAgrees(const std::string& scene_text, const std::string& path, 
   ASSERT_TRUE(run.estimated);
   const Trajectory& trajectory = run.run.trajectory;
   constexpr double kEvery = 0.1;
-  const MujocoRun coarse = mujocoRun(path, scene.settings.end_time, kEvery, step, disable_flags, zero_armature, rates);
-  const MujocoRun fine = mujocoRun(path, scene.settings.end_time, kEvery, step / 2, disable_flags, zero_armature, rates);
+  const MujocoRun coarse = mujocoRun(path, scene.settings.end_time, kEvery, step, disable_flags, rates);
+  const MujocoRun fine = mujocoRun(path, scene.settings.end_time, kEvery, step / 2, disable_flags, rates);
   const Comparable c = comparable(scene.model, path);
   ASSERT_FALSE(c.coordinate.empty());
   double moved = 0.0;
@@ -138,17 +136,18 @@ TEST(ModelFile, AnMjcfArmMovesAsMuJoCoMovesIt) {
   expectMujocoAgrees(
       "settings: {end_time: 1.0, step: 2.0e-3, integrator: extrapolation}\n"
       "model: {file: arm.xml, ignore: [limits]}\n",
-      kModels + "arm.xml", 1e-4, mjDSBL_LIMIT, false);
+      kModels + "arm.xml", 1e-4, mjDSBL_LIMIT);
 }
 
 TEST(ModelFile, TheHumanoidOfMuJoCosSamplesMovesAsMuJoCoMovesIt) {
   // A free root and 21 hinges, several to a body about anchors off the body's origin, springs and
-  // dampers on every hinge; contacts, limits, actuators and armature off in both. Falling freely from
-  // rest it would not move inside (every joint at its spring's rest): limbs and waist are thrown.
+  // dampers and a rotor inertia (armature) on every hinge; contacts, limits and actuators off in
+  // both. Falling freely from rest it would not move inside (every joint at its spring's rest):
+  // limbs and waist are thrown.
   expectMujocoAgrees(
       "settings: {end_time: 1.0, step: 2.0e-3, integrator: extrapolation}\n"
-      "model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators, armature]}\n",
-      kHumanoid, 1e-4, mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_ACTUATION, true,
+      "model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators]}\n",
+      kHumanoid, 1e-4, mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_ACTUATION,
       {{"abdomen_z", 2.0}, {"right_hip_y", -4.0}, {"left_knee", 3.0}, {"right_shoulder1", 5.0}, {"left_elbow", -6.0}});
 }
 
@@ -217,9 +216,6 @@ TEST(ModelFile, AFeatureMbsoptDoesNotModelIsRefusedAtItsLine) {
   EXPECT_NE(limits.reason().find("limits"), std::string::npos) << limits.reason();
   const SceneError actuators = refusal("contacts, limits");
   EXPECT_EQ(actuators.line(), lineHolding(kHumanoid, "<motor name=\"abdomen_y\""));
-  const SceneError armature = refusal("contacts, limits, actuators");
-  EXPECT_EQ(armature.line(), lineHolding(kHumanoid, "<joint name=\"abdomen_z\""));
-  EXPECT_NE(armature.reason().find("armature"), std::string::npos) << armature.reason();
   // An unknown feature is the scene's error, at its `ignore`.
   const SceneError unknown = refusal("contact");
   EXPECT_EQ(unknown.path(), kModels + "scene.yaml");
@@ -227,8 +223,8 @@ TEST(ModelFile, AFeatureMbsoptDoesNotModelIsRefusedAtItsLine) {
 }
 
 TEST(ModelFile, WhatIsLeftOutIsNamed) {
-  const LoadedScene humanoid = loadText("model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators, armature]}\n");
-  ASSERT_EQ(humanoid.left_out.size(), 4u);
+  const LoadedScene humanoid = loadText("model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators]}\n");
+  ASSERT_EQ(humanoid.left_out.size(), 3u);
   EXPECT_TRUE(humanoid.left_out[0].starts_with("contacts"));
   EXPECT_EQ(humanoid.scene.model.coordinateCount(), 27);  // 6 of the free root and 21 hinges
 }
