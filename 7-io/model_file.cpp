@@ -70,7 +70,8 @@ class ModelFileReader {
   ModelFileContents read() {
     checkFeatures();
     const mjModel& m = *mj_;
-    model_.setGravity(vectorOf(m.opt.gravity));
+    // The file's own switches: gravity and passive forces (springs, dampers) may be off in it.
+    model_.setGravity(m.opt.disableflags & mjDSBL_GRAVITY ? Eigen::Vector3d::Zero() : vectorOf(m.opt.gravity));
     frames_.assign(static_cast<std::size_t>(m.nbody), Model::ground);
     for (int b = 1; b < m.nbody; ++b) addBody(b);
     return std::move(contents_);
@@ -142,7 +143,7 @@ class ModelFileReader {
                 "it is limited to a range");
       }
     }
-    if (m.nu > 0) {
+    if (m.nu > 0 && !(m.opt.disableflags & mjDSBL_ACTUATION)) {
       const std::string actuator = name(mjOBJ_ACTUATOR, 0, "actuator");
       feature("actuators", m.nu, "actuator '" + actuator + "'",
               lineOf(text_, {"motor", "general", "position", "velocity", "cylinder", "muscle", "adhesion", "transmission"},
@@ -154,7 +155,8 @@ class ModelFileReader {
       feature("tendons", m.ntendon, "tendon '" + tendon + "'", lineOf(text_, {"spatial", "fixed"}, tendon),
               "it couples joints or sites");
     }
-    if (const auto [count, first] = firstOf(m.nv, [&](int d) { return m.dof_frictionloss[d] != 0.0; }); count > 0) {
+    if (const auto [count, first] = firstOf(m.nv, [&](int d) { return m.dof_frictionloss[d] != 0.0; });
+        count > 0 && !(m.opt.disableflags & mjDSBL_FRICTIONLOSS)) {
       const std::string joint = name(mjOBJ_JOINT, m.dof_jntid[first], "joint");
       feature("friction_loss", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
               "it has dry friction (frictionloss)");
@@ -177,7 +179,8 @@ class ModelFileReader {
       throw SceneError(path_, lineOf(text_, tags, first), 0,
                        std::string(kind) + " '" + first + "': " + what + ", which mbsopt does not read from a model file");
     };
-    refuse(m.neq, "an equality constraint", {"connect", "weld", "joint", "tendon", "distance"}, mjOBJ_EQUALITY, "equality");
+    refuse(m.opt.disableflags & mjDSBL_EQUALITY ? 0 : m.neq, "an equality constraint",
+           {"connect", "weld", "joint", "tendon", "distance"}, mjOBJ_EQUALITY, "equality");
     refuse(m.nmocap, "a mocap body (moved by the user, not the dynamics)", {"body"}, mjOBJ_BODY, "body");
     if (m.opt.density != 0.0 || m.opt.viscosity != 0.0 || vectorOf(m.opt.wind).norm() != 0.0)
       throw SceneError(path_, lineOf(text_, {"option"}, ""), 0,
@@ -239,7 +242,7 @@ class ModelFileReader {
                                 : model_.addPrismatic(added(joint), frame, axis);
     start(joint, 0.0);  // coordinates count from the joint's reference, qpos0
     const int dof = m.jnt_dofadr[j];
-    if (m.jnt_stiffness[j] != 0.0 || m.dof_damping[dof] != 0.0)
+    if (!(m.opt.disableflags & mjDSBL_PASSIVE) && (m.jnt_stiffness[j] != 0.0 || m.dof_damping[dof] != 0.0))
       model_.addJointSpringDamper(added(joint + "_spring"), joint, m.jnt_stiffness[j], m.dof_damping[dof],
                                   m.qpos_spring[qpos] - m.qpos0[qpos]);
     if (m.dof_armature[dof] != 0.0) model_.addArmature(joint, m.dof_armature[dof]);

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -227,6 +229,28 @@ TEST(ModelFile, WhatIsLeftOutIsNamed) {
   ASSERT_EQ(humanoid.left_out.size(), 3u);
   EXPECT_TRUE(humanoid.left_out[0].starts_with("contacts"));
   EXPECT_EQ(humanoid.scene.model.coordinateCount(), 27);  // 6 of the free root and 21 hinges
+}
+
+// The file's own switches hold: without gravity and passive forces the arm at rest stays exactly at
+// rest (nothing acts on it), and its dampers are not in the model.
+TEST(ModelFile, TheFilesGravityAndPassiveSwitchesHold) {
+  std::ifstream in(kModels + "arm.xml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string option = "<option gravity=\"0 0 -9.81\"/>";
+  ASSERT_NE(text.find(option), std::string::npos);
+  text.replace(text.find(option), option.size(),
+               "<option gravity=\"0 0 -9.81\"><flag gravity=\"disable\" passive=\"disable\"/></option>");
+  const std::string path = testing::TempDir() + "arm_switched_off.xml";
+  std::ofstream(path) << text;
+  const LoadedScene loaded = loadScene(resolveScene(path), {ParameterOverride::ofWord("model.ignore", "limits")});
+  const Scene& s = loaded.scene;
+  EXPECT_TRUE(s.model.gravity().isZero(0.0));
+  const std::vector<std::string>& names = s.model.parameterNames();
+  EXPECT_EQ(std::count_if(names.begin(), names.end(),
+                          [](const std::string& n) { return n.find("_spring.") != std::string::npos; }),
+            0);
+  const Trajectory run = NewmarkIntegrator(s.model, s.settings).simulate(s.q0, s.v0);
+  EXPECT_EQ(run.q.cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(ModelFile, MuJoCosCompilerErrorsKeepTheirLine) {
