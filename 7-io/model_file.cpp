@@ -27,10 +27,10 @@ std::string fileText(const std::string& path) {
   return text.str();
 }
 
-/// 1-based line of the first element among `tags` whose name is `name` (0 when none is found: an
-/// element of an included file, or one MuJoCo named itself).
+/// 1-based line of the first element among `tags` whose name is `name`, or of the first among them
+/// at all when `name` is empty (an element the file leaves unnamed); 0 when none is found (an element
+/// of an included file).
 int lineOf(const std::string& text, std::initializer_list<const char*> tags, const std::string& name) {
-  if (name.empty()) return 0;
   std::string alternatives;
   for (const char* tag : tags) alternatives += (alternatives.empty() ? "" : "|") + std::string(tag);
   std::string escaped;
@@ -38,7 +38,8 @@ int lineOf(const std::string& text, std::initializer_list<const char*> tags, con
     if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) escaped += '\\';
     escaped += c;
   }
-  const std::regex element("<(" + alternatives + ")\\b[^>]*\\bname\\s*=\\s*[\"']" + escaped + "[\"']");
+  const std::regex element(name.empty() ? "<(" + alternatives + ")\\b"
+                                         : "<(" + alternatives + ")\\b[^>]*\\bname\\s*=\\s*[\"']" + escaped + "[\"']");
   std::smatch match;
   if (!std::regex_search(text, match, element)) return 0;
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + match.position(0), '\n'));
@@ -49,11 +50,6 @@ Eigen::Matrix3d rotationOf(const mjtNum* quaternion) {  // MuJoCo's (w, x, y, z)
 }
 
 Eigen::Vector3d vectorOf(const mjtNum* v) { return {v[0], v[1], v[2]}; }
-
-/// Cardan angles (a, b, c) of R = Rx(a) Ry(b) Rz(c).
-Eigen::Vector3d cardanAngles(const Eigen::Matrix3d& R) {
-  return {std::atan2(-R(1, 2), R(2, 2)), std::asin(std::clamp(R(0, 2), -1.0, 1.0)), std::atan2(-R(0, 1), R(0, 0))};
-}
 
 class ModelFileReader {
  public:
@@ -95,8 +91,14 @@ class ModelFileReader {
   }
 
   std::string name(int type, int id, const char* kind) const {
+    const std::string given = fileName(type, id);
+    return given.empty() ? std::string(kind) + std::to_string(id) : given;
+  }
+
+  /// The name the file gives the element, empty when it gives none.
+  std::string fileName(int type, int id) const {
     const char* n = mj_id2name(mj_.get(), type, id);
-    return n && *n ? std::string(n) : std::string(kind) + std::to_string(id);
+    return n ? std::string(n) : std::string();
   }
 
   /// Refused at `line` unless `feature` is ignored; then listed once in left_out.
@@ -172,16 +174,30 @@ class ModelFileReader {
       feature("armature", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
               "a free or ball joint with a rotor inertia (armature), which its Cardan angles cannot carry");
     }
-    const auto refuse = [&](int count, const std::string& what, std::initializer_list<const char*> tags, int type,
-                            const char* kind) {
-      if (count == 0) return;
-      const std::string first = name(type, 0, kind);
-      throw SceneError(path_, lineOf(text_, tags, first), 0,
-                       std::string(kind) + " '" + first + "': " + what + ", which mbsopt does not read from a model file");
+    // Refused outright: `id`, of `type`, is the first such element (located by its name, or as the
+    // first of `tags` after `<section` when the file leaves it unnamed and names a section).
+    const auto refuse = [&](bool present, int type, int id, const char* kind, const std::string& what,
+                            std::initializer_list<const char*> tags, const std::string& section) {
+      if (!present) return;
+      const std::string given = fileName(type, id);
+      int line = 0;
+      if (!given.empty()) {
+        line = lineOf(text_, tags, given);
+      } else if (const std::size_t start = section.empty() ? std::string::npos : text_.find("<" + section);
+                 start != std::string::npos) {
+        const int in_section = lineOf(text_.substr(start), tags, "");
+        if (in_section > 0) line = in_section + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<long>(start), '\n'));
+      }
+      throw SceneError(path_, line, 0,
+                       std::string(kind) + " '" + name(type, id, kind) + "': " + what +
+                           ", which mbsopt does not read from a model file");
     };
-    refuse(m.opt.disableflags & mjDSBL_EQUALITY ? 0 : m.neq, "an equality constraint",
-           {"connect", "weld", "joint", "tendon", "distance"}, mjOBJ_EQUALITY, "equality");
-    refuse(m.nmocap, "a mocap body (moved by the user, not the dynamics)", {"body"}, mjOBJ_BODY, "body");
+    refuse(m.neq > 0 && !(m.opt.disableflags & mjDSBL_EQUALITY), mjOBJ_EQUALITY, 0, "equality",
+           "an equality constraint", {"connect", "weld", "joint", "tendon", "distance"}, "equality");
+    int mocap = 0;
+    while (mocap < m.nbody && m.body_mocapid[mocap] < 0) ++mocap;
+    refuse(m.nmocap > 0, mjOBJ_BODY, mocap, "body", "a mocap body (moved by the user, not the dynamics)", {"body"},
+           "");  // unnamed: the file only (the first body of the file need not be it)
     if (m.opt.density != 0.0 || m.opt.viscosity != 0.0 || vectorOf(m.opt.wind).norm() != 0.0)
       throw SceneError(path_, lineOf(text_, {"option"}, ""), 0,
                        "option: density, viscosity or wind ≠ 0 (fluid forces), which mbsopt does not model");
@@ -249,13 +265,17 @@ class ModelFileReader {
     return frame;
   }
 
-  /// Three revolutes about x, then the turned y and z, started at the Cardan angles of `start_rotation`.
+  /// The start orientation `start_rotation` as an offset J_start (where it is not the identity),
+  /// then three revolutes about its x, then the turned y and z axes, all starting at zero: Cardan
+  /// angles measured from the start, singular only after a turn of 90° about the middle axis (not
+  /// at a start the file places there).
   FrameIndex addCardan(const std::string& joint, std::array<const char*, 3> suffixes, FrameIndex frame,
                        const Eigen::Matrix3d& start_rotation) {
-    const Eigen::Vector3d angles = cardanAngles(start_rotation);
+    if (!start_rotation.isIdentity(1e-15))
+      frame = model_.addOffset(added(joint + "_start"), frame, Eigen::Vector3d::Zero(), start_rotation);
     for (int i = 0; i < 3; ++i) {
       frame = model_.addRevolute(added(joint + suffixes[i]), frame, Eigen::Vector3d::Unit(i));
-      start(joint + suffixes[i], angles[i]);
+      start(joint + suffixes[i], 0.0);
     }
     return frame;
   }

@@ -6,9 +6,10 @@
 // joints in the order MuJoCo applies them, each about its anchor, then an offset B_frame back from
 // the last anchor: B_frame is the body's frame, the body B (its mass and inertia) hangs on it. A hinge
 // J is a revolute J, a slide a prismatic J (offsets J_anchor carry the anchors), a ball three
-// revolutes J_x, J_y, J_z (Cardan angles, singular at J_y = ±90°), a free joint three prismatics
-// J_x, J_y, J_z along the ground's axes and three revolutes J_rx, J_ry, J_rz. A coordinate is
-// measured from the joint's reference (MuJoCo's qpos0). Joint stiffness and damping become the
+// revolutes J_x, J_y, J_z, a free joint three prismatics J_x, J_y, J_z along the ground's axes and
+// three revolutes J_rx, J_ry, J_rz; the revolutes of both are Cardan angles from the start
+// orientation (an offset J_start), singular after a turn of 90° about the middle axis. A hinge's or
+// slide's coordinate is measured from the joint's reference (MuJoCo's qpos0). Joint stiffness and damping become the
 // joint spring-damper J_spring (rest at the joint's springref), a hinge's or slide's armature the
 // rotor inertia J.armature. What the file holds beyond that (contacts, limits, actuators, tendons,
 // a free or ball joint's armature, friction loss) is refused at its line unless the caller leaves
@@ -29,7 +30,7 @@ const std::vector<std::string>& modelFileFeatures();
 struct ModelFileContents {
   struct Start {
     std::string coordinate;
-    double q0, v0;  ///< from the file's qpos0 (a free joint's and a ball's orientation as Cardan angles), at rest
+    double q0, v0;  ///< 0 and 0 but a free joint's position, from the file's qpos0: at rest where the file places it
   };
   std::vector<Start> starts;
   std::vector<std::string> names;     ///< every name added to the model (frames, coordinates, bodies, forces)

@@ -316,8 +316,8 @@ class SceneBuilder {
     try {
       contents = addModelFile(model(), path.string(), ignore);
     } catch (const SceneError& e) {
-      if (e.line() > 0) throw;  // located in the model file
-      entry.fail(e.reason().starts_with("ignore:") ? "ignore" : "file", e.reason());
+      if (!e.reason().starts_with("ignore:")) throw;  // the model file's error, at its line where it has one
+      entry.fail("ignore", e.reason());
     }
     for (const std::string& name : contents.names) claimName(entry, "file", name);
     for (const ModelFileContents::Start& s : contents.starts) initial_.push_back({s.coordinate, s.q0, s.v0});
