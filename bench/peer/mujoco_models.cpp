@@ -56,9 +56,10 @@ const char* integratorName(MujocoIntegrator integrator) {
 struct MujocoModel::Impl {
   std::string mjcf;
   Model model{nullptr, &mj_deleteModel};
-  std::vector<double> q0, u0;
+  std::vector<double> q0, u0;  ///< per output, and the start's qpos0 and qvel of every other dof
   std::vector<int> address;  ///< per pin, in the tree's order: its hinge's place in qpos and qvel (MuJoCo's
                              ///< order is the bodies' depth-first order)
+  std::vector<double> rates;  ///< a model file's start qvel (its positions start at qpos0); empty for a tree
 };
 
 MujocoModel::MujocoModel() : impl_(std::make_unique<Impl>()) {}
@@ -108,6 +109,32 @@ std::unique_ptr<MujocoModel> MujocoModel::pinTree(const PinTree& tree, std::stri
   return model;
 }
 
+std::unique_ptr<MujocoModel> MujocoModel::file(const std::string& path, int disable_flags,
+                                               const std::vector<std::string>& joints,
+                                               const std::vector<std::pair<std::string, double>>& rates) {
+  std::unique_ptr<MujocoModel> model(new MujocoModel());
+  model->impl_->mjcf = path;
+  char error[1000] = "";
+  model->impl_->model.reset(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
+  if (!model->impl_->model) throw std::runtime_error(std::string("MuJoCo's compiler: ") + error);
+  mjModel* m = model->impl_->model.get();
+  m->opt.disableflags |= disable_flags;
+  const auto joint = [&](const std::string& name) {
+    const int id = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+    if (id < 0 || m->jnt_type[id] != mjJNT_HINGE) throw std::runtime_error(path + ": no hinge '" + name + "'");
+    return id;
+  };
+  for (const std::string& name : joints) {
+    const int id = joint(name);
+    model->impl_->address.push_back(m->jnt_qposadr[id]);
+    model->impl_->q0.push_back(m->qpos0[m->jnt_qposadr[id]]);
+    model->impl_->u0.push_back(0.0);
+  }
+  model->impl_->rates.assign(static_cast<std::size_t>(m->nv), 0.0);
+  for (const auto& [name, rate] : rates) model->impl_->rates[static_cast<std::size_t>(m->jnt_dofadr[joint(name)])] = rate;
+  return model;
+}
+
 MujocoRun MujocoModel::run(MujocoIntegrator integrator, double step, const std::vector<double>& output_times) const {
   mjModel* m = impl_->model.get();
   m->opt.integrator = integrator == MujocoIntegrator::Euler      ? mjINT_EULER
@@ -116,9 +143,14 @@ MujocoRun MujocoModel::run(MujocoIntegrator integrator, double step, const std::
   m->opt.timestep = step;
   const Data d(mj_makeData(m), &mj_deleteData);
   const std::vector<int>& address = impl_->address;  // hinges only: qpos and qvel share the addresses
-  for (std::size_t i = 0; i < address.size(); ++i) {
-    d->qpos[address[i]] = impl_->q0[i];
-    d->qvel[address[i]] = impl_->u0[i];
+  const bool from_file = !impl_->rates.empty();
+  if (from_file) {  // mj_makeData's qpos0 and the rates
+    std::copy(impl_->rates.begin(), impl_->rates.end(), d->qvel);
+  } else {
+    for (std::size_t i = 0; i < address.size(); ++i) {
+      d->qpos[address[i]] = impl_->q0[i];
+      d->qvel[address[i]] = impl_->u0[i];
+    }
   }
   MujocoRun run;
   const auto start = std::chrono::steady_clock::now();
@@ -128,8 +160,8 @@ MujocoRun MujocoModel::run(MujocoIntegrator integrator, double step, const std::
     for (long k = 0; k < steps; ++k) mj_step(m, d.get());
     run.steps += steps;
     t = output;
-    std::vector<double> q;
-    for (const int a : address) q.push_back(d->qpos[a]);
+    std::vector<double> q;  // a file's hinges from their qpos0 (mbsopt's coordinates); a tree's pin angles
+    for (std::size_t i = 0; i < address.size(); ++i) q.push_back(d->qpos[address[i]] - (from_file ? impl_->q0[i] : 0.0));
     for (const double angle : q)
       if (!std::isfinite(angle) || d->warning[mjWARN_BADQACC].number > 0) {
         run.message = "MuJoCo: the state is not finite (or its accelerations were bad) at t = " + std::to_string(output) + " s";

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/peer/simbody_models.hpp"
@@ -33,8 +34,13 @@ class MujocoModel {
 
   /// Null, with `why` set, for a tree MuJoCo cannot take as such here (springs, torques).
   static std::unique_ptr<MujocoModel> pinTree(const PinTree& tree, std::string& why);
+  /// A model file, MuJoCo's `disable_flags` set (mjDSBL_CONTACT, …), started at rest but for the
+  /// joints of `rates` [rad/s]; its outputs are the angles of the hinges `joints` from their qpos0.
+  static std::unique_ptr<MujocoModel> file(const std::string& path, int disable_flags,
+                                           const std::vector<std::string>& joints,
+                                           const std::vector<std::pair<std::string, double>>& rates);
 
-  /// The MJCF it compiled (for the record).
+  /// The MJCF it compiled (for the record; a model file's path).
   const std::string& mjcf() const;
   /// From the tree's initial state to each output time (whole numbers of steps of `step` between
   /// them); fails when the state stops being finite or MuJoCo warns of instability.
