@@ -78,6 +78,21 @@ class ModuleAgainstTheCommandLine(unittest.TestCase):
         # The CSV prints 17 significant digits: it reads back to the same doubles.
         numpy.testing.assert_array_equal(columns, values)
 
+    def test_a_model_file_runs_as_the_command_line_runs_it(self):
+        # An MJCF file, its limit left out by the word setting model.ignore, as `--set` does it.
+        arm = os.path.join(SOURCE, "tests", "7-io", "models", "arm.xml")
+        trajectory = mbsopt.simulate(arm, set={"model.ignore": "limits"})
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "arm.csv")
+            result = command("simulate", arm, "--set", "model.ignore=limits", "--out", path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(path, newline="") as f:
+                values = numpy.array(list(csv.reader(f))[1:], dtype=float)
+        self.assertEqual(trajectory.coordinates, ["yaw", "shoulder", "elbow", "extension"])
+        numpy.testing.assert_array_equal(numpy.column_stack([trajectory.time, trajectory.q]), values[:, :5])
+        with self.assertRaisesRegex(Exception, r"arm\.xml:22: .*limits"):
+            mbsopt.simulate(arm)
+
     def test_a_run_driven_by_accuracy_is_that_of_the_command_line(self):
         # The extrapolation to 1e-6 with rows every 0.1 s: the same rows as `mbsopt simulate --accuracy
         # 1e-6 --output-step 0.1` to the bit, and an estimate within the accepted half of the tolerance.
