@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Side by side with a peer: builds bench/peer/peer_comparison against Debian's Simbody and
+# Side by side with peers: builds bench/peer/peer_comparison against Debian's Simbody and MuJoCo and
 # writes results/peer-comparison/ (peer_comparison.json, peer_comparison.md, work_precision_<mechanism>.png).
-# By default: four_bar, chain8, nfourbar4, andrews (Andrews' squeezer, problems/scenes/hard/) and the
-# a02_singular survey. Not part of the test suite: ~5-10 minutes on the 2-core VM. Extra arguments go to
+# By default: four_bar, chain8, nfourbar4, andrews (Andrews' squeezer, problems/scenes/hard/), humanoid
+# (MuJoCo's sample, mbsopt and MuJoCo only) and the a02_singular survey. Not part of the test suite: ~5-10 minutes on the 2-core VM. Extra arguments go to
 # the program, e.g.
 #   scripts/peer_comparison.sh --mechanisms four_bar,andrews       # a subset
 #   scripts/peer_comparison.sh --mechanisms nfourbar16             # opt-in, ~10 minutes more
@@ -42,11 +42,12 @@ for ((i = 0; i < ${#args[@]}; ++i)); do [ "${args[i]}" = "--out" ] && out=${args
 mkdir -p "$out"
 # Simbody's CPodes prints its own warnings on stderr: they go to the log with the progress lines.
 "$build"/bench/peer/peer_comparison --out "$out" "$@" 2> "$out/run.log" || { tail -20 "$out/run.log"; exit 1; }
-grep -v '^$' "$out/run.log" | grep -E '^(==|   (simbody|mbsopt|agreement|Simbody))|^wrote' || true
+grep -v '^$' "$out/run.log" | grep -E '^(==|   (simbody|mujoco|mbsopt|agreement|Simbody))|^wrote' || true
 
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//') ($(nproc) cores)"
+  echo "mujoco package: $(dpkg-query -W -f='${Package} ${Version}' libmujoco-dev 2>/dev/null || echo unknown)"
   if [ "${SIMBODY_RELEASE:-0}" = 1 ]; then
     source_version=$(cd build/simbody-src && ls simbody_*.dsc 2>/dev/null | sed 's/^simbody_//; s/\.dsc$//' || true)
     echo "simbody: Release build of Debian's source package simbody ${source_version:-unknown} (bench/build_simbody_release.sh)"
