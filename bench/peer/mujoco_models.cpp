@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,6 +22,10 @@ std::string triple(const std::array<double, 3>& v) {
   out << v[0] << ' ' << v[1] << ' ' << v[2];
   return out.str();
 }
+
+/// MuJoCo's warnings (an unstable run's) on stderr with the progress lines, not in a MUJOCO_LOG.TXT of
+/// the working directory; the run that met one fails (MujocoModel::run).
+void warnOnStderr(const char* message) { std::fprintf(stderr, "   mujoco warning: %s\n", message); }
 
 std::string bodyName(int pin) { return pin < 0 ? std::string("world") : "pin" + std::to_string(pin); }
 
@@ -62,7 +67,7 @@ struct MujocoModel::Impl {
   std::vector<double> rates;  ///< a model file's start qvel (its positions start at qpos0); empty for a tree
 };
 
-MujocoModel::MujocoModel() : impl_(std::make_unique<Impl>()) {}
+MujocoModel::MujocoModel() : impl_(std::make_unique<Impl>()) { mju_user_warning = warnOnStderr; }
 MujocoModel::~MujocoModel() = default;
 
 const std::string& MujocoModel::mjcf() const { return impl_->mjcf; }

@@ -933,16 +933,22 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
        << "set ylabel 'wall time of the integration [s] (median)'\n"
        << "set grid\nset key top right\nset xrange [*:*] reverse\n"
        << "plot ";
-    // mbsopt's integrators in reds (Newmark, the same with fast steps, extrapolation, adaptive),
-    // each with its own marker.
-    const std::map<std::string, std::string> ours{{"mbsopt Newmark", "lw 3 pt 7 lc rgb '#d62728'"},
-                                                  {"mbsopt extrapolation", "lw 3 pt 9 lc rgb '#8c1a1a'"},
-                                                  {"mbsopt Newmark, fast steps", "lw 3 pt 11 lc rgb '#e377c2'"},
-                                                  {"mbsopt adaptive", "lw 3 pt 5 lc rgb '#ff9896'"}};
+    // mbsopt's integrators in reds, Simbody's in greens, MuJoCo's in blues, each with its own marker.
+    const std::map<std::string, std::string> styles{
+        {"mbsopt Newmark", "lw 3 pt 7 lc rgb '#d62728'"},
+        {"mbsopt extrapolation", "lw 3 pt 9 lc rgb '#8c1a1a'"},
+        {"mbsopt Newmark, fast steps", "lw 3 pt 11 lc rgb '#e377c2'"},
+        {"mbsopt adaptive", "lw 3 pt 5 lc rgb '#ff9896'"},
+        {"simbody RungeKuttaFeldberg", "lw 1.5 pt 4 lc rgb '#2ca02c'"},
+        {"simbody RungeKuttaMerson", "lw 1.5 pt 6 lc rgb '#98df8a'"},
+        {"simbody CPodes", "lw 1.5 pt 8 lc rgb '#17becf'"},
+        {"mujoco Euler", "lw 1.5 pt 10 lc rgb '#aec7e8'"},
+        {"mujoco implicit", "lw 1.5 pt 12 lc rgb '#6baed6'"},
+        {"mujoco RK4", "lw 1.5 pt 14 lc rgb '#1f3f9f'"}};
     for (std::size_t i = 0; i < names.size(); ++i) {
-      const auto style = ours.find(names[i]);
+      const auto style = styles.find(names[i]);
       gp << (i ? ", \\\n     " : "") << "'" << base << ".dat' index " << i << " using 1:2 with linespoints "
-         << (style != ours.end() ? style->second : "lw 1.5 pt " + std::to_string(4 + 2 * static_cast<int>(i)))
+         << (style != styles.end() ? style->second : "lw 1.5 pt " + std::to_string(4 + 2 * static_cast<int>(i)))
          << " title '" << names[i] << "'";
     }
     gp << '\n';
