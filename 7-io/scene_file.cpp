@@ -794,10 +794,10 @@ std::vector<std::pair<std::string, double>> sceneParameters(const SceneSource& s
       {"settings.extrapolation_runs", scene.integrator.extrapolation_runs},
       {"settings.local_tolerance", scene.integrator.local_tolerance}};
   for (const std::string& name : scene.model.parameterNames()) defaults.emplace_back(name, scene.model.parameter(name));
+  const bool from_model_file = root["model"].isDefined();  // which starts where the file places its bodies
   for (const int i : scene.model.freeCoordinates()) {
     const std::string& name = scene.model.coordinates()[static_cast<std::size_t>(i)].name;
     if (scene.model.coordinateOwner(i) != name) continue;  // a coordinate the file does not name
-    const bool from_model_file = root["model"].isDefined();  // which starts where the file places its bodies
     defaults.emplace_back(name + ".q0", from_model_file ? scene.q0[i] : 0.0);
     defaults.emplace_back(name + ".v0", from_model_file ? scene.v0[i] : 0.0);
   }
