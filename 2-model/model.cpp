@@ -201,6 +201,14 @@ Eigen::Matrix3d Model::inertia(const Body& body) const {
 void Model::checkFrame(FrameIndex frame, const std::string& who) const {
   if (frame < 0 || frame >= frameCount())
     throw std::invalid_argument(who + ": frame index " + std::to_string(frame) + " does not exist");
+  const int element = frames_[static_cast<std::size_t>(frame)].element;
+  if (element < 0) return;
+  if (const auto* ball = std::get_if<BallJointComponent>(&elements_[static_cast<std::size_t>(element)].kind);
+      ball && ball->component < 2) {
+    const std::size_t exit = static_cast<std::size_t>(elements_[static_cast<std::size_t>(element + 2 - ball->component)].exit);
+    throw std::invalid_argument(who + ": frame '" + frames_[static_cast<std::size_t>(frame)].name +
+                                "' lies inside a ball joint, whose exit frame is '" + frames_[exit].name + "'");
+  }
 }
 
 void Model::checkNewName(const std::string& name) const {
@@ -225,7 +233,8 @@ bool movesInPlane(const ElementKind& kind) {
                                },
                                [](const RevoluteJoint& j) { return j.axis.x() == 0.0 && j.axis.y() == 0.0; },
                                [](const PrismaticJoint& j) { return j.axis.z() == 0.0; },
-                               [](const CurveSliderJoint&) { return true; }},  // its track lies in the plane
+                               [](const CurveSliderJoint&) { return true; },  // its track lies in the plane
+                               [](const BallJointComponent&) { return false; }},
                     kind);
 }
 
@@ -233,7 +242,8 @@ bool movesInPlane(const ElementKind& kind) {
 
 FrameIndex Model::addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active) {
   checkNewName(name);
-  checkFrame(parent, name);
+  const auto* ball = std::get_if<BallJointComponent>(&kind);
+  if (!ball || ball->component == 0) checkFrame(parent, name);  // a ball's y and z follow its x inside it
   planar_ = planar_ && movesInPlane(kind);
   names_.push_back(name);
   const int element = static_cast<int>(elements_.size());
@@ -298,6 +308,16 @@ FrameIndex Model::addRevolute(const std::string& name, FrameIndex parent, const 
 
 FrameIndex Model::addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis) {
   return addElement(name, parent, PrismaticJoint{unitAxis(axis, name)}, true);
+}
+
+FrameIndex Model::addBallJoint(const std::array<std::string, 3>& names, FrameIndex parent) {
+  for (const std::string& name : names) checkNewName(name);  // all three before any is added
+  if (names[0] == names[1] || names[0] == names[2] || names[1] == names[2])
+    throw std::invalid_argument("the name '" + (names[1] == names[2] ? names[1] : names[0]) + "' is used twice");
+  checkFrame(parent, names[0]);
+  FrameIndex frame = parent;
+  for (int c = 0; c < 3; ++c) frame = addElement(names[static_cast<std::size_t>(c)], frame, BallJointComponent{c}, true);
+  return frame;
 }
 
 TrackIndex Model::addTrack(const std::string& name, const Track& track) {
@@ -380,6 +400,15 @@ void Model::addPointSpringDamper(const std::string& name, FrameIndex frame_a, co
   forces_.push_back(PointSpringDamper{name, frame_a, point_a, frame_b, point_b, addParameter(name + ".k", stiffness),
                                       addParameter(name + ".c", damping),
                                       addParameter(name + ".rest_length", rest_length)});
+}
+
+void Model::addRotationalDamper(const std::string& name, FrameIndex frame_a, FrameIndex frame_b, double damping) {
+  checkNewName(name);
+  checkFrame(frame_a, name);
+  checkFrame(frame_b, name);
+  checkFinite(damping, name + ": damping");
+  names_.push_back(name);
+  forces_.push_back(RotationalDamper{name, frame_a, frame_b, addParameter(name + ".c", damping)});
 }
 
 void Model::addJointActuation(const std::string& name, const std::string& joint, TimeFunction force) {

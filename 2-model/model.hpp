@@ -59,7 +59,16 @@ struct CurveSliderJoint {  ///< active: the exit frame rides a track of the entr
   TrackIndex track;  ///< Model::track gives its geometry
   SliderOrientation orientation = SliderOrientation::FollowTrack;
 };
-using ElementKind = std::variant<Offset, RevoluteJoint, PrismaticJoint, CurveSliderJoint>;
+/// Active: one of the three coordinates of a ball joint, its rotation vector φ = (φ_x, φ_y, φ_z) in
+/// the entry frame's axes. The exit frame is the entry frame turned by R(φ) = exp([φ]×) about their
+/// common origin, a chart singular only where |φ| reaches 2π (3-algorithms/ball_chart.hpp), never
+/// at a quarter turn as Cardan angles are. A ball joint is three such elements in a chain, x, y then
+/// z (Model::addBallJoint), through coincident frames: the z element's exit is the ball's exit frame,
+/// and the two frames between are not frames of the mechanism, so nothing attaches to them.
+struct BallJointComponent {
+  int component;  ///< 0, 1, 2 for φ_x, φ_y, φ_z: the ball's x element is `component` elements back
+};
+using ElementKind = std::variant<Offset, RevoluteJoint, PrismaticJoint, CurveSliderJoint, BallJointComponent>;
 
 struct KinematicElement {
   std::string name;
@@ -132,7 +141,15 @@ struct TrackGuidance {
   ParameterIndex stiffness;
   ParameterIndex damping;
 };
-using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation, TrackGuidance>;
+/// A rotational damper between two frames: the torque −c (ω_b − ω_a) on frame b and its opposite on
+/// frame a. Across a ball joint (MuJoCo's damping of a ball or of a free joint's rotation) it is the
+/// generalised force −c JᵀJ φ̇ on the rotation vector's rates (3-algorithms/ball_chart.hpp).
+struct RotationalDamper {
+  std::string name;
+  FrameIndex frame_a, frame_b;
+  ParameterIndex damping;  ///< c [N·m·s/rad], "NAME.c"
+};
+using ForceElement = std::variant<JointSpringDamper, PointSpringDamper, JointActuation, TrackGuidance, RotationalDamper>;
 
 /// Rotor inertia of a joint (MuJoCo's armature): J q̈ on its own coordinate, a term J on the mass
 /// matrix's diagonal with no coupling to the other coordinates (a motor's rotor geared to the
@@ -246,6 +263,10 @@ class Model {
                        const Eigen::Vector3d& axis, double angle);
   FrameIndex addRevolute(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
   FrameIndex addPrismatic(const std::string& name, FrameIndex parent, const Eigen::Vector3d& axis);
+  /// A ball joint (BallJointComponent) about the origin of `parent`: three elements and their
+  /// coordinates named `names` [rad], the rotation vector's x, y and z in `parent`'s axes; returns
+  /// the exit frame, named names[2].
+  FrameIndex addBallJoint(const std::array<std::string, 3>& names, FrameIndex parent);
   /// A track for curve sliders; its numbers become parameters (see ModelTrack).
   TrackIndex addTrack(const std::string& name, const Track& track);
   FrameIndex addCurveSlider(const std::string& name, FrameIndex parent, TrackIndex track,
@@ -262,6 +283,8 @@ class Model {
   void addPointSpringDamper(const std::string& name, FrameIndex frame_a, const Eigen::Vector3d& point_a,
                             FrameIndex frame_b, const Eigen::Vector3d& point_b, double stiffness, double damping,
                             double rest_length);
+  /// A rotational damper (RotationalDamper) of damping c ≥ 0 between frame_a and frame_b.
+  void addRotationalDamper(const std::string& name, FrameIndex frame_a, FrameIndex frame_b, double damping);
   void addJointActuation(const std::string& name, const std::string& joint, TimeFunction force);
   /// Track guidance of `frame` by the track of the curve slider `slider_joint` (see TrackGuidance).
   void addTrackGuidance(const std::string& name, FrameIndex frame, const std::string& slider_joint, double stiffness,
@@ -349,6 +372,7 @@ class Model {
 
  private:
   FrameIndex addElement(const std::string& name, FrameIndex parent, ElementKind kind, bool active);
+  /// That `frame` exists and is a frame of the mechanism (not one inside a ball joint).
   void checkFrame(FrameIndex frame, const std::string& who) const;
   void checkNewName(const std::string& name) const;
   /// Records a new cut joint, its constraint rows and its frames' paths.

@@ -17,11 +17,11 @@ std::string derivativeUnit(Derivative d, bool angular) {
   return d == Derivative::Position ? base : d == Derivative::Velocity ? base + "/s" : base + "/s²";
 }
 
-/// Whether coordinate i is a revolute joint's angle.
-bool isRevolute(const Model& model, int coordinate) {
+/// Whether coordinate i is an angle: a revolute joint's or a component of a ball joint's rotation vector.
+bool isAngularCoordinate(const Model& model, int coordinate) {
   const KinematicElement& joint =
       model.elements()[static_cast<std::size_t>(model.coordinates()[static_cast<std::size_t>(coordinate)].element)];
-  return std::holds_alternative<RevoluteJoint>(joint.kind);
+  return std::holds_alternative<RevoluteJoint>(joint.kind) || std::holds_alternative<BallJointComponent>(joint.kind);
 }
 
 /// The unit of `parameter` where it is one of the time input's numbers, its value in `unit`; empty otherwise.
@@ -52,7 +52,7 @@ std::string forceParameterUnit(const Model& model, const ForceElement& force, Pa
   };
   return std::visit(
       Overloaded{[&](const JointSpringDamper& s) {
-                   const bool angular = isRevolute(model, s.coordinate);
+                   const bool angular = isAngularCoordinate(model, s.coordinate);
                    const std::string unit = spring(s.stiffness, s.damping, angular);
                    return unit.empty() ? timeInputUnit(s.rest, angular ? "rad" : "m", p) : unit;
                  },
@@ -60,9 +60,10 @@ std::string forceParameterUnit(const Model& model, const ForceElement& force, Pa
                    return s.rest_length == p ? std::string("m") : spring(s.stiffness, s.damping, false);
                  },
                  [&](const JointActuation& a) {
-                   return timeInputUnit(a.force, isRevolute(model, a.coordinate) ? "N·m" : "N", p);
+                   return timeInputUnit(a.force, isAngularCoordinate(model, a.coordinate) ? "N·m" : "N", p);
                  },
-                 [&](const TrackGuidance& g) { return spring(g.stiffness, g.damping, true); }},
+                 [&](const TrackGuidance& g) { return spring(g.stiffness, g.damping, true); },
+                 [&](const RotationalDamper& d) { return d.damping == p ? std::string("N·m·s/rad") : std::string(); }},
       force);
 }
 
@@ -81,7 +82,7 @@ std::string parameterUnit(const Model& model, ParameterIndex parameter) {
     }
   if (contains(model.gravityParameters(), parameter)) return "m/s²";
   for (const JointArmature& armature : model.armatures())
-    if (armature.inertia == parameter) return isRevolute(model, armature.coordinate) ? "kg·m²" : "kg";
+    if (armature.inertia == parameter) return isAngularCoordinate(model, armature.coordinate) ? "kg·m²" : "kg";
   for (const ForceElement& force : model.forces())
     if (std::string unit = forceParameterUnit(model, force, parameter); !unit.empty()) return unit;
   for (std::size_t i = 0; i < model.coordinates().size(); ++i)
@@ -91,14 +92,14 @@ std::string parameterUnit(const Model& model, ParameterIndex parameter) {
   return "";
 }
 
-std::string coordinateUnit(const Model& model, int coordinate) { return isRevolute(model, coordinate) ? "rad" : "m"; }
+std::string coordinateUnit(const Model& model, int coordinate) { return isAngularCoordinate(model, coordinate) ? "rad" : "m"; }
 
 std::string withUnit(const std::string& name, const std::string& unit) { return name + " [" + unit + "]"; }
 
 std::string sensorSiUnit(const Model& model, const Sensor& sensor) {
   return std::visit(
       Overloaded{[](const PointSensor& s) -> std::string { return derivativeUnit(s.quantity, false); },
-                 [&](const JointSensor& s) -> std::string { return derivativeUnit(s.quantity, isRevolute(model, s.coordinate)); },
+                 [&](const JointSensor& s) -> std::string { return derivativeUnit(s.quantity, isAngularCoordinate(model, s.coordinate)); },
                  [](const RelativeAngleSensor&) -> std::string { return "rad"; },
                  [](const EnergySensor&) -> std::string { return "J"; },
                  [](const CutReactionSensor& s) -> std::string {

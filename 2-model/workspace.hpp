@@ -19,6 +19,14 @@ struct SliderTrack {
   Scalar cos_heading{0}, sin_heading{0}, curvature{0};  ///< cos ψ(s), sin ψ(s), κ(s)
 };
 
+/// What the rate stage needs of a ball joint's chart at φ (3-algorithms/ball_chart.hpp), set by the
+/// geometry stage: φ in ground axes and the coefficients of J̇ φ̇ (ballRateBias).
+template <class Scalar>
+struct BallChart {
+  Vector3<Scalar> rotation_vector = Vector3<Scalar>::Zero();  ///< R_e φ
+  Scalar beta{0}, alpha_rate{0}, beta_rate{0};                ///< β(θ), α'(θ)/θ, β'(θ)/θ
+};
+
 template <class Scalar>
 struct Workspace {
   explicit Workspace(const Model& model)
@@ -36,7 +44,8 @@ struct Workspace {
         bias_linear(model.elements().size(), Vector3<Scalar>::Zero()),
         body_centre(model.bodies().size(), Vector3<Scalar>::Zero()),
         body_inertia(model.bodies().size(), Matrix3<Scalar>::Zero()),
-        slider_track(model.elements().size()) {}
+        slider_track(model.elements().size()),
+        ball_chart(model.elements().size()) {}
 
   // Absolute kinematics of every frame, in ground axes (forward recursion).
   std::vector<Matrix3<Scalar>> rotation;
@@ -56,6 +65,8 @@ struct Workspace {
   bool body_axes_current = false;
   // Per element, for the curve sliders only: their track at s, set by the geometry stage.
   std::vector<SliderTrack<Scalar>> slider_track;
+  // Per element, for the z element of each ball joint only: its chart at φ, set by the geometry stage.
+  std::vector<BallChart<Scalar>> ball_chart;
   // Coordinates (q, q̇, q̈), multipliers λ and residual f of a pass whose inputs are seeded (AdScalar),
   // kept between passes so that repeated passes allocate nothing.
   VectorX<Scalar> seeded_q, seeded_v, seeded_a, seeded_lambda, seeded_f;

@@ -57,6 +57,7 @@ MechanicalEnergy mechanicalEnergyOfFrames(const Model& model, const Workspace<do
                      return 0.5 * model.value(s.stiffness) * stretch * stretch;
                    },
                    [&](const JointActuation&) { return 0.0; },  // work of an external force, no potential
+                   [&](const RotationalDamper&) { return 0.0; },  // dissipation only
                    [&](const TrackGuidance& g) {
                      const double deviation = guidanceDeviation(model, g, ws, q);
                      return 0.5 * model.value(g.stiffness) * deviation * deviation;

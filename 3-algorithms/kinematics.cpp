@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mbsopt/model/overloaded.hpp"
+#include "mbsopt/algorithms/ball_chart.hpp"
 #include "mbsopt/algorithms/planar_recursions.hpp"
 #include "mbsopt/algorithms/track_state.hpp"
 
@@ -61,8 +62,49 @@ void placeExit(const Model& model, const ElementKind& kind, std::size_t k, std::
                      }
                    }
                    ws.rotation[s] = turns ? turnedAbout(Re, Eigen::Vector3d::UnitZ(), cos_heading, sin_heading) : Re;
-                 }},
+                 },
+                 [](const BallJointComponent&) {}},  // placed by placeBall, all three at once
              kind);
+}
+
+/// The ball joint of elements k (its x), k + 1 and k + 2 at its rotation vector φ (ball_chart.hpp):
+/// the two frames inside it at its entry frame's place and in its axes, the exit turned by R(φ),
+/// and with `axes` the columns of R_e J(φ) as the three motion axes and the chart for the rate stage.
+template <class Scalar>
+void placeBall(const Model& model, std::size_t k, const VectorX<Scalar>& q, bool axes, Workspace<Scalar>& ws) {
+  const auto& elements = model.elements();
+  const KinematicElement& x = elements[k];
+  const Vector3<Scalar> phi = q.template segment<3>(x.coordinate);
+  const Scalar theta2 = phi.squaredNorm();
+  if (valueOf(theta2) > kBallChartLimit * kBallChartLimit)
+    throw DegenerateElementError(x.name, "ball joint '" + x.name + "': turned by |φ| = " + std::to_string(std::sqrt(valueOf(theta2))) +
+                                             " rad from its reference, beyond 1.8π, where its rotation-vector chart ends");
+  const BallChartCoefficients<Scalar> chart = ballChartCoefficients(theta2);
+  const Matrix3<Scalar> K = crossMatrixOf(phi);
+  const Matrix3<Scalar> K2 = K * K;
+  const auto e = static_cast<std::size_t>(x.entry);
+  const Matrix3<Scalar>& Re = ws.rotation[e];
+  for (std::size_t c = 0; c < 3; ++c) ws.position[static_cast<std::size_t>(elements[k + c].exit)] = ws.position[e];
+  for (std::size_t c = 0; c < 2; ++c) ws.rotation[static_cast<std::size_t>(elements[k + c].exit)] = Re;
+  Matrix3<Scalar> turn = chart.sinc * K + chart.alpha * K2;  // R(φ) = 1 + s K + α K²
+  turn.diagonal().array() += Scalar(1);
+  const auto exit = static_cast<std::size_t>(elements[k + 2].exit);
+  ws.rotation[exit] = Re * turn;
+  if (!axes) return;
+  Matrix3<Scalar> jacobian = chart.alpha * K + chart.beta * K2;  // J(φ) = 1 + α K + β K²
+  jacobian.diagonal().array() += Scalar(1);
+  const Matrix3<Scalar> motion = Re * jacobian;
+  for (std::size_t c = 0; c < 3; ++c) ws.motion_angular[k + c] = motion.col(static_cast<Eigen::Index>(c));
+  ws.ball_chart[k + 2] = {Re * phi, chart.beta, chart.alpha_rate, chart.beta_rate};
+}
+
+/// R_e J̇ φ̇ of the ball joint whose z element is k, from the chart its geometry stage left in ws.
+template <class Scalar>
+Vector3<Scalar> ballAccelerationBias(const Model& model, const Workspace<Scalar>& ws, const VectorX<Scalar>& v, std::size_t k) {
+  const KinematicElement& x = model.elements()[k - 2];
+  const BallChart<Scalar>& chart = ws.ball_chart[k];
+  const Vector3<Scalar> rate = ws.rotation[static_cast<std::size_t>(x.entry)] * Vector3<Scalar>(v.template segment<3>(x.coordinate));
+  return ballRateBias(chart.rotation_vector, rate, chart.beta, chart.alpha_rate, chart.beta_rate);
 }
 
 template <class Scalar>
@@ -72,6 +114,10 @@ void geometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Scalar>& 
   const auto& elements = model.elements();
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const KinematicElement& element = elements[k];
+    if (const auto* ball = std::get_if<BallJointComponent>(&element.kind)) {
+      if (ball->component == 0) placeBall(model, k, q, axes, ws);
+      continue;
+    }
     const Scalar qi = element.coordinate >= 0 ? q[element.coordinate] : Scalar(0);
     placeExit(model, element.kind, k, static_cast<std::size_t>(element.entry), static_cast<std::size_t>(element.exit), qi, axes,
               ws);
@@ -109,7 +155,12 @@ void spatialFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<
     if (!accelerations) continue;
     const Scalar& ai = a[element.coordinate];
     const Scalar vi2 = vi * vi;
-    ws.angular_acceleration[s] = ws.angular_acceleration[e] + we.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
+    // A ball's three rates each turn its exit relative to the ball's entry frame, whose rate is then
+    // the one in ω_e × ω_rel; J̇ φ̇ comes with the last of them.
+    const auto* ball = std::get_if<BallJointComponent>(&element.kind);
+    const Vector3<Scalar>& w_turning = ball ? ws.angular_velocity[static_cast<std::size_t>(elements[k - static_cast<std::size_t>(ball->component)].entry)] : we;
+    ws.angular_acceleration[s] = ws.angular_acceleration[e] + w_turning.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
+    if (ball && ball->component == 2) ws.angular_acceleration[s] += ballAccelerationBias(model, ws, v, k);
     ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
                          Scalar(2) * we.cross(v_rel) + Sv * ai + ws.bias_linear[k] * vi2;
   }

@@ -2,11 +2,27 @@
 // the joint coordinates, by the movement transformations (20)-(21) of each kinetostatic element.
 #pragma once
 
+#include <stdexcept>
+#include <string>
+#include <utility>
+
 #include "mbsopt/model/model.hpp"
 #include "mbsopt/model/scalar.hpp"
 #include "mbsopt/model/workspace.hpp"
 
 namespace mbsopt {
+
+/// An element undefined in the current state: a point spring of zero length (the residual), a ball
+/// joint turned beyond its chart (the geometry stage).
+class DegenerateElementError : public std::domain_error {
+ public:
+  DegenerateElementError(std::string element, const std::string& what)
+      : std::domain_error(what), element_(std::move(element)) {}
+  const std::string& element() const { return element_; }
+
+ private:
+  std::string element_;
+};
 
 enum class KinematicsLevel { Position, Velocity, Acceleration };
 

@@ -127,7 +127,8 @@ void planarGeometry(const Model& model, Workspace<Scalar>& ws, const VectorX<Sca
                      }
                      if (turns) turnInPlane(Re, track.cos_heading, track.sin_heading, ws.rotation[s]);
                      else copyPlaneBlock(Re, ws.rotation[s]);
-                   }},
+                   },
+                   [](const BallJointComponent&) {}},  // never planar (Model::planar)
                element.kind);
   }
 }

@@ -91,6 +91,16 @@ void addPointSpringWrenches(const Model& model, const PointSpringDamper& s, Work
   addMoment(model, ws, b, Vector3<Scalar>(rb.cross(on_a)));
 }
 
+/// A rotational damper's torque −c (ω_b − ω_a) on frame b and its opposite on frame a, as applied
+/// (so subtracted) moments, with the damping given (as for the point spring-dampers).
+template <class Scalar>
+void addRotationalDamperWrenches(const Model& model, const RotationalDamper& d, Workspace<Scalar>& ws, const Scalar& damping) {
+  const auto a = static_cast<std::size_t>(d.frame_a), b = static_cast<std::size_t>(d.frame_b);
+  const Vector3<Scalar> on_b = -damping * (ws.angular_velocity[b] - ws.angular_velocity[a]);
+  addMoment(model, ws, b, Vector3<Scalar>(-on_b));
+  addMoment(model, ws, a, on_b);
+}
+
 /// Track guidance torque on its frame, reaction on the track's frame, and −κτ on the slider
 /// coordinate, with the stiffness and damping given (as for the point spring-dampers).
 template <class Scalar>
@@ -218,6 +228,9 @@ void residualFromKinematics(const Model& model, Workspace<Scalar>& ws, const Vec
                           [&](const TrackGuidance& g) {
                             addTrackGuidance(model, g, ws, v, f, parameter(model, ws, g.stiffness),
                                              parameter(model, ws, g.damping));
+                          },
+                          [&](const RotationalDamper& d) {
+                            addRotationalDamperWrenches(model, d, ws, parameter(model, ws, d.damping));
                           }},
                element);
   }
@@ -283,6 +296,12 @@ void forEachGeometryEntry(const Model& model, From& from, Workspace<AdScalar>& t
     each(from.body_inertia[k], to.body_inertia[k]);
   }
   for (std::size_t k = 0; k < from.slider_track.size(); ++k) track(from.slider_track[k], to.slider_track[k]);
+  for (std::size_t k = 0; k < from.ball_chart.size(); ++k) {
+    each(from.ball_chart[k].rotation_vector, to.ball_chart[k].rotation_vector);
+    apply(from.ball_chart[k].beta, to.ball_chart[k].beta);
+    apply(from.ball_chart[k].alpha_rate, to.ball_chart[k].alpha_rate);
+    apply(from.ball_chart[k].beta_rate, to.ball_chart[k].beta_rate);
+  }
 }
 
 }  // namespace
@@ -307,6 +326,7 @@ namespace {
 const ForceElement* linearForceOwner(const Model& model, ParameterIndex p) {
   for (const ForceElement& element : model.forces()) {
     const bool owned = std::visit(Overloaded{[](const JointActuation&) { return false; },
+                                             [p](const RotationalDamper& d) { return p == d.damping; },
                                              [p](const auto& e) { return p == e.stiffness || p == e.damping; }},
                                   element);
     if (owned) return &element;
@@ -344,6 +364,7 @@ bool linearForceParameterColumn(const Model& model, Workspace<double>& ws, const
                           addTrackGuidance(model, g, ws, v, column, p == g.stiffness ? 1.0 : 0.0,
                                            p == g.damping ? 1.0 : 0.0);
                         },
+                        [&](const RotationalDamper& d) { addRotationalDamperWrenches(model, d, ws, 1.0); },
                         [](const JointActuation&) {}},
              *owner);
   addElementResiduals(model, ws, column);  // the unit force's wrenches, to the coordinates

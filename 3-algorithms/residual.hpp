@@ -9,17 +9,6 @@
 
 namespace mbsopt {
 
-/// A force element whose force is undefined in the current state (a point spring of zero length).
-class DegenerateElementError : public std::domain_error {
- public:
-  DegenerateElementError(std::string element, const std::string& what)
-      : std::domain_error(what), element_(std::move(element)) {}
-  const std::string& element() const { return element_; }
-
- private:
-  std::string element_;
-};
-
 /// q, v, a: all coordinates (driven ones included). lambda: constraintCount() multipliers (may be
 /// empty when the model has no cut joint). f receives coordinateCount() rows.
 template <class Scalar>

@@ -15,6 +15,7 @@ bool conservesEnergy(const Model& model) {
     const bool conservative = std::visit(
         Overloaded{[&](const JointSpringDamper& s) { return model.value(s.damping) == 0.0 && s.rest.isConstant(); },
                    [&](const PointSpringDamper& s) { return model.value(s.damping) == 0.0; },
+                   [&](const RotationalDamper& d) { return model.value(d.damping) == 0.0; },
                    [](const JointActuation&) { return false; }, [](const TrackGuidance&) { return false; }},
         force);
     if (!conservative) return false;

@@ -8,10 +8,11 @@ ElementType revoluteElement();
 ElementType prismaticElement();
 ElementType curveSliderElement();
 ElementType sphericalElement();
+ElementType ballElement();
 
 const std::vector<ElementType>& elementTypes() {
   static const std::vector<ElementType> registry{
-      offsetElement(), revoluteElement(), prismaticElement(), curveSliderElement(), sphericalElement(),
+      offsetElement(), revoluteElement(), prismaticElement(), curveSliderElement(), sphericalElement(), ballElement(),
   };
   return registry;
 }

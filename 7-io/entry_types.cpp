@@ -11,6 +11,7 @@ SectionEntryType jointSpringDamper();
 SectionEntryType pointSpringDamper();
 SectionEntryType jointActuation();
 SectionEntryType trackGuidance();
+SectionEntryType rotationalDamper();
 SectionEntryType pointSensor();
 SectionEntryType jointSensor();
 SectionEntryType relativeAngleSensor();
@@ -24,7 +25,7 @@ const std::vector<SectionEntryType>& cutTypes() {
 
 const std::vector<SectionEntryType>& forceTypes() {
   static const std::vector<SectionEntryType> registry{jointSpringDamper(), pointSpringDamper(), jointActuation(),
-                                                      trackGuidance()};
+                                                      trackGuidance(), rotationalDamper()};
   return registry;
 }
 

@@ -163,8 +163,8 @@ class ModelFileReader {
       feature("friction_loss", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
               "it has dry friction (frictionloss)");
     }
-    // A free joint's or a ball's armature is on its rotations' dofs, which Cardan angles do not
-    // share: refused there, taken on hinges and slides.
+    // A free joint's or a ball's armature is on its angular velocity's components, a rotor term
+    // J(φ)ᵀ diag(armature) J(φ) in its rotation vector's rates: refused there, taken on hinges and slides.
     if (const auto [count, first] = firstOf(m.nv, [&](int d) {
           const int type = m.jnt_type[m.dof_jntid[d]];
           return m.dof_armature[d] != 0.0 && (type == mjJNT_FREE || type == mjJNT_BALL);
@@ -172,7 +172,7 @@ class ModelFileReader {
         count > 0) {
       const std::string joint = name(mjOBJ_JOINT, m.dof_jntid[first], "joint");
       feature("armature", count, "joint '" + joint + "'", lineOf(text_, {"joint", "freejoint"}, joint),
-              "a free or ball joint with a rotor inertia (armature), which its Cardan angles cannot carry");
+              "a free or ball joint with a rotor inertia (armature) on its rotation");
     }
     // Refused outright: `id`, of `type`, is the first such element (located by its name, or as the
     // first of `tags` after `<section` when the file leaves it unnamed and names a section).
@@ -242,42 +242,62 @@ class ModelFileReader {
     const Eigen::Vector3d position = vectorOf(m.jnt_pos + 3 * j);
     const Eigen::Vector3d axis = vectorOf(m.jnt_axis + 3 * j);
     const int qpos = m.jnt_qposadr[j];
+    const int dof = m.jnt_dofadr[j];
     const int type = m.jnt_type[j];
+    const bool passive = !(m.opt.disableflags & mjDSBL_PASSIVE);
+    const double stiffness = passive ? m.jnt_stiffness[j] : 0.0;
+    const auto damping = [&](int d) { return passive ? m.dof_damping[d] : 0.0; };
     if (type == mjJNT_FREE) {
       const char* const translations[] = {"_x", "_y", "_z"};
       for (int i = 0; i < 3; ++i) {
-        frame = model_.addPrismatic(added(joint + translations[i]), frame, Eigen::Vector3d::Unit(i));
-        start(joint + translations[i], m.qpos0[qpos + i]);
+        const std::string slide = added(joint + translations[i]);
+        frame = model_.addPrismatic(slide, frame, Eigen::Vector3d::Unit(i));
+        start(slide, m.qpos0[qpos + i]);
+        if (stiffness != 0.0 || damping(dof + i) != 0.0)  // its rate is the body's velocity in the ground's axes
+          model_.addJointSpringDamper(added(slide + "_spring"), slide, stiffness, damping(dof + i), m.qpos_spring[qpos + i]);
       }
-      return addCardan(joint, {"_rx", "_ry", "_rz"}, frame, rotationOf(m.qpos0 + qpos + 3));
+      return addBall(joint, {"_rx", "_ry", "_rz"}, frame, qpos + 3, stiffness, {damping(dof + 3), damping(dof + 4), damping(dof + 5)});
     }
     if (position != anchor) frame = model_.addOffset(added(joint + "_anchor"), frame, position - anchor);
     anchor = position;
-    if (type == mjJNT_BALL) return addCardan(joint, {"_x", "_y", "_z"}, frame, rotationOf(m.qpos0 + qpos));
+    if (type == mjJNT_BALL) return addBall(joint, {"_x", "_y", "_z"}, frame, qpos, stiffness, {damping(dof), damping(dof + 1), damping(dof + 2)});
     frame = type == mjJNT_HINGE ? model_.addRevolute(added(joint), frame, axis)
                                 : model_.addPrismatic(added(joint), frame, axis);
     start(joint, 0.0);  // coordinates count from the joint's reference, qpos0
-    const int dof = m.jnt_dofadr[j];
-    if (!(m.opt.disableflags & mjDSBL_PASSIVE) && (m.jnt_stiffness[j] != 0.0 || m.dof_damping[dof] != 0.0))
-      model_.addJointSpringDamper(added(joint + "_spring"), joint, m.jnt_stiffness[j], m.dof_damping[dof],
-                                  m.qpos_spring[qpos] - m.qpos0[qpos]);
+    if (stiffness != 0.0 || damping(dof) != 0.0)
+      model_.addJointSpringDamper(added(joint + "_spring"), joint, stiffness, damping(dof), m.qpos_spring[qpos] - m.qpos0[qpos]);
     if (m.dof_armature[dof] != 0.0) model_.addArmature(joint, m.dof_armature[dof]);
     return frame;
   }
 
-  /// The start orientation `start_rotation` as an offset J_start (where it is not the identity),
-  /// then three revolutes about its x, then the turned y and z axes, all starting at zero: Cardan
-  /// angles measured from the start, singular only after a turn of 90° about the middle axis (not
-  /// at a start the file places there).
-  FrameIndex addCardan(const std::string& joint, std::array<const char*, 3> suffixes, FrameIndex frame,
-                       const Eigen::Matrix3d& start_rotation) {
+  /// The start orientation, the quaternion at qpos0 + `quaternion`, as an offset J_start (where it
+  /// is not the identity), then a ball joint (Model::addBallJoint) whose rotation vector, from the
+  /// start, starts at zero: its chart ends only after a turn of 1.8π from the start. MuJoCo's spring
+  /// of the joint, the torque −k log(q_spring⁻¹ q) on its angular velocity, is −k J(φ)ᵀ φ = −k φ on
+  /// the rotation vector's rates (Kφ = 0): a joint spring on each component, where the spring's
+  /// orientation is the start's (MuJoCo's wraps the logarithm at a half turn; this one does not).
+  /// Its damper, −c ω on the same angular velocity, is a rotational damper across the joint.
+  FrameIndex addBall(const std::string& joint, std::array<const char*, 3> suffixes, FrameIndex frame, int quaternion,
+                     double stiffness, const std::array<double, 3>& damping) {
+    const mjModel& m = *mj_;
+    const Eigen::Matrix3d start_rotation = rotationOf(m.qpos0 + quaternion);
     if (!start_rotation.isIdentity(1e-15))
       frame = model_.addOffset(added(joint + "_start"), frame, Eigen::Vector3d::Zero(), start_rotation);
-    for (int i = 0; i < 3; ++i) {
-      frame = model_.addRevolute(added(joint + suffixes[i]), frame, Eigen::Vector3d::Unit(i));
-      start(joint + suffixes[i], 0.0);
+    std::array<std::string, 3> names;
+    for (std::size_t i = 0; i < 3; ++i) {
+      names[i] = added(joint + suffixes[i]);
+      start(names[i], 0.0);
     }
-    return frame;
+    const FrameIndex exit = model_.addBallJoint(names, frame);
+    if (stiffness != 0.0) {
+      if (!rotationOf(m.qpos_spring + quaternion).isApprox(start_rotation, 1e-12))
+        throw std::invalid_argument("joint '" + joint + "': a spring whose orientation is not the start's, which mbsopt does not model");
+      for (const std::string& component : names) model_.addJointSpringDamper(added(component + "_spring"), component, stiffness, 0.0);
+    }
+    if (damping[0] != damping[1] || damping[0] != damping[2])
+      throw std::invalid_argument("joint '" + joint + "': unequal dampings of its rotation's dofs, which mbsopt does not model");
+    if (damping[0] != 0.0) model_.addRotationalDamper(added(joint + "_damper"), frame, exit, damping[0]);
+    return exit;
   }
 
   std::string added(const std::string& name) {

@@ -5,15 +5,16 @@
 // Each MuJoCo body B becomes an offset B_placement (its `pos` and `quat` in the parent body), then its
 // joints in the order MuJoCo applies them, each about its anchor, then an offset B_frame back from
 // the last anchor: B_frame is the body's frame, the body B (its mass and inertia) hangs on it. A hinge
-// J is a revolute J, a slide a prismatic J (offsets J_anchor carry the anchors), a ball three
-// revolutes J_x, J_y, J_z, a free joint three prismatics J_x, J_y, J_z along the ground's axes and
-// three revolutes J_rx, J_ry, J_rz; the revolutes of both are Cardan angles from the start
-// orientation (an offset J_start), singular after a turn of 90° about the middle axis. A hinge's or
-// slide's coordinate is measured from the joint's reference (MuJoCo's qpos0). Joint stiffness and damping become the
-// joint spring-damper J_spring (rest at the joint's springref), a hinge's or slide's armature the
-// rotor inertia J.armature. What the file holds beyond that (contacts, limits, actuators, tendons,
-// a free or ball joint's armature, friction loss) is refused at its line unless the caller leaves
-// it out by name.
+// J is a revolute J, a slide a prismatic J (offsets J_anchor carry the anchors), a ball a ball joint
+// J_x, J_y, J_z (Model::addBallJoint), a free joint three prismatics J_x, J_y, J_z along the ground's
+// axes and a ball joint J_rx, J_ry, J_rz; both balls are rotation vectors from the start orientation
+// (an offset J_start), whose chart ends after a turn of 1.8π from it. A hinge's or slide's coordinate
+// is measured from the joint's reference (MuJoCo's qpos0). Joint stiffness and damping become the
+// joint spring-damper J_spring (rest at the joint's springref); a ball's stiffness a spring on each
+// component of its rotation vector (J_x_spring, …) and its damping the rotational damper J_damper
+// across it; a hinge's or slide's armature the rotor inertia J.armature. What the file holds beyond
+// that (contacts, limits, actuators, tendons, a free or ball joint's armature, friction loss) is
+// refused at its line unless the caller leaves it out by name.
 #pragma once
 
 #include <string>

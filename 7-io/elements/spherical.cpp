@@ -2,7 +2,8 @@
 // revolute joints NAME_x, NAME_y, NAME_z about the parent's x, then the turned y, then the turned z
 // axis (R = Rx(q_x) Ry(q_y) Rz(q_z)), all through the parent's origin. Its coordinates are those
 // three angles [rad]; at q_y = ±90° the x and z axes line up (gimbal lock) and the mass matrix of
-// the chain is singular, so a motion must stay away from it.
+// the chain is singular, so a motion must stay away from it (`ball` has no such lock; this one
+// spins about its x axis without end).
 #include "mbsopt/io/element_type.hpp"
 
 namespace mbsopt {
@@ -10,7 +11,7 @@ namespace mbsopt {
 ElementType sphericalElement() {
   return {"spherical",
           "a ball joint: three revolutes NAME_x, NAME_y, NAME_z about the parent's x, then the turned y and z axes "
-          "(Cardan angles, singular at q_y = ±90°), exit frame NAME; q0, v0 [rad, rad/s] as [x, y, z]",
+          "(Cardan angles, singular at q_y = ±90°; see `ball`), exit frame NAME; q0, v0 [rad, rad/s] as [x, y, z]",
           {"q0", "v0"}, [](ElementEntry& e) {
             const Eigen::Vector3d q0 = e.map().vector("q0", Eigen::Vector3d::Zero());
             const Eigen::Vector3d v0 = e.map().vector("v0", Eigen::Vector3d::Zero());

@@ -1,5 +1,6 @@
 // Force elements and sensors against closed forms: joint actuation, guidance spring towards a moving
-// target, point-to-point spring-damper, driven coordinates, joint and relative-angle sensors.
+// target, point-to-point spring-damper, rotational damper, driven coordinates, joint and
+// relative-angle sensors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +100,42 @@ TEST(ForceElements, PointSpringDamperAlongItsLineIsALinearOscillator) {
 
 // A driven coordinate is exact up to its second derivative, and the joint sensor reads it back;
 // the relative angle between the two ends of a two-joint chain about z is the sum of the joint angles.
+// A wheel of inertia I about its axle, a rotational damper c between the ground and it: I ω̇ = −c ω.
+// The trapezoidal rule's own solution of that linear equation is ω_n = ω₀ ((1 − λh/2)/(1 + λh/2))ⁿ
+// with λ = c/I, which the run must reproduce to Newton's tolerance.
+TEST(ForceElements, RotationalDamperSlowsAWheelAsTheTrapezoidalRuleSays) {
+  const double inertia = 0.4, damping = 0.3, step = 0.01, omega0 = 5.0;
+  Model model;
+  const FrameIndex wheel = model.addRevolute("axle", Model::ground, kZ);
+  model.addBody("wheel", wheel, 1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 1.0, inertia).asDiagonal());
+  model.addRotationalDamper("bearing", Model::ground, wheel, damping);
+  const Trajectory t = run(model, step, 2.0, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, omega0));
+  const double lambda = damping / inertia, factor = (1.0 - 0.5 * lambda * step) / (1.0 + 0.5 * lambda * step);
+  for (Eigen::Index k = 0; k < t.time.size(); ++k)
+    ASSERT_NEAR(t.v(0, k), omega0 * std::pow(factor, static_cast<double>(k)), 1e-9) << "t = " << t.time[k];
+}
+
+// Between two frames that both turn, a rotational damper acts on their relative rate alone, with
+// equal and opposite torques: across a revolute about a unit axis it is that joint's damper. Two
+// wheels on coaxial axles, the second on the first, under gravity across the axles: the runs agree
+// to round-off.
+TEST(ForceElements, RotationalDamperAcrossARevoluteIsItsJointDamper) {
+  const auto trajectory = [](bool rotational) {
+    Model model;
+    model.setGravity({0.0, -9.81, 0.0});
+    const FrameIndex first = model.addRevolute("first", Model::ground, kZ);
+    model.addBody("first_wheel", first, 2.0, {0.3, 0.0, 0.0}, Eigen::Vector3d(0.1, 0.1, 0.2).asDiagonal());
+    const FrameIndex second = model.addRevolute("second", model.addOffset("rim", first, {0.5, 0.0, 0.0}), kZ);
+    model.addBody("second_wheel", second, 1.0, {0.2, 0.1, 0.0}, Eigen::Vector3d(0.05, 0.05, 0.08).asDiagonal());
+    if (rotational) model.addRotationalDamper("bearing", model.frame("rim"), second, 0.7);
+    else model.addJointSpringDamper("bearing", "second", 0.0, 0.7);
+    return run(model, 1e-3, 1.0, Eigen::Vector2d(0.2, -0.4), Eigen::Vector2d(1.0, 3.0));
+  };
+  const Trajectory a = trajectory(true), b = trajectory(false);
+  EXPECT_LE((a.q - b.q).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT((a.q.col(a.q.cols() - 1) - a.q.col(0)).cwiseAbs().maxCoeff(), 0.1);
+}
+
 TEST(Sensors, JointAndRelativeAngleSensorsReadTheDrivenMotion) {
   const double amplitude = 0.7, frequency = 2.5;
   Model model;

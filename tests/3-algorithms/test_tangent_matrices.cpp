@@ -73,9 +73,10 @@ class Random {
   std::mt19937 engine_;
 };
 
-/// Six bodies in one spatial chain, two joints each (12 coordinates, so the AD of the 3n = 36
-/// inputs of the residual needs several passes of kMaxAdDirections): revolute and prismatic joints
-/// about random oblique axes behind offsets with random rotations; bodies with offset centres of
+/// Six bodies in one spatial chain, two joints each and a ball joint before the fourth body's (15
+/// coordinates, so the AD of the 3n = 45 inputs of the residual needs several passes of
+/// kMaxAdDirections): revolute and prismatic joints about random oblique axes behind offsets with
+/// random rotations; bodies with offset centres of
 /// mass and full inertia tensors; joint spring-dampers on every coordinate, a point spring-damper
 /// between bodies 1 and 4, gravity in a random direction. The loop is closed by a spherical cut
 /// between a point of the last body and a point of body 1; a revolute cut between body 3 and the
@@ -91,6 +92,7 @@ Model randomSpatialChain(Random& rng) {
     // Pattern over k: (R,R) (P,R) (R,P) (P,R) (R,R) (P,P) — both kinds at every depth.
     const bool first_revolute = k % 2 == 0;
     const bool second_revolute = k % 3 != 2 && k != 5;
+    if (k == 3) parent = model.addBallJoint({"ball_x", "ball_y", "ball_z"}, parent);  // its chart beyond θ = 1
     parent = first_revolute ? model.addRevolute("joint" + id + "a", parent, rng.obliqueAxis())
                             : model.addPrismatic("joint" + id + "a", parent, rng.obliqueAxis());
     parent = second_revolute ? model.addRevolute("joint" + id + "b", parent, rng.obliqueAxis())
@@ -115,10 +117,11 @@ Model randomSpatialChain(Random& rng) {
   return model;
 }
 
-/// A tree with branches and no loop (7 + 2 coordinates): a trunk body on a revolute and a prismatic
+/// A tree with branches and no loop (7 + 2 + 3 coordinates): a trunk body on a revolute and a prismatic
 /// joint from the ground carries two chains whose elements are added interleaved (so the topological
 /// order is not a depth-first one), a third chain hangs from the massless frame between the trunk's
-/// two joints, and a second chain stands on the ground. Some bodies sit on offset frames.
+/// two joints, and a second chain stands on the ground, ending in a ball joint. Some bodies sit on
+/// offset frames.
 Model randomBranchedTree(Random& rng) {
   Model model;
   const auto body = [&](const std::string& name, FrameIndex frame) {
@@ -143,6 +146,8 @@ Model randomBranchedTree(Random& rng) {
   const FrameIndex other = model.addRevolute("other_a", Model::ground, rng.obliqueAxis());
   body("other_1", other);
   body("other_2", model.addPrismatic("other_b", other, rng.obliqueAxis()));
+  const FrameIndex ball = model.addBallJoint({"ball_x", "ball_y", "ball_z"}, model.frame("other_b"));
+  body("other_3", model.addOffset("other_3_centre", ball, rng.vector(-0.4, 0.4), rng.rotation()));
   model.setGravity(9.81 * rng.obliqueAxis());
   // Rotor inertias on a hinge deep in the tree, a slide and a hinge on the ground: J on M's
   // diagonal, which the CRBA, the articulated-body pivots and the AD residual must each carry.
@@ -259,7 +264,7 @@ class TangentMatricesTest : public ::testing::Test {
 };
 
 TEST_F(TangentMatricesTest, ModelHasTheIntendedSize) {
-  EXPECT_EQ(model_.coordinateCount(), 12);
+  EXPECT_EQ(model_.coordinateCount(), 15);
   EXPECT_EQ(model_.bodies().size(), 6u);
   EXPECT_EQ(model_.constraintCount(), 3 + 5);
   EXPECT_GT(3 * model_.coordinateCount(), kMaxAdDirections);  // exercises the multi-pass seeding
@@ -415,7 +420,7 @@ TEST_F(TangentMatricesTest, CompositeRigidBodyMassMatrixEqualsTheAdMass) {
 
   Random rng(20240612u);
   const Model tree = randomBranchedTree(rng);
-  ASSERT_EQ(tree.coordinateCount(), 9);
+  ASSERT_EQ(tree.coordinateCount(), 12);
   const Eigen::Index n = tree.coordinateCount();
   const Eigen::VectorXd q = rng.vector(n, -1.0, 1.0), v = rng.vector(n, -2.0, 2.0), a = rng.vector(n, -5.0, 5.0);
   const std::vector<int> subset = {tree.coordinate("right_b"), tree.coordinate("left_a"), tree.coordinate("side"),

@@ -1,18 +1,23 @@
 // Models from MJCF and URDF files (7-io/model_file.hpp), checked against MuJoCo itself: MuJoCo's
 // RK4 at two small steps (their difference bounds its own error) simulates the same compiled model
 // with the same features off, and mbsopt's trajectory must agree within the error mbsopt's
-// extrapolation estimates for itself. The arm is written for the tests in MJCF and in URDF (the two
-// must move alike); the humanoid is MuJoCo's sample model, which no one here wrote.
+// extrapolation estimates for itself, hinges and slides by their angles and lengths, ball and free
+// joints by the rotation vectors of their turns (MuJoCo's quaternions taken to them). The arm is
+// written for the tests in MJCF and in URDF (the two must move alike), the double pendulum on ball
+// joints in MJCF; the humanoid is MuJoCo's sample model, which no one here wrote.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "mbsopt/integrators/integration.hpp"
 #include "mbsopt/integrators/newmark.hpp"
@@ -30,8 +35,22 @@ LoadedScene loadText(const std::string& text, const std::vector<ParameterOverrid
   return loadScene({kModels + "scene.yaml", text}, overrides);
 }
 
-/// Starting rates of hinge joints [rad/s], by name: `J.v0` overrides for mbsopt, qvel for MuJoCo.
+/// Starting rates [rad/s or m/s], by mbsopt's coordinate names: `J.v0` overrides for mbsopt, qvel for
+/// MuJoCo (a hinge J's dof; a ball J's dof i for J_x, J_y, J_z, its angular velocity in its body's
+/// axes, which at φ = 0 is φ̇; a free J's dof i for J_x, J_y, J_z, its velocity in the ground's
+/// axes, and 3 + i for J_rx, J_ry, J_rz, its angular velocity as a ball's).
 using Rates = std::vector<std::pair<std::string, double>>;
+
+/// The dof of MuJoCo's model that mbsopt's coordinate `name` starts the rate of.
+int dofOf(const mjModel* m, const std::string& name) {
+  if (const int joint = mj_name2id(m, mjOBJ_JOINT, name.c_str()); joint >= 0) return m->jnt_dofadr[joint];
+  const int component = name.back() - 'x';
+  for (const auto& [suffix, type, first] : {std::tuple{2, mjJNT_BALL, 0}, std::tuple{2, mjJNT_FREE, 0}, std::tuple{3, mjJNT_FREE, 3}}) {
+    const int joint = mj_name2id(m, mjOBJ_JOINT, name.substr(0, name.size() - static_cast<std::size_t>(suffix)).c_str());
+    if (joint >= 0 && m->jnt_type[joint] == type) return m->jnt_dofadr[joint] + first + component;
+  }
+  throw std::runtime_error("no joint of MuJoCo's model for " + name);
+}
 
 /// MuJoCo's own run of `path` by RK4 at `step`, the features mbsopt leaves out switched off (flags):
 /// the joint positions qpos at every `every` [s] to `end_time` (a column
@@ -50,7 +69,7 @@ MujocoRun mujocoRun(const std::string& path, double end_time, double every, doub
   m->opt.timestep = step;
   m->opt.disableflags |= disable_flags;
   const std::unique_ptr<mjData, decltype(&mj_deleteData)> d(mj_makeData(m.get()), &mj_deleteData);
-  for (const auto& [joint, rate] : rates) d->qvel[m->jnt_dofadr[mj_name2id(m.get(), mjOBJ_JOINT, joint.c_str())]] = rate;
+  for (const auto& [coordinate, rate] : rates) d->qvel[dofOf(m.get(), coordinate)] = rate;
   const long instants = std::lround(end_time / every), steps_between = std::lround(every / step);
   MujocoRun run{Eigen::MatrixXd(m->nq, instants), Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq)};
   for (long i = 0; i < instants; ++i) {
@@ -60,11 +79,18 @@ MujocoRun mujocoRun(const std::string& path, double end_time, double every, doub
   return run;
 }
 
-/// mbsopt's coordinate of each MuJoCo position that is a hinge or slide angle (measured from qpos0)
-/// or a free joint's position (the ground's axes), by name; their indices into qpos.
+/// What of MuJoCo's qpos mbsopt's coordinates hold, each by name: a hinge or slide angle (from
+/// qpos0), a free joint's position (the ground's axes), or a component of the rotation vector of a
+/// ball's or a free joint's turn from its start quaternion (qpos0), log(q0⁻¹ q).
 struct Comparable {
-  std::vector<int> coordinate, qpos;
-  std::vector<bool> absolute;  ///< a free joint's position, not measured from qpos0
+  enum class Kind { FromReference, Absolute, Rotation };
+  struct Entry {
+    int coordinate;
+    int qpos;  ///< the position, or the first of the quaternion (w, x, y, z)
+    Kind kind;
+    int component;  ///< of the rotation vector
+  };
+  std::vector<Entry> entries;
 };
 Comparable comparable(const Model& model, const std::string& path) {
   std::array<char, 1000> error{};
@@ -77,22 +103,32 @@ Comparable comparable(const Model& model, const std::string& path) {
     ADD_FAILURE() << "no coordinate " << name;
     return 0;
   };
+  using Kind = Comparable::Kind;
   for (int j = 0; j < m->njnt; ++j) {
     const std::string name = mj_id2name(m.get(), mjOBJ_JOINT, j);
     const int a = m->jnt_qposadr[j];
-    if (m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE) {
-      out.coordinate.push_back(index(name));
-      out.qpos.push_back(a);
-      out.absolute.push_back(false);
-    } else if (m->jnt_type[j] == mjJNT_FREE) {
-      for (int i = 0; i < 3; ++i) {
-        out.coordinate.push_back(index(name + "_" + "xyz"[i]));
-        out.qpos.push_back(a + i);
-        out.absolute.push_back(true);
-      }
-    }
+    const int type = m->jnt_type[j];
+    if (type == mjJNT_HINGE || type == mjJNT_SLIDE) out.entries.push_back({index(name), a, Kind::FromReference, 0});
+    for (int i = 0; i < 3 && type == mjJNT_FREE; ++i)
+      out.entries.push_back({index(name + "_" + "xyz"[i]), a + i, Kind::Absolute, 0});
+    for (int i = 0; i < 3 && type == mjJNT_FREE; ++i)
+      out.entries.push_back({index(name + "_r" + "xyz"[i]), a + 3, Kind::Rotation, i});
+    for (int i = 0; i < 3 && type == mjJNT_BALL; ++i)
+      out.entries.push_back({index(name + "_" + "xyz"[i]), a, Kind::Rotation, i});
   }
   return out;
+}
+
+/// The value of `entry` in MuJoCo's positions qpos, as mbsopt's coordinate holds it.
+double inCoordinates(const Comparable::Entry& entry, const Eigen::VectorXd& qpos, const Eigen::VectorXd& qpos0) {
+  switch (entry.kind) {
+    case Comparable::Kind::FromReference: return qpos[entry.qpos] - qpos0[entry.qpos];
+    case Comparable::Kind::Absolute: return qpos[entry.qpos];
+    case Comparable::Kind::Rotation: break;
+  }
+  const auto quaternion = [](const Eigen::VectorXd& x, int i) { return Eigen::Quaterniond(x[i], x[i + 1], x[i + 2], x[i + 3]); };
+  const Eigen::AngleAxisd turn(quaternion(qpos0, entry.qpos).conjugate() * quaternion(qpos, entry.qpos));
+  return turn.angle() * turn.axis()[entry.component];
 }
 
 /// Runs the scene with the extrapolation's error estimate and MuJoCo's RK4 at `step` and `step`/2 on
@@ -112,23 +148,23 @@ void expectMujocoAgrees(const std::string& scene_text, const std::string& path, 
   const MujocoRun coarse = mujocoRun(path, scene.settings.end_time, kEvery, step, disable_flags, rates);
   const MujocoRun fine = mujocoRun(path, scene.settings.end_time, kEvery, step / 2, disable_flags, rates);
   const Comparable c = comparable(scene.model, path);
-  ASSERT_FALSE(c.coordinate.empty());
+  ASSERT_FALSE(c.entries.empty());
   double moved = 0.0;
   for (Eigen::Index instant = 0; instant < fine.qpos.cols(); ++instant) {
     const double t = kEvery * static_cast<double>(instant + 1);
     Eigen::Index k = 0;  // mbsopt's point at t: its macro steps divide 0.1 s
     while (k + 1 < trajectory.q.cols() && trajectory.time[static_cast<std::size_t>(k)] < t - 1e-9) ++k;
     ASSERT_NEAR(trajectory.time[static_cast<std::size_t>(k)], t, 1e-12);
-    for (std::size_t i = 0; i < c.coordinate.size(); ++i) {
-      const int q = c.coordinate[i], p = c.qpos[i];
-      const double reference = fine.qpos(p, instant) - (c.absolute[i] ? 0.0 : fine.qpos0[p]);
-      const double mujoco_error = std::abs(coarse.qpos(p, instant) - fine.qpos(p, instant));
+    for (const Comparable::Entry& entry : c.entries) {
+      const int q = entry.coordinate;
+      const double reference = inCoordinates(entry, fine.qpos.col(instant), fine.qpos0);
+      const double mujoco_error = std::abs(inCoordinates(entry, coarse.qpos.col(instant), fine.qpos0) - reference);
       const double estimate = std::abs(run.run.q_error(q, k));
       EXPECT_LE(std::abs(trajectory.q(q, k) - reference), 2.0 * (estimate + mujoco_error) + 1e-12)
           << scene.model.coordinates()[static_cast<std::size_t>(q)].name << " at t = " << t << " s: mbsopt "
           << trajectory.q(q, k) << ", MuJoCo " << reference << ", mbsopt's estimate " << estimate << ", MuJoCo's "
           << mujoco_error;
-      if (!c.absolute[i]) moved = std::max(moved, std::abs(reference - scene.q0[q]));
+      if (entry.kind != Comparable::Kind::Absolute) moved = std::max(moved, std::abs(reference - scene.q0[q]));
     }
   }
   EXPECT_GT(moved, 0.1);  // the joints move: the comparison is of a motion, not of a rest [rad or m]
@@ -151,6 +187,17 @@ TEST(ModelFile, TheHumanoidOfMuJoCosSamplesMovesAsMuJoCoMovesIt) {
       "model: {file: " + kHumanoid + ", ignore: [contacts, limits, actuators]}\n",
       kHumanoid, 1e-4, mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_ACTUATION,
       {{"abdomen_z", 2.0}, {"right_hip_y", -4.0}, {"left_knee", 3.0}, {"right_shoulder1", 5.0}, {"left_elbow", -6.0}});
+}
+
+TEST(ModelFile, BallAndFreeJointsWithSpringsAndDampersMoveAsMuJoCoMovesThem) {
+  // The balls' and the free body's rotation vectors against MuJoCo's quaternions, all thrown about
+  // three axes; springs and dampers on the wrist and on the free body, a damper on the shoulder.
+  expectMujocoAgrees(
+      "settings: {end_time: 1.0, step: 2.0e-3, integrator: extrapolation}\n"
+      "model: {file: ball_pendulum.xml}\n",
+      kModels + "ball_pendulum.xml", 1e-4, 0,
+      {{"shoulder_x", 1.5}, {"shoulder_y", -1.0}, {"shoulder_z", 2.0}, {"wrist_x", -2.5}, {"wrist_y", 3.0}, {"wrist_z", 1.0},
+       {"flyer_x", 0.5}, {"flyer_z", 2.0}, {"flyer_rx", 2.0}, {"flyer_ry", -1.5}, {"flyer_rz", 3.0}});
 }
 
 TEST(ModelFile, TheUrdfArmMovesAsItsMjcfTwin) {
@@ -273,6 +320,35 @@ TEST(ModelFile, MuJoCosCompilerErrorsKeepTheirLine) {
 TEST(ModelFile, ADesignProblemOnTheHumanoidHasExactGradients) {
   const DesignProblem problem =
       loadDesignProblem(readSceneFile(std::string(MBSOPT_SOURCE_DIR) + "/problems/models/humanoid_arm.yaml"));
+  const std::vector<ConstraintFunctional> functionals = transcribe(problem);
+  const Eigen::VectorXd x = initialPoint(problem);
+  const DesignGradient adjoint = test::expectAdjointEqualsDirect(problem, functionals, x);
+  test::expectCentralDifferencesAtTheBestStep(problem, functionals, x, adjoint, 1e-6);
+}
+
+// The same on ball and free joints: the balls' dampers, a ball's spring and a body's mass as the
+// variables, the lower rod's swing (a component of its ball's rotation vector) as the cost, the
+// free body's turn as a constraint.
+TEST(ModelFile, ADesignProblemOnBallJointsHasExactGradients) {
+  const std::string text = R"(settings: {end_time: 1.0, step: 2.0e-3}
+model:
+  file: ball_pendulum.xml
+  v0: {shoulder_x: 1.5, shoulder_z: 2.0, wrist_y: 3.0, flyer_rx: 2.0, flyer_rz: 3.0}
+sensors:
+  - {name: swing, type: joint, joint: wrist_y, quantity: position}
+  - {name: turn, type: joint, joint: flyer_rz, quantity: position}
+design:
+  variables:
+    - {parameter: shoulder_damper.c, lower: 0.0, upper: 1.0, scale: 0.1}
+    - {parameter: wrist_damper.c, lower: 0.0, upper: 1.0, scale: 0.1}
+    - {parameter: wrist_y_spring.k, lower: 0.5, upper: 5.0, scale: 1.0}
+    - {parameter: lower.mass, lower: 0.3, upper: 2.0, scale: 1.0}
+  cost: {sensor: swing, of: rms}
+  artificial: {initial: 2.0, lower: 0, upper: 5, scale: 0.1}
+  constraints:
+    - {sensor: turn, of: max_abs, bound: 2.0}
+)";
+  const DesignProblem problem = loadDesignProblem(SceneSource{kModels + "scene.yaml", text});
   const std::vector<ConstraintFunctional> functionals = transcribe(problem);
   const Eigen::VectorXd x = initialPoint(problem);
   const DesignGradient adjoint = test::expectAdjointEqualsDirect(problem, functionals, x);
