@@ -77,7 +77,8 @@ void placeBall(const Model& model, std::size_t k, const VectorX<Scalar>& q, bool
   const Vector3<Scalar> phi = q.template segment<3>(x.coordinate);
   const Scalar theta2 = phi.squaredNorm();
   if (valueOf(theta2) > kBallChartLimit * kBallChartLimit)
-    throw DegenerateElementError(x.name, "ball joint '" + x.name + "': turned by |φ| = " + std::to_string(std::sqrt(valueOf(theta2))) +
+    throw DegenerateElementError(x.name, "ball joint '" + x.name + "': turned by |φ| = " +
+                                             std::to_string(std::sqrt(valueOf(theta2))) +
                                              " rad from its reference, beyond 1.8π, where its rotation-vector chart ends");
   const BallChartCoefficients<Scalar> chart = ballChartCoefficients(theta2);
   const Matrix3<Scalar> K = crossMatrixOf(phi);
@@ -98,12 +99,19 @@ void placeBall(const Model& model, std::size_t k, const VectorX<Scalar>& q, bool
   ws.ball_chart[k + 2] = {Re * phi, chart.beta, chart.alpha_rate, chart.beta_rate};
 }
 
+/// The entry frame of the ball joint whose `ball` element k is.
+std::size_t ballEntry(const Model& model, std::size_t k, const BallJointComponent& ball) {
+  return static_cast<std::size_t>(model.elements()[k - static_cast<std::size_t>(ball.component)].entry);
+}
+
 /// R_e J̇ φ̇ of the ball joint whose z element is k, from the chart its geometry stage left in ws.
 template <class Scalar>
-Vector3<Scalar> ballAccelerationBias(const Model& model, const Workspace<Scalar>& ws, const VectorX<Scalar>& v, std::size_t k) {
+Vector3<Scalar> ballAccelerationBias(const Model& model, const Workspace<Scalar>& ws, const VectorX<Scalar>& v,
+                                     std::size_t k) {
   const KinematicElement& x = model.elements()[k - 2];
   const BallChart<Scalar>& chart = ws.ball_chart[k];
-  const Vector3<Scalar> rate = ws.rotation[static_cast<std::size_t>(x.entry)] * Vector3<Scalar>(v.template segment<3>(x.coordinate));
+  const Vector3<Scalar> phi_rate = v.template segment<3>(x.coordinate);
+  const Vector3<Scalar> rate = ws.rotation[static_cast<std::size_t>(x.entry)] * phi_rate;
   return ballRateBias(chart.rotation_vector, rate, chart.beta, chart.alpha_rate, chart.beta_rate);
 }
 
@@ -158,8 +166,9 @@ void spatialFrameRates(const Model& model, Workspace<Scalar>& ws, const VectorX<
     // A ball's three rates each turn its exit relative to the ball's entry frame, whose rate is then
     // the one in ω_e × ω_rel; J̇ φ̇ comes with the last of them.
     const auto* ball = std::get_if<BallJointComponent>(&element.kind);
-    const Vector3<Scalar>& w_turning = ball ? ws.angular_velocity[static_cast<std::size_t>(elements[k - static_cast<std::size_t>(ball->component)].entry)] : we;
-    ws.angular_acceleration[s] = ws.angular_acceleration[e] + w_turning.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
+    const Vector3<Scalar>& w_turning = ball ? ws.angular_velocity[ballEntry(model, k, *ball)] : we;
+    ws.angular_acceleration[s] =
+        ws.angular_acceleration[e] + w_turning.cross(w_rel) + Sw * ai + ws.bias_angular[k] * vi2;
     if (ball && ball->component == 2) ws.angular_acceleration[s] += ballAccelerationBias(model, ws, v, k);
     ws.acceleration[s] = ws.acceleration[e] + ws.angular_acceleration[e].cross(r) + we.cross(we.cross(r)) +
                          Scalar(2) * we.cross(v_rel) + Sv * ai + ws.bias_linear[k] * vi2;

@@ -528,20 +528,35 @@ std::vector<Point> paretoFront(std::vector<Point> points) {
   return front;
 }
 
-/// Time to reach `error` on a front, log-log between the two front points that bracket it; nullopt
-/// when the front does not reach it or starts below it (not bracketed).
-std::optional<double> timeAtError(const std::vector<Point>& front, double error) {
+/// An engine's time at an error: interpolated between two runs, or an upper bound.
+struct TimeAtError {
+  double seconds;
+  bool upper_bound;  ///< its cheapest run is already more accurate: the time is that run's, at most
+};
+
+/// Time to reach `error` on a front, log-log between the two front points that bracket it; the
+/// cheapest run's time, as an upper bound, when that run already reaches it (a cheaper setting, not
+/// run, might too); nullopt when no run reaches it.
+std::optional<TimeAtError> timeAtError(const std::vector<Point>& front, double error) {
+  if (front.empty()) return std::nullopt;
+  if (front[0].error <= error) return TimeAtError{front[0].seconds, front[0].error < error};
   for (std::size_t k = 0; k + 1 < front.size(); ++k) {
     const Point& a = front[k];
     const Point& b = front[k + 1];
     if (a.error >= error && error >= b.error) {
       const double s = (std::log(error) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
-      return std::exp(std::log(a.seconds) + s * (std::log(b.seconds) - std::log(a.seconds)));
+      return TimeAtError{std::exp(std::log(a.seconds) + s * (std::log(b.seconds) - std::log(a.seconds))), false};
     }
   }
-  if (front.size() == 1 && front[0].error == error) return front[0].seconds;
   return std::nullopt;
 }
+
+/// A time in ms, "≤ t" for an upper bound, "—" for none.
+std::string formatTime(const std::optional<TimeAtError>& time);
+
+/// peer / mbsopt from their times at one error, with its sign of bound: "≥ r" when mbsopt's time is
+/// an upper bound, "≤ r" when the peer's is, "—" when both are or either is missing.
+std::string formatRatio(const std::optional<TimeAtError>& peer, const std::optional<TimeAtError>& mbsopt);
 
 json frontJson(const std::vector<Point>& front) {
   json out = json::array();
@@ -554,6 +569,17 @@ std::string format(double value, int precision = 3) {
   std::ostringstream out;
   out << std::setprecision(precision) << value;
   return out.str();
+}
+
+std::string formatTime(const std::optional<TimeAtError>& time) {
+  if (!time) return "—";
+  return (time->upper_bound ? "≤ " : "") + format(time->seconds * 1e3, 3);
+}
+
+std::string formatRatio(const std::optional<TimeAtError>& peer, const std::optional<TimeAtError>& mbsopt) {
+  if (!peer || !mbsopt || (peer->upper_bound && mbsopt->upper_bound)) return "—";
+  const std::string bound = mbsopt->upper_bound ? "≥ " : peer->upper_bound ? "≤ " : "";
+  return bound + format(peer->seconds / mbsopt->seconds, 3);
 }
 
 std::string sci(double value) {
@@ -871,41 +897,51 @@ MechanismResult compare(const Mechanism& mech, const Options& options, const std
     // engines' joint fronts a slower run a hair more accurate than a faster one sits between it and
     // the next, and the interpolation then runs through the slower one).
     const auto fastest = [&](const std::string& engine) {
-      std::pair<std::optional<double>, std::string> best;  // the time and the integrator's name
+      std::pair<std::optional<TimeAtError>, std::string> best;  // the time and the integrator's name
       for (const auto& [name, points] : series)
         if (name.starts_with(engine + " "))
-          if (const std::optional<double> t = timeAtError(paretoFront(points), target); t && (!best.first || *t < *best.first))
+          if (const std::optional<TimeAtError> t = timeAtError(paretoFront(points), target);
+              t && (!best.first || t->seconds < best.first->seconds))
             best = {t, name.substr(engine.size() + 1)};
       return best;
     };
     const auto [mbsopt_time, mbsopt_winner] = fastest("mbsopt");
     const auto [simbody_time, winner] = fastest("simbody");
     const auto [mujoco_time, mujoco_winner] = fastest("mujoco");
-    const double ratio = (mbsopt_time && simbody_time) ? *simbody_time / *mbsopt_time : kNaN;
-    const double mujoco_ratio = (mbsopt_time && mujoco_time) ? *mujoco_time / *mbsopt_time : kNaN;
+    const auto ratioOf = [&](const std::optional<TimeAtError>& peer) {
+      return (mbsopt_time && peer) ? peer->seconds / mbsopt_time->seconds : kNaN;
+    };
+    const double ratio = ratioOf(simbody_time), mujoco_ratio = ratioOf(mujoco_time);
     std::string verdict = "not bracketed";
-    if (std::isfinite(ratio)) verdict = ratio > 1.0 ? "mbsopt faster" : "Simbody faster";
-    else if (mbsopt_time && !simbody_time) verdict = "Simbody does not reach it";
+    if (std::isfinite(ratio)) {
+      // A bound on mbsopt's time bounds the ratio from below, one on Simbody's from above.
+      const bool mbsopt_faster = ratio > 1.0 && !simbody_time->upper_bound;
+      const bool simbody_faster = ratio < 1.0 && !mbsopt_time->upper_bound;
+      verdict = mbsopt_faster ? "mbsopt faster" : simbody_faster ? "Simbody faster" : "undecided (a bound)";
+    } else if (mbsopt_time && !simbody_time) verdict = "Simbody does not reach it";
     else if (!mbsopt_time && simbody_time) verdict = "mbsopt does not reach it";
     if (!simbody) verdict = "not in Simbody";
+    const auto seconds = [](const std::optional<TimeAtError>& t) { return t ? json(t->seconds) : json(nullptr); };
+    const auto bound = [](const std::optional<TimeAtError>& t) { return t ? json(t->upper_bound) : json(nullptr); };
     ratios.push_back({{"error", target},
-                      {"mbsopt_seconds", mbsopt_time ? json(*mbsopt_time) : json(nullptr)},
-                      {"simbody_seconds", simbody_time ? json(*simbody_time) : json(nullptr)},
+                      {"mbsopt_seconds", seconds(mbsopt_time)},
+                      {"mbsopt_seconds_is_upper_bound", bound(mbsopt_time)},
+                      {"simbody_seconds", seconds(simbody_time)},
+                      {"simbody_seconds_is_upper_bound", bound(simbody_time)},
                       {"simbody_integrator", winner.empty() ? json(nullptr) : json(winner)},
                       {"mbsopt_integrator", mbsopt_winner.empty() ? json(nullptr) : json(mbsopt_winner)},
                       {"ratio_simbody_over_mbsopt", jsonNumber(ratio)},
                       {"verdict", verdict},
-                      {"mujoco_seconds", mujoco_time ? json(*mujoco_time) : json(nullptr)},
+                      {"mujoco_seconds", seconds(mujoco_time)},
+                      {"mujoco_seconds_is_upper_bound", bound(mujoco_time)},
                       {"mujoco_integrator", mujoco_winner.empty() ? json(nullptr) : json(mujoco_winner)},
                       {"ratio_mujoco_over_mbsopt", jsonNumber(mujoco_ratio)}});
-    result.table_rows.push_back("| " + mech.key + " | " + sci(target) + " | " +
-                                (mbsopt_time ? format(*mbsopt_time * 1e3, 3) : std::string("—")) + " | " +
-                                (mbsopt_winner.empty() ? "—" : mbsopt_winner) + " | " +
-                                (simbody_time ? format(*simbody_time * 1e3, 3) : std::string("—")) + " | " +
-                                (winner.empty() ? "—" : winner) + " | " + format(ratio, 3) + " | " + verdict + " | " +
-                                (mujoco_time ? format(*mujoco_time * 1e3, 3) : std::string("—")) + " | " +
+    result.table_rows.push_back("| " + mech.key + " | " + sci(target) + " | " + formatTime(mbsopt_time) + " | " +
+                                (mbsopt_winner.empty() ? "—" : mbsopt_winner) + " | " + formatTime(simbody_time) + " | " +
+                                (winner.empty() ? "—" : winner) + " | " + formatRatio(simbody_time, mbsopt_time) + " | " +
+                                verdict + " | " + formatTime(mujoco_time) + " | " +
                                 (mujoco_winner.empty() ? (mujoco ? "—" : "not run") : mujoco_winner) + " | " +
-                                format(mujoco_ratio, 3) + " |");
+                                formatRatio(mujoco_time, mbsopt_time) + " |");
   }
   data["time_ratio"] = ratios;
 
@@ -1053,8 +1089,9 @@ int main(int argc, char** argv) {
      << "libmujoco-dev, the same pins written as MJCF (loops as soft `connect` equalities, as stiff as MuJoCo "
      << "allows at the step), Euler, implicit and RK4 at the ladder's fixed steps.\n\n"
      << "Ratio = the peer's time / mbsopt's time at the same error; each engine's time that of the fastest of its "
-     << "integrators at that error, interpolated log-log on that integrator's Pareto front. Above 1: mbsopt is "
-     << "faster. The verdict is Simbody's.\n\n"
+     << "integrators at that error, interpolated log-log on that integrator's Pareto front; \"≤ t\" where the "
+     << "integrator's cheapest run is already more accurate (its time bounds the time at that error), and the "
+     << "ratio then a bound too. Above 1: mbsopt is faster. The verdict is Simbody's.\n\n"
      << "| mechanism | error [rad] | mbsopt [ms] | mbsopt integrator | Simbody [ms] | Simbody integrator | ratio | "
      << "verdict | MuJoCo [ms] | MuJoCo integrator | MuJoCo ratio |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
