@@ -1,6 +1,7 @@
 #include "mbsopt/algorithms/kinematics.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "mbsopt/model/overloaded.hpp"
 #include "mbsopt/algorithms/ball_chart.hpp"
@@ -77,9 +78,11 @@ void placeBall(const Model& model, std::size_t k, const VectorX<Scalar>& q, bool
   const Vector3<Scalar> phi = q.template segment<3>(x.coordinate);
   const Scalar theta2 = phi.squaredNorm();
   if (valueOf(theta2) > kBallChartLimit * kBallChartLimit)
-    throw DegenerateElementError(x.name, "ball joint '" + x.name + "': turned by |φ| = " +
-                                             std::to_string(std::sqrt(valueOf(theta2))) +
-                                             " rad from its reference, beyond 1.8π, where its rotation-vector chart ends");
+    throw DegenerateElementError(
+        x.name, "the ball joint of " + x.name + ", " + elements[k + 1].name + ", " + elements[k + 2].name +
+                    " has turned by |φ| = " + std::to_string(std::sqrt(valueOf(theta2))) +
+                    " rad from its reference, beyond 1.8π, where its rotation-vector chart ends (a joint that spins "
+                    "about one axis without end is a `spherical` one spinning about its x axis)");
   const BallChartCoefficients<Scalar> chart = ballChartCoefficients(theta2);
   const Matrix3<Scalar> K = crossMatrixOf(phi);
   const Matrix3<Scalar> K2 = K * K;
