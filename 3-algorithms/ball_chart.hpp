@@ -11,7 +11,9 @@
 // Below θ = 1 every coefficient is its power series in θ², which AD differentiates at φ = 0 too.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 #include "mbsopt/model/scalar.hpp"
@@ -22,12 +24,16 @@ namespace mbsopt {
 /// J, sin(θ/2)/(θ/2), is 0.11 (it is 1 at φ = 0 and 0 at θ = 2π).
 inline constexpr double kBallChartLimit = 1.8 * std::numbers::pi;
 
-/// 1/n!, for the power series of ballChartCoefficients.
-constexpr double inverseFactorial(int n) {
-  double f = 1.0;
-  for (int i = 2; i <= n; ++i) f *= i;
-  return 1.0 / f;
-}
+/// 1/n! for n = 0 … 23, the power series' coefficients of ballChartCoefficients.
+inline constexpr std::array<double, 24> kInverseFactorials = [] {
+  std::array<double, 24> table{};
+  double factorial = 1.0;
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    if (n > 1) factorial *= static_cast<double>(n);
+    table[n] = 1.0 / factorial;
+  }
+  return table;
+}();
 
 /// The chart's coefficients at θ² = φ·φ.
 template <class Scalar>
@@ -44,15 +50,16 @@ BallChartCoefficients<Scalar> ballChartCoefficients(const Scalar& theta2) {
   if (valueOf(theta2) < 1.0) {
     // s = Σ (−x)^k/(2k+1)!, α = Σ (−x)^k/(2k+2)!, β = Σ (−x)^k/(2k+3)!, α'/θ = −Σ 2(k+1)(−x)^k/(2k+4)!,
     // β'/θ = −Σ 2(k+1)(−x)^k/(2k+5)! with x = θ²: ten terms leave less than 1e-17 at x < 1.
-    constexpr int kTerms = 10;
+    constexpr std::size_t kTerms = 10;
     Scalar sinc(0), alpha(0), beta(0), alpha_rate(0), beta_rate(0);
-    for (int k = kTerms - 1; k >= 0; --k) {  // Horner, from the smallest term
-      const double weight = 2.0 * (k + 1);
-      sinc = Scalar(inverseFactorial(2 * k + 1)) - theta2 * sinc;
-      alpha = Scalar(inverseFactorial(2 * k + 2)) - theta2 * alpha;
-      beta = Scalar(inverseFactorial(2 * k + 3)) - theta2 * beta;
-      alpha_rate = Scalar(-weight * inverseFactorial(2 * k + 4)) - theta2 * alpha_rate;
-      beta_rate = Scalar(-weight * inverseFactorial(2 * k + 5)) - theta2 * beta_rate;
+    for (std::size_t k = kTerms; k-- > 0;) {  // Horner, from the smallest term
+      const double weight = 2.0 * static_cast<double>(k + 1);
+      const double* f = kInverseFactorials.data() + 2 * k;  // f[i] = 1/(2k + i)!
+      sinc = Scalar(f[1]) - theta2 * sinc;
+      alpha = Scalar(f[2]) - theta2 * alpha;
+      beta = Scalar(f[3]) - theta2 * beta;
+      alpha_rate = Scalar(-weight * f[4]) - theta2 * alpha_rate;
+      beta_rate = Scalar(-weight * f[5]) - theta2 * beta_rate;
     }
     return {sinc, alpha, beta, alpha_rate, beta_rate};
   }
@@ -63,12 +70,18 @@ BallChartCoefficients<Scalar> ballChartCoefficients(const Scalar& theta2) {
           Scalar((theta * s - 2.0 * (1.0 - c)) / theta4), Scalar((3.0 * s - theta * c - 2.0 * theta) / (theta4 * theta))};
 }
 
-/// [v]×, the matrix of v × ·.
+/// [v]× and [v]×² = v vᵀ − |v|² 1, the matrices of v × · and v × (v × ·).
 template <class Scalar>
 Matrix3<Scalar> crossMatrixOf(const Vector3<Scalar>& v) {
   Matrix3<Scalar> k;
   k << Scalar(0), Scalar(-v.z()), v.y(), v.z(), Scalar(0), Scalar(-v.x()), Scalar(-v.y()), v.x(), Scalar(0);
   return k;
+}
+template <class Scalar>
+Matrix3<Scalar> crossSquaredOf(const Vector3<Scalar>& v, const Scalar& squared_norm) {
+  Matrix3<Scalar> k2 = v * v.transpose();
+  k2.diagonal().array() -= squared_norm;
+  return k2;
 }
 
 /// J̇ φ̇ in any axes: φ and φ̇ given in the same axes (the chart's coefficients are invariant).

@@ -85,7 +85,7 @@ void placeBall(const Model& model, std::size_t k, const VectorX<Scalar>& q, bool
                     "about one axis without end is a `spherical` one spinning about its x axis)");
   const BallChartCoefficients<Scalar> chart = ballChartCoefficients(theta2);
   const Matrix3<Scalar> K = crossMatrixOf(phi);
-  const Matrix3<Scalar> K2 = K * K;
+  const Matrix3<Scalar> K2 = crossSquaredOf(phi, theta2);
   const auto e = static_cast<std::size_t>(x.entry);
   const Matrix3<Scalar>& Re = ws.rotation[e];
   for (std::size_t c = 0; c < 3; ++c) ws.position[static_cast<std::size_t>(elements[k + c].exit)] = ws.position[e];

@@ -1,13 +1,15 @@
 // Timings of the dynamics core: one residual, the AD tangent matrices, the constraint Jacobian, one
 // Newmark step and a whole simulation on the tramway scene; residual and tangents on a planar chain
 // of N links, and one Newmark step of that chain closed into a loop, to show how the cost grows
-// with the number of coordinates.
+// with the number of coordinates; residual and tangents of a spatial chain on ball joints, in
+// rotation vectors (`ball`) and in Cardan angles (`spherical`, three revolutes), the chart's cost.
 //
 // Residual/tangent timings use a state from a short simulated run (moving, loaded, mid-curve), not
 // zeros, so no branch or AD derivative is trivially empty.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -168,6 +170,41 @@ BENCHMARK(BM_TramwaySimulation)
     ->Args({0, 1})
     ->Args({1, 1})
     ->Unit(benchmark::kMillisecond);
+
+// ---- a spatial chain of four links on ball joints ----
+
+/// Four links hanging on ball joints, in rotation vectors (Model::addBallJoint) or in Cardan angles
+/// (three revolutes about x, y', z''), thrown about all three axes; its state after 0.2 s.
+const SceneState& ballChainState(bool rotation_vectors) {
+  static std::map<bool, SceneState> states;
+  auto it = states.find(rotation_vectors);
+  if (it != states.end()) return it->second;
+  Scene scene;
+  Model& m = scene.model;
+  m.setGravity(Eigen::Vector3d(0.0, 0.0, -9.81));
+  FrameIndex tip = Model::ground;
+  for (int i = 0; i < 4; ++i) {
+    const std::string id = std::to_string(i);
+    const std::array<std::string, 3> names{"ball" + id + "_x", "ball" + id + "_y", "ball" + id + "_z"};
+    FrameIndex link = tip;
+    if (rotation_vectors) link = m.addBallJoint(names, tip);
+    else
+      for (int axis = 0; axis < 3; ++axis) link = m.addRevolute(names[static_cast<std::size_t>(axis)], link, Eigen::Vector3d::Unit(axis));
+    m.addBody("link" + id, link, 1.5, Eigen::Vector3d(0.02, 0.01, -0.25), Eigen::Vector3d(0.03, 0.028, 0.004).asDiagonal());
+    tip = m.addOffset("tip" + id, link, Eigen::Vector3d(0.0, 0.0, -0.5));
+  }
+  scene.q0 = Eigen::VectorXd::Zero(m.coordinateCount());
+  scene.v0 = Eigen::VectorXd::LinSpaced(m.coordinateCount(), -2.0, 2.0);
+  return states.emplace(rotation_vectors, runFor(std::move(scene), 0.2)).first->second;
+}
+
+void BM_BallChainResidual(benchmark::State& bench) { timeResidual(bench, ballChainState(bench.range(0) != 0)); }
+BENCHMARK(BM_BallChainResidual)->ArgName("rotation_vectors")->Arg(0)->Arg(1);
+
+void BM_BallChainTangentMatrices(benchmark::State& bench) {
+  timeTangentMatrices(bench, ballChainState(bench.range(0) != 0));
+}
+BENCHMARK(BM_BallChainTangentMatrices)->ArgName("rotation_vectors")->Arg(0)->Arg(1);
 
 // ---- planar chain of N links ----
 
