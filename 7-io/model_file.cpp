@@ -244,28 +244,26 @@ class ModelFileReader {
     const int qpos = m.jnt_qposadr[j];
     const int dof = m.jnt_dofadr[j];
     const int type = m.jnt_type[j];
-    const bool passive = !(m.opt.disableflags & mjDSBL_PASSIVE);
-    const double stiffness = passive ? m.jnt_stiffness[j] : 0.0;
-    const auto damping = [&](int d) { return passive ? m.dof_damping[d] : 0.0; };
+    const double stiffness = passiveStiffness(j);
     if (type == mjJNT_FREE) {
       const char* const translations[] = {"_x", "_y", "_z"};
       for (int i = 0; i < 3; ++i) {
         const std::string slide = added(joint + translations[i]);
         frame = model_.addPrismatic(slide, frame, Eigen::Vector3d::Unit(i));
         start(slide, m.qpos0[qpos + i]);
-        if (stiffness != 0.0 || damping(dof + i) != 0.0)  // its rate is the body's velocity in the ground's axes
-          model_.addJointSpringDamper(added(slide + "_spring"), slide, stiffness, damping(dof + i), m.qpos_spring[qpos + i]);
+        if (stiffness != 0.0 || passiveDamping(dof + i) != 0.0)  // its rate is the body's velocity in the ground's axes
+          model_.addJointSpringDamper(added(slide + "_spring"), slide, stiffness, passiveDamping(dof + i), m.qpos_spring[qpos + i]);
       }
-      return addBall(joint, {"_rx", "_ry", "_rz"}, frame, qpos + 3, stiffness, {damping(dof + 3), damping(dof + 4), damping(dof + 5)});
+      return addBall(j, {"_rx", "_ry", "_rz"}, frame, qpos + 3, dof + 3);
     }
     if (position != anchor) frame = model_.addOffset(added(joint + "_anchor"), frame, position - anchor);
     anchor = position;
-    if (type == mjJNT_BALL) return addBall(joint, {"_x", "_y", "_z"}, frame, qpos, stiffness, {damping(dof), damping(dof + 1), damping(dof + 2)});
+    if (type == mjJNT_BALL) return addBall(j, {"_x", "_y", "_z"}, frame, qpos, dof);
     frame = type == mjJNT_HINGE ? model_.addRevolute(added(joint), frame, axis)
                                 : model_.addPrismatic(added(joint), frame, axis);
     start(joint, 0.0);  // coordinates count from the joint's reference, qpos0
-    if (stiffness != 0.0 || damping(dof) != 0.0)
-      model_.addJointSpringDamper(added(joint + "_spring"), joint, stiffness, damping(dof), m.qpos_spring[qpos] - m.qpos0[qpos]);
+    if (stiffness != 0.0 || passiveDamping(dof) != 0.0)
+      model_.addJointSpringDamper(added(joint + "_spring"), joint, stiffness, passiveDamping(dof), m.qpos_spring[qpos] - m.qpos0[qpos]);
     if (m.dof_armature[dof] != 0.0) model_.addArmature(joint, m.dof_armature[dof]);
     return frame;
   }
@@ -276,10 +274,14 @@ class ModelFileReader {
   /// of the joint, the torque −k log(q_spring⁻¹ q) on its angular velocity, is −k J(φ)ᵀ φ = −k φ on
   /// the rotation vector's rates (Kφ = 0): a joint spring on each component, where the spring's
   /// orientation is the start's (MuJoCo's wraps the logarithm at a half turn; this one does not).
-  /// Its damper, −c ω on the same angular velocity, is a rotational damper across the joint.
-  FrameIndex addBall(const std::string& joint, std::array<const char*, 3> suffixes, FrameIndex frame, int quaternion,
-                     double stiffness, const std::array<double, 3>& damping) {
+  /// Its damper, −c ω on the same angular velocity (the dofs from `rotation_dof`), is a rotational
+  /// damper across the joint.
+  FrameIndex addBall(int j, std::array<const char*, 3> suffixes, FrameIndex frame, int quaternion, int rotation_dof) {
     const mjModel& m = *mj_;
+    const std::string joint = name(mjOBJ_JOINT, j, "joint");
+    const double stiffness = passiveStiffness(j);
+    const std::array<double, 3> damping{passiveDamping(rotation_dof), passiveDamping(rotation_dof + 1),
+                                        passiveDamping(rotation_dof + 2)};
     const Eigen::Matrix3d start_rotation = rotationOf(m.qpos0 + quaternion);
     if (!start_rotation.isIdentity(1e-15))
       frame = model_.addOffset(added(joint + "_start"), frame, Eigen::Vector3d::Zero(), start_rotation);
@@ -299,6 +301,11 @@ class ModelFileReader {
     if (damping[0] != 0.0) model_.addRotationalDamper(added(joint + "_damper"), frame, exit, damping[0]);
     return exit;
   }
+
+  /// Joint j's stiffness and dof d's damping, zero where the file's option disables passive forces.
+  double passiveStiffness(int j) const { return passive() ? mj_->jnt_stiffness[j] : 0.0; }
+  double passiveDamping(int d) const { return passive() ? mj_->dof_damping[d] : 0.0; }
+  bool passive() const { return !(mj_->opt.disableflags & mjDSBL_PASSIVE); }
 
   std::string added(const std::string& name) {
     contents_.names.push_back(name);
